@@ -1,0 +1,31 @@
+// The accelerator interface: every structure (brute force, bounding volumes, grid, kd-tree, BVH) answers
+// the same two queries on the same primitive ids, so each can be checked against brute force.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raystep/geometry/ray.h"
+#include "raystep/scene/geometry.h"
+
+namespace raystep {
+
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+  virtual std::string name() const = 0;
+  // Build over the geometry, which must outlive the accelerator.
+  virtual void build(const Geometry& geometry) = 0;
+  // Nearest hit with ray.tmin < t < ray.tmax; false (and hit->prim = -1) on a miss.
+  virtual bool intersect(const Ray& ray, Hit* hit) const = 0;
+  // Any hit with ray.tmin < t < ray.tmax (shadow rays).
+  virtual bool occluded(const Ray& ray) const = 0;
+};
+
+// The names accepted by make_accelerator, for --help texts.
+std::vector<std::string> accelerator_names();
+// Throws InputError("", 0, "unknown accelerator ...") for an unknown name.
+std::unique_ptr<Accelerator> make_accelerator(const std::string& name);
+
+}  // namespace raystep

@@ -1,0 +1,19 @@
+// Vanilla ray tracing: test every primitive (cost n per ray). The reference every structure must agree with.
+#pragma once
+
+#include "raystep/accel/accelerator.h"
+
+namespace raystep {
+
+class BruteForce final : public Accelerator {
+ public:
+  std::string name() const override { return "brute"; }
+  void build(const Geometry& geometry) override { geometry_ = &geometry; }
+  bool intersect(const Ray& ray, Hit* hit) const override;
+  bool occluded(const Ray& ray) const override;
+
+ private:
+  const Geometry* geometry_ = nullptr;
+};
+
+}  // namespace raystep

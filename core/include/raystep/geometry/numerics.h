@@ -1,0 +1,48 @@
+// Floating-point error bounds for robust ray tracing.
+// gamma(n) bounds the relative error of n floating-point operations (Higham; pbrt-v4, section 6.8);
+// next_float_up/down move to the neighbouring representable float. These replace fixed epsilons.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace raystep {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;
+
+// Relative error bound of n chained float operations: n*eps / (1 - n*eps).
+constexpr float gamma(int n) { return (n * kMachineEpsilon) / (1 - n * kMachineEpsilon); }
+
+inline uint32_t float_to_bits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+inline float bits_to_float(uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, sizeof f);
+  return f;
+}
+
+// The smallest float greater than v (+inf stays +inf; -0 becomes the smallest positive float).
+inline float next_float_up(float v) {
+  if (std::isinf(v) && v > 0.f) return v;
+  if (v == -0.f) v = 0.f;
+  uint32_t ui = float_to_bits(v);
+  if (v >= 0) ++ui; else --ui;
+  return bits_to_float(ui);
+}
+
+// The largest float smaller than v.
+inline float next_float_down(float v) {
+  if (std::isinf(v) && v < 0.f) return v;
+  if (v == 0.f) v = -0.f;
+  uint32_t ui = float_to_bits(v);
+  if (v > 0) --ui; else ++ui;
+  return bits_to_float(ui);
+}
+
+}  // namespace raystep

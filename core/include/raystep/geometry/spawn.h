@@ -1,0 +1,51 @@
+// Spawning secondary rays without self-intersection at any scale (pbrt-v4, section 6.8.6): move the origin
+// along the surface normal by the hit point's own error bound, to the side the new ray leaves by, then
+// round away from the surface. No fixed epsilon: the offset scales with the coordinates.
+#pragma once
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "raystep/geometry/numerics.h"
+#include "raystep/geometry/ray.h"
+
+namespace raystep {
+
+// p: hit point; p_error: its absolute error bound per axis; n: surface normal (any length);
+// w: direction of the new ray.
+inline glm::vec3 offset_ray_origin(const glm::vec3& p, const glm::vec3& p_error, const glm::vec3& n,
+                                   const glm::vec3& w) {
+  glm::vec3 nn = glm::normalize(n);
+  float d = glm::dot(glm::abs(nn), p_error);
+  glm::vec3 offset = d * nn;
+  if (glm::dot(w, nn) < 0) offset = -offset;
+  glm::vec3 po = p + offset;
+  for (int i = 0; i < 3; ++i) {
+    if (offset[i] > 0) po[i] = next_float_up(po[i]);
+    else if (offset[i] < 0) po[i] = next_float_down(po[i]);
+  }
+  return po;
+}
+
+// A ray leaving the surface at p in direction w.
+inline Ray spawn_ray(const glm::vec3& p, const glm::vec3& p_error, const glm::vec3& n, const glm::vec3& w) {
+  Ray r;
+  r.origin = offset_ray_origin(p, p_error, n, w);
+  r.direction = w;
+  r.tmin = 0.f;
+  r.tmax = kInfinity;
+  return r;
+}
+
+// A shadow ray from the surface towards point `to` (a point light): t in (0, 1 - shadow epsilon) along
+// d = to - origin. The fraction keeps the ray from reaching the light's own position.
+inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& p_error, const glm::vec3& n, const glm::vec3& to) {
+  Ray r;
+  r.origin = offset_ray_origin(p, p_error, n, to - p);
+  r.direction = to - r.origin;
+  r.tmin = 0.f;
+  r.tmax = 1.f - 1e-4f;
+  return r;
+}
+
+}  // namespace raystep

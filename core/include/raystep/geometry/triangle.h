@@ -1,0 +1,113 @@
+// Watertight ray-triangle intersection (Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection",
+// JCGT 2013), in the form of pbrt-v4 (section 6.5.3): translate to the ray origin, permute so that the
+// dominant direction axis is z, shear so the ray is +z, then evaluate the three 2D edge functions, falling
+// back to double precision when one is exactly zero. Rays through a shared edge or vertex hit at least
+// one of the triangles that share it. The hit is also conservatively checked to lie in front of the origin.
+#pragma once
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+#include "raystep/geometry/numerics.h"
+#include "raystep/geometry/ray.h"
+
+namespace raystep {
+
+// The per-ray part of the test, computed once per ray: axis permutation and shear.
+struct WatertightRay {
+  glm::vec3 origin;
+  int kx, ky, kz;
+  float sx, sy, sz;
+  float tmin, tmax;
+
+  explicit WatertightRay(const Ray& r) : origin(r.origin), tmin(r.tmin), tmax(r.tmax) {
+    glm::vec3 ad = glm::abs(r.direction);
+    kz = (ad.x > ad.y) ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
+    kx = kz + 1 == 3 ? 0 : kz + 1;
+    ky = kx + 1 == 3 ? 0 : kx + 1;
+    glm::vec3 d(r.direction[kx], r.direction[ky], r.direction[kz]);
+    sx = -d.x / d.z;
+    sy = -d.y / d.z;
+    sz = 1.f / d.z;
+  }
+};
+
+struct TriangleHit {
+  float t;
+  float b0, b1, b2;  // barycentric coordinates: p = b0*p0 + b1*p1 + b2*p2
+};
+
+// True if the ray hits triangle (p0, p1, p2) with ray.tmin < t < tmax; then *hit holds t and barycentrics.
+// tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found.
+inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
+                               const glm::vec3& p2, float tmax, TriangleHit* hit) {
+  // Translate the vertices to the ray origin, permute (kx, ky, kz) and shear so the ray runs along +z.
+  glm::vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
+  float ax = a[r.kx] + r.sx * a[r.kz], ay = a[r.ky] + r.sy * a[r.kz];
+  float bx = b[r.kx] + r.sx * b[r.kz], by = b[r.ky] + r.sy * b[r.kz];
+  float cx = c[r.kx] + r.sx * c[r.kz], cy = c[r.ky] + r.sy * c[r.kz];
+
+  // Edge functions: signed areas of the sheared triangle's edges seen from the ray (the origin in 2D).
+  float e0 = bx * cy - by * cx;
+  float e1 = cx * ay - cy * ax;
+  float e2 = ax * by - ay * bx;
+  // Exactly zero: the ray passes (nearly) through an edge; decide it in double so that the sign is exact.
+  if (e0 == 0.f || e1 == 0.f || e2 == 0.f) {
+    e0 = float(double(bx) * double(cy) - double(by) * double(cx));
+    e1 = float(double(cx) * double(ay) - double(cy) * double(ax));
+    e2 = float(double(ax) * double(by) - double(ay) * double(bx));
+  }
+  // The origin is inside when all edge functions share a sign (zeros allowed: edges are shared).
+  if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
+  float det = e0 + e1 + e2;
+  if (det == 0.f) return false;
+
+  // Scaled hit distance, compared with tmax without dividing.
+  float az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+  float t_scaled = e0 * az + e1 * bz + e2 * cz;
+  if (det < 0 && (t_scaled >= 0 || t_scaled < tmax * det)) return false;
+  if (det > 0 && (t_scaled <= 0 || t_scaled > tmax * det)) return false;
+
+  float inv_det = 1.f / det;
+  float t = t_scaled * inv_det;
+  if (!(t > r.tmin && t < tmax)) return false;
+
+  // Conservatively ensure t > 0 given the rounding error of the computation (pbrt-v4, 6.8.7).
+  float max_zt = std::fmax(std::fabs(az), std::fmax(std::fabs(bz), std::fabs(cz)));
+  float delta_z = gamma(3) * max_zt;
+  float max_xt = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
+  float max_yt = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
+  float delta_x = gamma(5) * (max_xt + max_zt);
+  float delta_y = gamma(5) * (max_yt + max_zt);
+  float delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  float max_e = std::fmax(std::fabs(e0), std::fmax(std::fabs(e1), std::fabs(e2)));
+  float delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv_det);
+  if (t <= delta_t) return false;
+
+  hit->t = t;
+  hit->b0 = e0 * inv_det;
+  hit->b1 = e1 * inv_det;
+  hit->b2 = e2 * inv_det;
+  return true;
+}
+
+inline bool intersect_triangle(const Ray& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                               TriangleHit* hit) {
+  return intersect_triangle(WatertightRay(ray), p0, p1, p2, ray.tmax, hit);
+}
+
+// Hit point from barycentrics and its absolute error bound per axis (pbrt-v4, 6.8.5): gamma(7)*sum|b_i p_i|.
+inline glm::vec3 triangle_point(const TriangleHit& h, const glm::vec3& p0, const glm::vec3& p1,
+                                const glm::vec3& p2, glm::vec3* p_error) {
+  glm::vec3 abs_sum = glm::abs(h.b0 * p0) + glm::abs(h.b1 * p1) + glm::abs(h.b2 * p2);
+  *p_error = gamma(7) * abs_sum;
+  return h.b0 * p0 + h.b1 * p1 + h.b2 * p2;
+}
+
+// Geometric normal (p1 - p0) x (p2 - p0), not normalised.
+inline glm::vec3 triangle_normal(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
+  return glm::cross(p1 - p0, p2 - p0);
+}
+
+}  // namespace raystep

@@ -1,0 +1,83 @@
+// Accelerators against brute force: the same primitive and the same t on the same rays.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "raystep/accel/accelerator.h"
+#include "raystep/accel/bounding_volumes.h"
+#include "raystep/accel/brute_force.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+namespace {
+
+// A few objects: a grid of small triangles in several clusters, and spheres.
+Geometry make_clusters(uint32_t seed) {
+  Geometry g;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  for (int c = 0; c < 6; ++c) {
+    g.begin_object("cluster", 0);
+    glm::vec3 centre(4.f * u(rng), 4.f * u(rng), 4.f * u(rng));
+    for (int i = 0; i < 50; ++i) {
+      glm::vec3 p(centre.x + u(rng), centre.y + u(rng), centre.z + u(rng));
+      g.add_triangle(p, p + 0.3f * glm::vec3(u(rng), u(rng), u(rng)), p + 0.3f * glm::vec3(u(rng), u(rng), u(rng)));
+    }
+  }
+  g.begin_object("spheres", 0);
+  for (int i = 0; i < 5; ++i) g.add_sphere(Sphere{glm::vec3(4.f * u(rng), 4.f * u(rng), 4.f * u(rng)), 0.5f});
+  return g;
+}
+
+TEST(Accelerator, FactoryKnowsItsNamesAndRejectsOthers) {
+  for (const std::string& n : accelerator_names()) EXPECT_EQ(make_accelerator(n)->name(), n);
+  EXPECT_THROW(make_accelerator("octree-of-dreams"), InputError);
+}
+
+TEST(Accelerator, BoundingVolumesAgreeWithBruteForce) {
+  Geometry g = make_clusters(7);
+  BruteForce brute;
+  BoundingVolumes bvol;
+  brute.build(g);
+  bvol.build(g);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-6.f, 6.f);
+  std::normal_distribution<float> n;
+  int hits = 0, agree = 0, occl_agree = 0;
+  const int kRays = 20000;
+  for (int i = 0; i < kRays; ++i) {
+    Ray r;
+    r.origin = glm::vec3(u(rng), u(rng), u(rng));
+    r.direction = glm::vec3(n(rng), n(rng), n(rng));
+    if (i % 2 == 0) r.direction = g.prim_bounds(rng() % g.size()).center() - r.origin;  // aimed at a primitive
+    if (i % 3 == 0) r.tmax = 2.f;
+    Hit a, b;
+    bool ha = brute.intersect(r, &a), hb = bvol.intersect(r, &b);
+    hits += ha;
+    agree += (ha == hb && a.prim == b.prim && a.t == b.t);
+    occl_agree += brute.occluded(r) == bvol.occluded(r);
+  }
+  EXPECT_GT(hits, kRays / 3);  // the scene is actually hit
+  EXPECT_EQ(agree, kRays);
+  EXPECT_EQ(occl_agree, kRays);
+}
+
+TEST(Accelerator, NaNRaysMissEverywhere) {
+  Geometry g = make_clusters(3);
+  for (const std::string& name : accelerator_names()) {
+    auto acc = make_accelerator(name);
+    acc->build(g);
+    Ray r;
+    r.origin = glm::vec3(std::nanf(""), 0.f, 0.f);
+    Hit h;
+    EXPECT_FALSE(acc->intersect(r, &h)) << name;
+    EXPECT_EQ(h.prim, -1) << name;
+    EXPECT_FALSE(acc->occluded(r)) << name;
+    r.origin = glm::vec3(0.f);
+    r.direction = glm::vec3(0.f);
+    EXPECT_FALSE(acc->intersect(r, &h)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace raystep
