@@ -3,6 +3,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/grid.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -79,11 +80,12 @@ bool BoundingVolumes::occluded(const Ray& ray) const {
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol"}; }
+std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
   if (name == "brute") return std::make_unique<BruteForce>();
   if (name == "bvol") return std::make_unique<BoundingVolumes>();
+  if (name == "grid") return std::make_unique<UniformGrid>();
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

@@ -1,0 +1,164 @@
+// Uniform grid (lecture: "Uniform grids"): the scene's bounding box cut into nx x ny x nz cells with
+// max(nx, ny, nz) = d * cbrt(n), each primitive stored in every cell it really overlaps (exact SAT test) or,
+// as an option, every cell its bounding box overlaps. Traversal is the 3D-DDA of Amanatides and Woo
+// ("A Fast Voxel Traversal Algorithm", 1987) with incremental arithmetic and per-thread mailboxes, walking
+// until the next cell's entry exceeds the nearest hit: "traverse until tmin(cell) > tmax(ray)".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "raystep/accel/accelerator.h"
+#include "raystep/accel/mailbox.h"
+#include "raystep/geometry/bounds.h"
+#include "raystep/trace/recorder.h"
+
+namespace raystep {
+
+struct GridOptions {
+  float density = 3.f;                           // d in max(nx, ny, nz) = d * cbrt(n)
+  std::optional<std::array<int, 3>> resolution;  // explicit nx, ny, nz (overrides density)
+  bool exact_insert = true;                      // false: insert by bounding box
+};
+
+class UniformGrid final : public Accelerator {
+ public:
+  explicit UniformGrid(GridOptions options = {}) : options_(options) {}
+  std::string name() const override { return "grid"; }
+  void build(const Geometry& geometry) override;
+  bool intersect(const Ray& ray, Hit* hit) const override;
+  bool occluded(const Ray& ray) const override;
+
+  // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
+  template <class Recorder>
+  bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
+
+  // The lecture's resolution rule, exposed for tests and lessons.
+  static std::array<int, 3> resolution_for(const Bounds3& bounds, size_t prim_count, float density);
+
+  const Bounds3& bounds() const { return bounds_; }
+  std::array<int, 3> resolution() const { return {n_[0], n_[1], n_[2]}; }
+  glm::vec3 cell_size() const { return cell_size_; }
+  Bounds3 cell_bounds(int i, int j, int k) const;
+  size_t reference_count() const { return prim_index_.size(); }
+  // Primitive ids stored in cell (i, j, k).
+  const uint32_t* cell_begin(int i, int j, int k) const { return &prim_index_[cell_start_[cell_id(i, j, k)]]; }
+  const uint32_t* cell_end(int i, int j, int k) const { return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1]; }
+  const GridOptions& options() const { return options_; }
+
+ private:
+  size_t cell_id(int i, int j, int k) const { return (size_t(k) * n_[1] + j) * n_[0] + i; }
+  int cell_of(float p, int axis) const;
+
+  GridOptions options_;
+  const Geometry* geometry_ = nullptr;
+  Bounds3 bounds_;
+  int n_[3] = {1, 1, 1};
+  glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
+  std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
+  std::vector<uint32_t> prim_index_;
+  Mailboxes mailboxes_;
+};
+
+template <class Recorder>
+bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+  *hit = Hit{};
+  rec.ray_begin(ray);
+  // Enter the grid by the slab test; the walk covers [t_enter, t_exit] of the ray.
+  SlabRay slab(ray);
+  float t_enter, t_exit;
+  if (cell_start_.empty() || !intersect_slabs(bounds_, slab, &t_enter, &t_exit)) {
+    rec.ray_end(*hit);
+    return false;
+  }
+
+  // Set up the 3D-DDA: the start cell (clamped), and per axis stepX, tMaxX (t of the next boundary), tDeltaX.
+  glm::vec3 start = ray.at(t_enter);
+  int cell[3], step[3], out[3];
+  glm::vec3 t_max, t_delta;
+  for (int a = 0; a < 3; ++a) {
+    cell[a] = cell_of(start[a], a);
+    float d = ray.direction[a];
+    if (d > 0.f) {  // +0 and -0 both fall through to "never step on this axis"
+      step[a] = 1;
+      out[a] = n_[a];
+      t_max[a] = (bounds_.lo[a] + float(cell[a] + 1) * cell_size_[a] - ray.origin[a]) / d;
+      t_delta[a] = cell_size_[a] / d;
+    } else if (d < 0.f) {
+      step[a] = -1;
+      out[a] = -1;
+      t_max[a] = (bounds_.lo[a] + float(cell[a]) * cell_size_[a] - ray.origin[a]) / d;
+      t_delta[a] = -cell_size_[a] / d;
+    } else {
+      step[a] = 0;
+      out[a] = -2;  // never reached
+      t_max[a] = kInfinity;
+      t_delta[a] = kInfinity;
+    }
+  }
+
+  MailboxStamp mailbox = mailboxes_.begin_ray();
+  WatertightRay wray(ray);
+  float t_nearest = ray.tmax;
+  float t_cell_enter = t_enter;
+  for (;;) {
+    // The axis whose boundary comes first is stepped next; ties go to the lowest axis (x, then y, then z),
+    // so a ray through an edge or a vertex visits the cells around it one axis at a time.
+    int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
+    float t_cell_exit = std::min(t_max[axis], t_exit);
+    if constexpr (Recorder::enabled)
+      rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit, t_max, t_delta,
+                            t_max[axis] <= t_exit ? axis : -1});
+    else
+      rec.cell(GridCellStep{});
+
+    // Test the cell's primitives, skipping those already tested for this ray (mailbox).
+    size_t id = cell_id(cell[0], cell[1], cell[2]);
+    for (uint32_t r = cell_start_[id]; r < cell_start_[id + 1]; ++r) {
+      uint32_t prim = prim_index_[r];
+      if (!mailbox.first_visit(prim)) {
+        rec.mailbox_hit(prim);
+        continue;
+      }
+      Hit candidate;
+      bool found = geometry_->intersect(prim, ray, wray, t_nearest, &candidate);
+      rec.prim_test(prim, found, candidate.t);
+      if (!found) continue;
+      *hit = candidate;
+      t_nearest = candidate.t;
+      if (any_hit) {
+        rec.hit_accepted(prim, t_nearest, AcceptReason::any_hit);
+        rec.ray_end(*hit);
+        return true;
+      }
+      // A hit beyond this cell's exit may yet be beaten by a primitive of a later cell: keep it, go on.
+      if (t_nearest >= t_cell_exit) rec.hit_deferred(prim, t_nearest, t_cell_exit);
+    }
+
+    // Traverse until tmin(next cell) > tmax(ray): the next cell starts at this cell's exit.
+    if (hit->found() && t_nearest < t_cell_exit) {
+      rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::inside_cell);
+      break;
+    }
+    if (t_max[axis] > t_exit) {  // the ray leaves the grid (or its interval ends) in this cell
+      if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
+      break;
+    }
+    // Step to the neighbour along that axis: incremental arithmetic, one addition per step.
+    cell[axis] += step[axis];
+    if (cell[axis] == out[axis]) {
+      if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
+      break;
+    }
+    t_cell_enter = t_max[axis];
+    t_max[axis] += t_delta[axis];
+  }
+  rec.ray_end(*hit);
+  return hit->found();
+}
+
+}  // namespace raystep

@@ -1,0 +1,59 @@
+// Recorders: what a traversal kernel tells about its work. Every kernel takes the recorder as a template
+// parameter. NullRecorder's members are empty and `enabled` is false, so the kernel compiles to the same code
+// as one without hooks; CountingRecorder keeps per-ray counters (heat maps, statistics). Payloads that cost
+// something to build are made only inside `if constexpr (Recorder::enabled)`.
+#pragma once
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+
+#include "raystep/geometry/ray.h"
+
+namespace raystep {
+
+struct Hit;
+
+// One cell of the 3D-DDA (Amanatides and Woo): its index, the ray's interval inside it, and the DDA state.
+struct GridCellStep {
+  int i, j, k;
+  float t_enter, t_exit;
+  glm::vec3 t_max;    // t at which the ray crosses the next cell boundary on each axis
+  glm::vec3 t_delta;  // t between successive boundaries on each axis (+inf: the ray does not move on it)
+  int next_axis;      // the axis of the smallest t_max, stepped next (-1: the walk ends in this cell)
+};
+
+// Why a hit was accepted as the nearest.
+enum class AcceptReason : uint8_t {
+  inside_cell,     // the hit lies before the next cell's entry: "tmin(cell) > tmax(ray)"
+  any_hit,         // a shadow ray: any hit will do
+  structure_done,  // the walk left the structure with this hit as the nearest
+};
+
+struct NullRecorder {
+  static constexpr bool enabled = false;
+  void ray_begin(const Ray&) {}
+  void cell(const GridCellStep&) {}
+  void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
+  void mailbox_hit(uint32_t /*prim*/) {}
+  void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
+  void hit_accepted(uint32_t /*prim*/, float /*t*/, AcceptReason) {}
+  void ray_end(const Hit&) {}
+};
+
+// Per-ray counters, summed over every ray traced with the same recorder.
+struct CountingRecorder {
+  static constexpr bool enabled = false;  // counters only: no event payloads are built
+  uint64_t rays = 0, cells = 0, prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
+  void ray_begin(const Ray&) { ++rays; }
+  void cell(const GridCellStep&) { ++cells; }
+  void prim_test(uint32_t, bool hit, float) {
+    ++prim_tests;
+    prim_hits += hit;
+  }
+  void mailbox_hit(uint32_t) { ++mailbox_hits; }
+  void hit_deferred(uint32_t, float, float) { ++deferred; }
+  void hit_accepted(uint32_t, float, AcceptReason) {}
+  void ray_end(const Hit&) {}
+};
+
+}  // namespace raystep

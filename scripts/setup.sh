@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Install every dependency of raystep from Debian 12's packages: the whole list, the GUI's included, so
+# that the set-up never changes under its users. Idempotent: does nothing when all are installed.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  g++ cmake ninja-build pkg-config git ca-certificates
+  # core
+  libglm-dev nlohmann-json3-dev libtinyobjloader-dev libpng-dev libstb-dev libtbb-dev
+  # command line, tests, benchmarks (Embree 3 is the speed yardstick)
+  libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev valgrind
+  # the step-debugger (Qt5 + VTK 9.1) and GUI tests under a virtual X server
+  libvtk9-qt-dev libgl1-mesa-dri xvfb xauth x11-apps imagemagick
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages are installed"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "setup: done"
