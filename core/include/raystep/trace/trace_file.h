@@ -1,0 +1,82 @@
+// Trace files: the recorded traversal of one or more rays, the contract between core and the debugger and
+// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 1; docs/trace-format.md
+// lists every field) read back by a validating reader, and CSV with one event per row.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "raystep/geometry/bounds.h"
+#include "raystep/scene/geometry.h"
+#include "raystep/trace/events.h"
+
+namespace raystep {
+
+constexpr const char* kTraceFormat = "raystep-trace";
+constexpr int kTraceVersion = 1;
+
+// A build parameter of the structure: a number or a text.
+struct TraceParam {
+  std::string key;
+  bool is_text = false;
+  double number = 0.0;
+  std::string text;
+};
+
+struct TraceStructure {
+  std::string kind;                     // "grid", "kd", ...
+  Bounds3 bounds;
+  std::array<int, 3> resolution{1, 1, 1};  // grid only
+  std::vector<TraceParam> params;          // every build parameter, sorted by key
+};
+
+struct TracedRay {
+  Ray ray;
+  RayKind kind = RayKind::primary;
+  int depth = 0;
+  bool has_pixel = false;
+  int pixel[2] = {0, 0};
+  std::vector<Event> events;  // seq 0..n-1, starting with ray_begin and ending with ray_end
+};
+
+// Geometry the events refer to, so that a trace replays without the scene's build.
+struct TraceCell {
+  int cell[3];
+  Bounds3 box;
+};
+struct TracePrimitive {
+  int32_t id = 0;
+  PrimType type = PrimType::triangle;
+  glm::vec3 v[3]{};  // triangle vertices; for a sphere v[0] is the centre
+  float radius = 0.f;
+};
+
+struct Trace {
+  std::string scene_path;
+  std::string scene_hash;  // "fnv1a64:<16 hex digits>" of the scene file's bytes
+  uint64_t scene_primitives = 0;
+  TraceStructure structure;
+  std::vector<TracedRay> rays;
+  std::vector<TraceCell> cells;            // every visited cell, once
+  std::vector<TracePrimitive> primitives;  // every primitive an event names, once, by id
+};
+
+const char* ray_kind_name(RayKind kind);
+
+// FNV-1a 64 of a file's bytes, as "fnv1a64:<hex>". Throws InputError if unreadable.
+std::string file_content_hash(const std::string& path);
+
+std::string trace_to_json(const Trace& trace);
+void write_trace_json(const std::string& path, const Trace& trace);  // atomically
+void write_trace_csv(const std::string& path, const Trace& trace);   // atomically; one event per row
+
+// Validating readers: throw InputError naming the file, the line, the JSON path and what is wrong
+// (wrong format or version, truncation, unknown event type, ids out of range, NaN or missing numbers).
+Trace parse_trace_json(const std::string& text, const std::string& name);
+Trace read_trace_json(const std::string& path);
+
+// A human summary: rays, events by type, counters.
+std::string trace_summary(const Trace& trace);
+
+}  // namespace raystep

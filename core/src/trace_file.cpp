@@ -1,0 +1,709 @@
+#include "raystep/trace/trace_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "raystep/util/atomic_file.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+
+using nlohmann::json;
+using ordered = nlohmann::ordered_json;
+
+// ---- names ----
+
+namespace {
+const char* const kEventNames[kEventTypeCount] = {
+    "ray_begin", "cell",         "node",     "push",          "pop",   "leaf",     "prim_test",
+    "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate", "split", "leaf_made"};
+const char* const kReasonNames[3] = {"inside_cell", "any_hit", "structure_done"};
+const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
+const char* const kAxes[3] = {"x", "y", "z"};
+}  // namespace
+
+const char* event_type_name(EventType type) { return kEventNames[int(type)]; }
+
+bool parse_event_type(const std::string& name, EventType* type) {
+  for (int i = 0; i < kEventTypeCount; ++i)
+    if (name == kEventNames[i]) {
+      *type = EventType(i);
+      return true;
+    }
+  return false;
+}
+
+const char* accept_reason_name(AcceptReason reason) { return kReasonNames[int(reason)]; }
+
+bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
+  for (int i = 0; i < 3; ++i)
+    if (name == kReasonNames[i]) {
+      *reason = AcceptReason(i);
+      return true;
+    }
+  return false;
+}
+
+const char* ray_kind_name(RayKind kind) { return kRayKinds[int(kind)]; }
+
+std::string file_content_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot read the file");
+  uint64_t h = 1469598103934665603ull;
+  char buf[1 << 16];
+  while (in) {
+    in.read(buf, sizeof buf);
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= uint8_t(buf[i]);
+      h *= 1099511628211ull;
+    }
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return std::string("fnv1a64:") + hex;
+}
+
+// ---- writing ----
+
+namespace {
+
+// JSON has no infinity: +inf and -inf are written as the strings "inf" and "-inf".
+ordered number(float v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return double(v);
+}
+ordered vec(const glm::vec3& v) { return ordered::array({number(v.x), number(v.y), number(v.z)}); }
+
+ordered event_to_json(const Event& e) {
+  ordered j;
+  j["seq"] = e.seq;
+  j["type"] = event_type_name(e.type);
+  switch (e.type) {
+    case EventType::cell:
+      j["cell"] = {e.cell[0], e.cell[1], e.cell[2]};
+      j["t_enter"] = number(e.t_enter);
+      j["t_exit"] = number(e.t_exit);
+      j["t_max"] = vec(e.t_max);
+      j["t_delta"] = vec(e.t_delta);
+      j["next_axis"] = e.next_axis < 0 ? ordered(nullptr) : ordered(kAxes[e.next_axis]);
+      break;
+    case EventType::node:
+    case EventType::push:
+    case EventType::pop:
+    case EventType::leaf:
+      j["node"] = e.node;
+      j["depth"] = e.depth;
+      j["t_min"] = number(e.t_min_node);
+      j["t_max"] = number(e.t_max_node);
+      break;
+    case EventType::prim_test:
+      j["prim"] = e.prim;
+      j["hit"] = e.hit;
+      if (e.hit) j["t"] = number(e.t);
+      break;
+    case EventType::mailbox_hit:
+      j["prim"] = e.prim;
+      break;
+    case EventType::hit_deferred:
+      j["prim"] = e.prim;
+      j["t"] = number(e.t);
+      j["t_exit"] = number(e.t_exit);
+      break;
+    case EventType::hit_accepted:
+      j["prim"] = e.prim;
+      j["t"] = number(e.t);
+      j["reason"] = accept_reason_name(e.reason);
+      break;
+    case EventType::ray_end:
+      j["prim"] = e.prim;
+      j["t"] = number(e.t);
+      break;
+    default:
+      break;
+  }
+  return j;
+}
+
+RayCounters count_events(const std::vector<Event>& events) {
+  RayCounters c;
+  for (const Event& e : events) {
+    switch (e.type) {
+      case EventType::cell: ++c.cells; break;
+      case EventType::node: ++c.nodes; break;
+      case EventType::push: ++c.pushes; break;
+      case EventType::pop: ++c.pops; break;
+      case EventType::prim_test:
+        ++c.prim_tests;
+        c.prim_hits += e.hit;
+        break;
+      case EventType::mailbox_hit: ++c.mailbox_hits; break;
+      default: break;
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+// Laid out for people: one event, cell or primitive per line, small objects on one line.
+std::string trace_to_json(const Trace& t) {
+  std::ostringstream out;
+  out << "{\n";
+  out << " \"format\": " << ordered(kTraceFormat).dump() << ",\n";
+  out << " \"version\": " << kTraceVersion << ",\n";
+  out << " \"scene\": "
+      << ordered({{"path", t.scene_path}, {"hash", t.scene_hash}, {"primitives", t.scene_primitives}}).dump()
+      << ",\n";
+  ordered s;
+  s["kind"] = t.structure.kind;
+  s["bounds_min"] = vec(t.structure.bounds.lo);
+  s["bounds_max"] = vec(t.structure.bounds.hi);
+  if (t.structure.kind == "grid")
+    s["resolution"] = {t.structure.resolution[0], t.structure.resolution[1], t.structure.resolution[2]};
+  for (const TraceParam& p : t.structure.params) {
+    bool integral = !p.is_text && p.number == std::floor(p.number) && std::fabs(p.number) < 1e15;
+    s[p.key] = p.is_text ? ordered(p.text) : integral ? ordered(int64_t(p.number)) : ordered(p.number);
+  }
+  out << " \"structure\": " << s.dump() << ",\n";
+
+  out << " \"rays\": [";
+  for (size_t r = 0; r < t.rays.size(); ++r) {
+    const TracedRay& tr = t.rays[r];
+    ordered head;
+    head["origin"] = vec(tr.ray.origin);
+    head["direction"] = vec(tr.ray.direction);
+    head["tmin"] = number(tr.ray.tmin);
+    head["tmax"] = number(tr.ray.tmax);
+    head["kind"] = ray_kind_name(tr.kind);
+    head["depth"] = tr.depth;
+    if (tr.has_pixel) head["pixel"] = {tr.pixel[0], tr.pixel[1]};
+    RayCounters c = count_events(tr.events);
+    head["counters"] = {{"cells", c.cells},         {"nodes", c.nodes},   {"prim_tests", c.prim_tests},
+                        {"prim_hits", c.prim_hits}, {"mailbox_hits", c.mailbox_hits},
+                        {"pushes", c.pushes},       {"pops", c.pops}};
+    std::string h = head.dump();
+    h.pop_back();  // reopen the object to append the events, one per line
+    out << (r ? ",\n  " : "\n  ") << h << ",\n   \"events\": [";
+    for (size_t i = 0; i < tr.events.size(); ++i)
+      out << (i ? ",\n    " : "\n    ") << event_to_json(tr.events[i]).dump();
+    out << "\n   ]}";
+  }
+  out << (t.rays.empty() ? "],\n" : "\n ],\n");
+
+  out << " \"geometry\": {\n  \"cells\": [";
+  for (size_t i = 0; i < t.cells.size(); ++i) {
+    const TraceCell& c = t.cells[i];
+    ordered jc = {{"cell", {c.cell[0], c.cell[1], c.cell[2]}}, {"min", vec(c.box.lo)}, {"max", vec(c.box.hi)}};
+    out << (i ? ",\n   " : "\n   ") << jc.dump();
+  }
+  out << (t.cells.empty() ? "],\n" : "\n  ],\n");
+  out << "  \"primitives\": [";
+  for (size_t i = 0; i < t.primitives.size(); ++i) {
+    const TracePrimitive& p = t.primitives[i];
+    ordered jp;
+    jp["id"] = p.id;
+    if (p.type == PrimType::triangle) {
+      jp["type"] = "triangle";
+      jp["vertices"] = {vec(p.v[0]), vec(p.v[1]), vec(p.v[2])};
+    } else {
+      jp["type"] = "sphere";
+      jp["center"] = vec(p.v[0]);
+      jp["radius"] = number(p.radius);
+    }
+    out << (i ? ",\n   " : "\n   ") << jp.dump();
+  }
+  out << (t.primitives.empty() ? "]\n" : "\n  ]\n");
+  out << " }\n}\n";
+  return out.str();
+}
+
+void write_trace_json(const std::string& path, const Trace& trace) {
+  std::string text = trace_to_json(trace);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+void write_trace_csv(const std::string& path, const Trace& t) {
+  enum Col { ray, seq, type, i, j, k, t_enter, t_exit, t_max_x, t_max_y, t_max_z, t_delta_x, t_delta_y, t_delta_z,
+             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, kColumns };
+  static const char* const kHeader =
+      "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
+      "node,depth,t_min,t_max,prim,hit,t,reason\n";
+  auto num = [](float v) {
+    if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", double(v));
+    return std::string(buf);
+  };
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << kHeader;
+    for (size_t r = 0; r < t.rays.size(); ++r) {
+      for (const Event& e : t.rays[r].events) {
+        std::string row[kColumns];
+        row[ray] = std::to_string(r);
+        row[seq] = std::to_string(e.seq);
+        row[type] = event_type_name(e.type);
+        switch (e.type) {
+          case EventType::cell:
+            for (int a = 0; a < 3; ++a) {
+              row[i + a] = std::to_string(e.cell[a]);
+              row[t_max_x + a] = num(e.t_max[a]);
+              row[t_delta_x + a] = num(e.t_delta[a]);
+            }
+            row[t_enter] = num(e.t_enter);
+            row[t_exit] = num(e.t_exit);
+            if (e.next_axis >= 0) row[next_axis] = kAxes[e.next_axis];
+            break;
+          case EventType::node:
+          case EventType::push:
+          case EventType::pop:
+          case EventType::leaf:
+            row[node] = std::to_string(e.node);
+            row[depth] = std::to_string(e.depth);
+            row[t_min] = num(e.t_min_node);
+            row[t_max] = num(e.t_max_node);
+            break;
+          case EventType::prim_test:
+            row[prim] = std::to_string(e.prim);
+            row[hit] = e.hit ? "1" : "0";
+            if (e.hit) row[t_hit] = num(e.t);
+            break;
+          case EventType::mailbox_hit:
+            row[prim] = std::to_string(e.prim);
+            break;
+          case EventType::hit_deferred:
+            row[prim] = std::to_string(e.prim);
+            row[t_hit] = num(e.t);
+            row[t_exit] = num(e.t_exit);
+            break;
+          case EventType::hit_accepted:
+            row[prim] = std::to_string(e.prim);
+            row[t_hit] = num(e.t);
+            row[reason] = accept_reason_name(e.reason);
+            break;
+          case EventType::ray_end:
+            row[prim] = std::to_string(e.prim);
+            row[t_hit] = num(e.t);
+            break;
+          default:
+            break;
+        }
+        for (int c = 0; c < kColumns; ++c) out << (c ? "," : "") << row[c];
+        out << '\n';
+      }
+    }
+  });
+}
+
+// ---- reading ----
+
+namespace {
+
+// Walks a parsed document with the JSON path of every value, so that errors say where.
+class Reader {
+ public:
+  Reader(const std::string& name, const std::string& text) : name_(name), text_(text) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InputError(name_, line_of(path), path + ": " + what);
+  }
+
+  const json& member(const json& obj, const std::string& path, const char* key) const {
+    if (!obj.is_object()) fail(path, "expected an object");
+    auto it = obj.find(key);
+    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
+    return *it;
+  }
+  float real(const json& v, const std::string& path) const {
+    if (v.is_string()) {
+      if (v == "inf") return kInfinity;
+      if (v == "-inf") return -kInfinity;
+    }
+    if (!v.is_number()) fail(path, v.is_null() ? "expected a number, found null (NaN?)" : "expected a number");
+    double d = v.get<double>();
+    if (!std::isfinite(d) || std::fabs(d) > 3.4028234663852886e38) fail(path, "number out of float range");
+    return float(d);
+  }
+  float real_at(const json& obj, const std::string& path, const char* key) const {
+    return real(member(obj, path, key), path + "." + key);
+  }
+  int64_t integer(const json& v, const std::string& path, int64_t lo, int64_t hi) const {
+    if (!v.is_number_integer()) fail(path, "expected an integer");
+    int64_t i = v.get<int64_t>();
+    if (i < lo || i > hi)
+      fail(path, "value " + std::to_string(i) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi));
+    return i;
+  }
+  int64_t integer_at(const json& obj, const std::string& path, const char* key, int64_t lo, int64_t hi) const {
+    return integer(member(obj, path, key), path + "." + key, lo, hi);
+  }
+  std::string text_at(const json& obj, const std::string& path, const char* key) const {
+    const json& v = member(obj, path, key);
+    if (!v.is_string()) fail(path + "." + key, "expected a string");
+    return v.get<std::string>();
+  }
+  glm::vec3 vec_at(const json& obj, const std::string& path, const char* key) const {
+    const json& v = member(obj, path, key);
+    std::string p = path + "." + key;
+    if (!v.is_array() || v.size() != 3) fail(p, "expected an array of 3 numbers");
+    return glm::vec3(real(v[0], p + "[0]"), real(v[1], p + "[1]"), real(v[2], p + "[2]"));
+  }
+  const json& array_at(const json& obj, const std::string& path, const char* key) const {
+    const json& v = member(obj, path, key);
+    if (!v.is_array()) fail(path + "." + key, "expected an array");
+    return v;
+  }
+
+ private:
+  // The line where the value at a path like rays[0].events[3].prim starts: walk the text token by token.
+  // Runs only when reporting an error.
+  int line_of(const std::string& path) const;
+
+  std::string name_;
+  const std::string& text_;
+};
+
+// A minimal JSON scanner for error locations: follows the path's keys and indices through the raw text.
+int Reader::line_of(const std::string& path) const {
+  // Split "a.b[2].c" into steps.
+  std::vector<std::string> steps;
+  std::string cur;
+  for (size_t i = 0; i < path.size(); ++i) {
+    char c = path[i];
+    if (c == '.') {
+      if (!cur.empty()) steps.push_back(cur);
+      cur.clear();
+    } else if (c == '[') {
+      if (!cur.empty()) steps.push_back(cur);
+      cur = "[";
+    } else if (c == ']') {
+      steps.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!cur.empty()) steps.push_back(cur);
+  if (!steps.empty() && steps[0] == "trace") steps.erase(steps.begin());
+
+  size_t pos = 0;
+  const std::string& s = text_;
+  auto skip_ws = [&] { while (pos < s.size() && std::isspace(static_cast<unsigned char>(s[pos]))) ++pos; };
+  auto skip_string = [&] {
+    ++pos;
+    while (pos < s.size() && s[pos] != '"') pos += (s[pos] == '\\') ? 2 : 1;
+    ++pos;
+  };
+  std::function<void()> skip_value = [&] {
+    skip_ws();
+    if (pos >= s.size()) return;
+    char c = s[pos];
+    if (c == '"') {
+      skip_string();
+    } else if (c == '{' || c == '[') {
+      char close = c == '{' ? '}' : ']';
+      ++pos;
+      skip_ws();
+      if (pos < s.size() && s[pos] == close) {
+        ++pos;
+        return;
+      }
+      for (;;) {
+        skip_ws();
+        if (c == '{') {
+          skip_string();
+          skip_ws();
+          ++pos;  // ':'
+        }
+        skip_value();
+        skip_ws();
+        if (pos >= s.size() || s[pos] == close) {
+          ++pos;
+          return;
+        }
+        ++pos;  // ','
+      }
+    } else {
+      while (pos < s.size() && !std::strchr(",}] \t\r\n", s[pos])) ++pos;
+    }
+  };
+  for (const std::string& step : steps) {
+    skip_ws();
+    if (pos >= s.size()) break;
+    if (step[0] == '[') {
+      if (s[pos] != '[') break;
+      long index = std::strtol(step.c_str() + 1, nullptr, 10);
+      ++pos;
+      for (long i = 0; i < index && pos < s.size(); ++i) {
+        skip_value();
+        skip_ws();
+        ++pos;  // ','
+      }
+    } else {
+      if (s[pos] != '{') break;
+      ++pos;
+      bool found = false;
+      while (pos < s.size()) {
+        skip_ws();
+        if (s[pos] == '}') break;
+        size_t key_start = pos + 1;
+        skip_string();
+        std::string key = s.substr(key_start, pos - key_start - 1);
+        skip_ws();
+        ++pos;  // ':'
+        if (key == step) {
+          found = true;
+          break;
+        }
+        skip_value();
+        skip_ws();
+        if (pos < s.size() && s[pos] == ',') ++pos;
+      }
+      if (!found) break;
+    }
+  }
+  skip_ws();
+  return 1 + int(std::count(s.begin(), s.begin() + std::min(pos, s.size()), '\n'));
+}
+
+}  // namespace
+
+Trace parse_trace_json(const std::string& text, const std::string& name) {
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    size_t at = std::min<size_t>(e.byte, text.size());
+    int line = 1 + int(std::count(text.begin(), text.begin() + at, '\n'));
+    bool truncated = e.byte >= text.size();
+    throw InputError(name, line, truncated ? "the trace is truncated (unexpected end of the file)"
+                                           : std::string("malformed JSON: ") + e.what());
+  }
+  Reader rd(name, text);
+  const std::string root = "trace";
+  if (!doc.is_object()) rd.fail(root, "expected a JSON object");
+  std::string format = doc.contains("format") && doc["format"].is_string() ? doc["format"].get<std::string>() : "";
+  if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
+  int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
+  if (version != kTraceVersion)
+    rd.fail("version", "unsupported trace version " + std::to_string(version) + " (this raystep reads version " +
+                           std::to_string(kTraceVersion) + ")");
+
+  Trace t;
+  const json& scene = rd.member(doc, root, "scene");
+  t.scene_path = rd.text_at(scene, "scene", "path");
+  t.scene_hash = rd.text_at(scene, "scene", "hash");
+  t.scene_primitives = uint64_t(rd.integer_at(scene, "scene", "primitives", 0, int64_t(1) << 40));
+
+  const json& st = rd.member(doc, root, "structure");
+  t.structure.kind = rd.text_at(st, "structure", "kind");
+  t.structure.bounds.lo = rd.vec_at(st, "structure", "bounds_min");
+  t.structure.bounds.hi = rd.vec_at(st, "structure", "bounds_max");
+  bool grid = t.structure.kind == "grid";
+  if (grid) {
+    const json& res = rd.array_at(st, "structure", "resolution");
+    if (res.size() != 3) rd.fail("structure.resolution", "expected [nx, ny, nz]");
+    for (int a = 0; a < 3; ++a)
+      t.structure.resolution[a] = int(rd.integer(res[a], "structure.resolution[" + std::to_string(a) + "]", 1, 4096));
+  }
+  for (auto it = st.begin(); it != st.end(); ++it) {
+    if (it.key() == "kind" || it.key() == "bounds_min" || it.key() == "bounds_max" || it.key() == "resolution")
+      continue;
+    TraceParam p;
+    p.key = it.key();
+    if (it->is_string()) {
+      p.is_text = true;
+      p.text = it->get<std::string>();
+    } else {
+      p.number = rd.real(*it, "structure." + it.key());
+    }
+    t.structure.params.push_back(p);
+  }
+
+  const int64_t max_prim = int64_t(t.scene_primitives) - 1;
+  auto axis_index = [&](const json& v, const std::string& path) {
+    if (v.is_null()) return -1;
+    for (int a = 0; a < 3; ++a)
+      if (v == kAxes[a]) return a;
+    rd.fail(path, "expected \"x\", \"y\", \"z\" or null");
+  };
+
+  const json& rays = rd.array_at(doc, root, "rays");
+  for (size_t r = 0; r < rays.size(); ++r) {
+    std::string rp = "rays[" + std::to_string(r) + "]";
+    const json& jr = rays[r];
+    TracedRay tr;
+    tr.ray.origin = rd.vec_at(jr, rp, "origin");
+    tr.ray.direction = rd.vec_at(jr, rp, "direction");
+    tr.ray.tmin = rd.real_at(jr, rp, "tmin");
+    tr.ray.tmax = rd.real_at(jr, rp, "tmax");
+    std::string kind = rd.text_at(jr, rp, "kind");
+    bool known_kind = false;
+    for (int k = 0; k < 4; ++k)
+      if (kind == kRayKinds[k]) {
+        tr.kind = RayKind(k);
+        known_kind = true;
+      }
+    if (!known_kind) rd.fail(rp + ".kind", "unknown ray kind \"" + kind + "\"");
+    tr.depth = int(rd.integer_at(jr, rp, "depth", 0, 1000));
+    if (jr.contains("pixel")) {
+      const json& px = jr["pixel"];
+      if (!px.is_array() || px.size() != 2) rd.fail(rp + ".pixel", "expected [x, y]");
+      tr.has_pixel = true;
+      tr.pixel[0] = int(rd.integer(px[0], rp + ".pixel[0]", 0, 1 << 20));
+      tr.pixel[1] = int(rd.integer(px[1], rp + ".pixel[1]", 0, 1 << 20));
+    }
+    const json& events = rd.array_at(jr, rp, "events");
+    for (size_t i = 0; i < events.size(); ++i) {
+      std::string ep = rp + ".events[" + std::to_string(i) + "]";
+      const json& je = events[i];
+      Event e;
+      e.seq = uint32_t(rd.integer_at(je, ep, "seq", 0, 1ll << 32));
+      if (e.seq != i) rd.fail(ep + ".seq", "expected " + std::to_string(i) + " (events are numbered in order)");
+      std::string type = rd.text_at(je, ep, "type");
+      if (!parse_event_type(type, &e.type)) rd.fail(ep + ".type", "unknown event type \"" + type + "\"");
+      switch (e.type) {
+        case EventType::cell: {
+          const json& c = rd.array_at(je, ep, "cell");
+          if (c.size() != 3) rd.fail(ep + ".cell", "expected [i, j, k]");
+          for (int a = 0; a < 3; ++a)
+            e.cell[a] = int(rd.integer(c[a], ep + ".cell[" + std::to_string(a) + "]", 0,
+                                       grid ? t.structure.resolution[a] - 1 : (1 << 20)));
+          e.t_enter = rd.real_at(je, ep, "t_enter");
+          e.t_exit = rd.real_at(je, ep, "t_exit");
+          e.t_max = rd.vec_at(je, ep, "t_max");
+          e.t_delta = rd.vec_at(je, ep, "t_delta");
+          e.next_axis = axis_index(rd.member(je, ep, "next_axis"), ep + ".next_axis");
+          break;
+        }
+        case EventType::node:
+        case EventType::push:
+        case EventType::pop:
+        case EventType::leaf:
+          e.node = int32_t(rd.integer_at(je, ep, "node", 0, INT32_MAX));
+          e.depth = int32_t(rd.integer_at(je, ep, "depth", 0, 1 << 16));
+          e.t_min_node = rd.real_at(je, ep, "t_min");
+          e.t_max_node = rd.real_at(je, ep, "t_max");
+          break;
+        case EventType::prim_test: {
+          e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
+          const json& h = rd.member(je, ep, "hit");
+          if (!h.is_boolean()) rd.fail(ep + ".hit", "expected true or false");
+          e.hit = h.get<bool>();
+          if (e.hit) e.t = rd.real_at(je, ep, "t");
+          break;
+        }
+        case EventType::mailbox_hit:
+          e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
+          break;
+        case EventType::hit_deferred:
+          e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
+          e.t = rd.real_at(je, ep, "t");
+          e.t_exit = rd.real_at(je, ep, "t_exit");
+          break;
+        case EventType::hit_accepted: {
+          e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
+          e.t = rd.real_at(je, ep, "t");
+          std::string reason = rd.text_at(je, ep, "reason");
+          if (!parse_accept_reason(reason, &e.reason)) rd.fail(ep + ".reason", "unknown reason \"" + reason + "\"");
+          break;
+        }
+        case EventType::ray_end:
+          e.prim = int32_t(rd.integer_at(je, ep, "prim", -1, max_prim));
+          e.hit = e.prim >= 0;
+          e.t = rd.real_at(je, ep, "t");
+          break;
+        default:
+          break;
+      }
+      tr.events.push_back(e);
+    }
+    if (tr.events.empty() || tr.events.front().type != EventType::ray_begin ||
+        tr.events.back().type != EventType::ray_end)
+      rd.fail(rp + ".events", "a ray's events start with ray_begin and end with ray_end");
+    t.rays.push_back(std::move(tr));
+  }
+
+  const json& geo = rd.member(doc, root, "geometry");
+  const json& cells = rd.array_at(geo, "geometry", "cells");
+  for (size_t i = 0; i < cells.size(); ++i) {
+    std::string cp = "geometry.cells[" + std::to_string(i) + "]";
+    TraceCell c;
+    const json& idx = rd.array_at(cells[i], cp, "cell");
+    if (idx.size() != 3) rd.fail(cp + ".cell", "expected [i, j, k]");
+    for (int a = 0; a < 3; ++a)
+      c.cell[a] = int(rd.integer(idx[a], cp + ".cell[" + std::to_string(a) + "]", 0,
+                                 grid ? t.structure.resolution[a] - 1 : (1 << 20)));
+    c.box.lo = rd.vec_at(cells[i], cp, "min");
+    c.box.hi = rd.vec_at(cells[i], cp, "max");
+    t.cells.push_back(c);
+  }
+  const json& prims = rd.array_at(geo, "geometry", "primitives");
+  for (size_t i = 0; i < prims.size(); ++i) {
+    std::string pp = "geometry.primitives[" + std::to_string(i) + "]";
+    TracePrimitive p;
+    p.id = int32_t(rd.integer_at(prims[i], pp, "id", 0, max_prim));
+    std::string type = rd.text_at(prims[i], pp, "type");
+    if (type == "triangle") {
+      const json& v = rd.array_at(prims[i], pp, "vertices");
+      if (v.size() != 3) rd.fail(pp + ".vertices", "expected 3 vertices");
+      for (int k = 0; k < 3; ++k) {
+        std::string vp = pp + ".vertices[" + std::to_string(k) + "]";
+        if (!v[k].is_array() || v[k].size() != 3) rd.fail(vp, "expected an array of 3 numbers");
+        p.v[k] = glm::vec3(rd.real(v[k][0], vp + "[0]"), rd.real(v[k][1], vp + "[1]"), rd.real(v[k][2], vp + "[2]"));
+      }
+    } else if (type == "sphere") {
+      p.type = PrimType::sphere;
+      p.v[0] = rd.vec_at(prims[i], pp, "center");
+      p.radius = rd.real_at(prims[i], pp, "radius");
+    } else {
+      rd.fail(pp + ".type", "unknown primitive type \"" + type + "\"");
+    }
+    t.primitives.push_back(p);
+  }
+  return t;
+}
+
+Trace read_trace_json(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot read the file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_trace_json(ss.str(), path);
+}
+
+std::string trace_summary(const Trace& t) {
+  std::ostringstream out;
+  out << "trace: " << t.rays.size() << " ray(s), structure " << t.structure.kind;
+  if (t.structure.kind == "grid")
+    out << " " << t.structure.resolution[0] << "x" << t.structure.resolution[1] << "x" << t.structure.resolution[2];
+  out << ", scene " << t.scene_path << " (" << t.scene_primitives << " primitives)\n";
+  std::map<std::string, size_t> totals;
+  for (size_t r = 0; r < t.rays.size(); ++r) {
+    const TracedRay& tr = t.rays[r];
+    RayCounters c = count_events(tr.events);
+    const Event& end = tr.events.back();
+    out << "ray " << r << ": " << ray_kind_name(tr.kind) << ", depth " << tr.depth;
+    if (tr.has_pixel) out << ", pixel " << tr.pixel[0] << "," << tr.pixel[1];
+    out << ", " << tr.events.size() << " events, " << c.cells << " cells, " << c.nodes << " nodes, "
+        << c.prim_tests << " tests (" << c.prim_hits << " hits), " << c.mailbox_hits << " mailbox hits; ";
+    if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
+    else out << "miss\n";
+    for (const Event& e : tr.events) ++totals[event_type_name(e.type)];
+  }
+  out << "events by type:";
+  for (const auto& [name, n] : totals) out << " " << name << "=" << n;
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace raystep

@@ -1,0 +1,172 @@
+// Trace files: the recorded events of the mailbox trap, the JSON round trip (write -> read -> write is
+// identical), CSV, and every malformed case rejected with the file, the line and the JSON path.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "raystep/trace/grid_trace.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+namespace {
+
+// The mailbox trap of grid_test.cpp: a long triangle hit in the third cell, a small one in the second.
+struct TrapScene {
+  Geometry g;
+  UniformGrid grid;
+  TrapScene() : grid(options()) {
+    g.begin_object("trap", 0);
+    g.add_triangle(glm::vec3(0.f, -1.f, 0.f), glm::vec3(0.f, 2.f, 0.f), glm::vec3(3.f, 0.5f, 0.6f));
+    g.add_triangle(glm::vec3(1.5f, 0.f, 0.f), glm::vec3(1.5f, 1.f, 0.f), glm::vec3(1.5f, 0.f, 1.f));
+    g.add_sphere(Sphere{glm::vec3(2.5f, 1.5f, 0.3f), 0.2f});
+    grid.build(g);
+  }
+  static GridOptions options() {
+    GridOptions o;
+    o.resolution = std::array<int, 3>{3, 1, 1};
+    return o;
+  }
+  Trace trace() const {
+    RayRequest primary;
+    primary.ray.origin = glm::vec3(-1.f, 0.5f, 0.5f);
+    primary.ray.direction = glm::vec3(1.f, 0.f, 0.f);
+    primary.has_pixel = true;
+    primary.pixel[0] = 12;
+    primary.pixel[1] = 7;
+    RayRequest shadow;
+    shadow.kind = RayKind::shadow;
+    shadow.depth = 1;
+    shadow.ray.origin = glm::vec3(2.5f, 1.5f, 2.f);
+    shadow.ray.direction = glm::vec3(0.f, -0.f, -1.f);
+    shadow.ray.tmax = 10.f;
+    return record_grid_trace(g, grid, {primary, shadow}, "trap.json", "fnv1a64:0123456789abcdef");
+  }
+};
+
+std::vector<EventType> types(const TracedRay& r) {
+  std::vector<EventType> out;
+  for (const Event& e : r.events) out.push_back(e.type);
+  return out;
+}
+
+TEST(TraceFile, RecordsTheMailboxTrapStepByStep) {
+  TrapScene s;
+  Trace t = s.trace();
+  ASSERT_EQ(t.rays.size(), 2u);
+  using E = EventType;
+  std::vector<E> expected = {E::ray_begin, E::cell,     E::prim_test,    E::hit_deferred,
+                             E::cell,      E::mailbox_hit, E::prim_test, E::hit_accepted, E::ray_end};
+  EXPECT_EQ(types(t.rays[0]), expected);
+  const Event& deferred = t.rays[0].events[3];
+  EXPECT_EQ(deferred.prim, 0);
+  EXPECT_FLOAT_EQ(deferred.t, 3.5f);
+  EXPECT_FLOAT_EQ(deferred.t_exit, 2.f);
+  const Event& accepted = t.rays[0].events[7];
+  EXPECT_EQ(accepted.prim, 1);
+  EXPECT_EQ(accepted.reason, AcceptReason::inside_cell);
+  const Event& first_cell = t.rays[0].events[1];
+  EXPECT_EQ(first_cell.cell[0], 0);
+  EXPECT_FLOAT_EQ(first_cell.t_enter, 1.f);
+  EXPECT_FLOAT_EQ(first_cell.t_exit, 2.f);
+  EXPECT_EQ(first_cell.next_axis, 0);
+  EXPECT_EQ(first_cell.t_max.y, kInfinity);  // the ray does not move on y or z
+  // The shadow ray stops at the first hit: any_hit.
+  EXPECT_EQ(t.rays[1].events[t.rays[1].events.size() - 2].reason, AcceptReason::any_hit);
+  // The geometry section: every visited cell's box and every named primitive.
+  EXPECT_EQ(t.cells.size(), 2u + 0u + (t.rays[1].events.size() > 0 ? 1u : 0u) - 0u);
+  EXPECT_EQ(t.primitives.size(), 3u);
+}
+
+TEST(TraceFile, JsonRoundTripIsIdentical) {
+  TrapScene s;
+  Trace t = s.trace();
+  std::string once = trace_to_json(t);
+  Trace back = parse_trace_json(once, "mem.json");
+  std::string twice = trace_to_json(back);
+  EXPECT_EQ(once, twice);
+  EXPECT_NE(once.find("\"format\": \"raystep-trace\""), std::string::npos);
+  // One event per line.
+  EXPECT_NE(once.find("\n    {\"seq\":1,\"type\":\"cell\",\"cell\":[0,0,0],"), std::string::npos) << once;
+  EXPECT_NE(once.find("\"tmax\":\"inf\""), std::string::npos);
+  ASSERT_EQ(back.rays.size(), 2u);
+  EXPECT_EQ(back.rays[0].events.size(), t.rays[0].events.size());
+  EXPECT_EQ(back.rays[0].ray.tmax, kInfinity);
+  EXPECT_EQ(back.structure.resolution[0], 3);
+}
+
+TEST(TraceFile, FilesAreWrittenAtomicallyAndCsvHasOneRowPerEvent) {
+  TrapScene s;
+  Trace t = s.trace();
+  std::string dir = ::testing::TempDir();
+  std::string json_path = dir + "/trap_trace.json", csv_path = dir + "/trap_trace.csv";
+  write_trace_json(json_path, t);
+  write_trace_csv(csv_path, t);
+  Trace back = read_trace_json(json_path);
+  EXPECT_EQ(trace_to_json(back), trace_to_json(t));
+  std::ifstream csv(csv_path);
+  std::string line;
+  int rows = 0;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("ray,seq,type,i,j,k,", 0), 0u);
+  size_t columns = std::count(line.begin(), line.end(), ',');
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(size_t(std::count(line.begin(), line.end(), ',')), columns) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, int(t.rays[0].events.size() + t.rays[1].events.size()));
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos);
+}
+
+// Replace the first occurrence of `from` in the trace text and expect a rejection naming line and path.
+void expect_rejected(const std::string& text, const std::string& from, const std::string& to,
+                     const std::string& message_part, int expected_line = -1) {
+  std::string bad = text;
+  size_t at = bad.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  bad.replace(at, from.size(), to);
+  try {
+    parse_trace_json(bad, "bad.json");
+    ADD_FAILURE() << "accepted a trace with " << to;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "bad.json");
+    EXPECT_GT(e.line(), 0) << e.what();
+    if (expected_line > 0) EXPECT_EQ(e.line(), expected_line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(message_part), std::string::npos) << e.what();
+  }
+}
+
+int line_of(const std::string& text, const std::string& needle) {
+  size_t at = text.find(needle);
+  return 1 + int(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
+  TrapScene s;
+  std::string text = trace_to_json(s.trace());
+  expect_rejected(text, "\"raystep-trace\"", "\"other-trace\"", "not a raystep trace");
+  expect_rejected(text, "\"version\": 1", "\"version\": 7", "unsupported trace version 7");
+  expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"", "unknown event type \"teleport\"",
+                  line_of(text, "\"type\":\"mailbox_hit\""));
+  expect_rejected(text, "\"prim\":1", "\"prim\":99", "rays[0].events[6].prim: value 99 out of range 0..2");
+  expect_rejected(text, "\"cell\":[0,0,0]", "\"cell\":[5,0,0]", "out of range 0..2");
+  expect_rejected(text, "\"t_enter\":1.0", "\"t_enter\":null", "t_enter: expected a number, found null");
+  expect_rejected(text, "\"seq\":2", "\"seq\":5", "expected 2");
+  expect_rejected(text, "\"kind\":\"primary\"", "\"kind\":\"sideways\"", "unknown ray kind");
+  // Truncation anywhere.
+  for (size_t cut : {size_t(10), text.size() / 2, text.size() - 3}) {
+    try {
+      parse_trace_json(text.substr(0, cut), "cut.json");
+      ADD_FAILURE() << "accepted a truncated trace";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+      EXPECT_GT(e.line(), 0);
+    }
+  }
+  EXPECT_THROW(read_trace_json(::testing::TempDir() + "/no_such_trace.json"), InputError);
+}
+
+}  // namespace
+}  // namespace raystep
