@@ -81,3 +81,36 @@ TEST(Accelerator, NaNRaysMissEverywhere) {
 
 }  // namespace
 }  // namespace raystep
+
+namespace raystep {
+namespace {
+
+TEST(Accelerator, CountedQueriesGiveTheSameHitsAndCountWork) {
+  Geometry g = make_clusters(5);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> u(-6.f, 6.f);
+  for (const std::string& name : accelerator_names()) {
+    auto acc = make_accelerator(name);
+    acc->build(g);
+    CountingRecorder counts;
+    int same = 0;
+    const int kRays = 500;
+    for (int i = 0; i < kRays; ++i) {
+      Ray r;
+      r.origin = glm::vec3(u(rng), u(rng), u(rng));
+      r.direction = g.prim_bounds(rng() % g.size()).center() - r.origin;
+      Hit a, b;
+      acc->intersect(r, &a);
+      acc->intersect_counted(r, &b, counts);
+      same += a.prim == b.prim && a.t == b.t;
+    }
+    EXPECT_EQ(same, kRays) << name;
+    EXPECT_EQ(counts.rays, uint64_t(kRays)) << name;
+    EXPECT_GT(counts.prim_tests, 0u) << name;
+    if (name == "brute") EXPECT_EQ(counts.prim_tests, uint64_t(kRays) * g.size());
+    else EXPECT_LT(counts.prim_tests, uint64_t(kRays) * g.size()) << name;  // the structure saves tests
+  }
+}
+
+}  // namespace
+}  // namespace raystep

@@ -8,6 +8,7 @@
 
 #include "raystep/geometry/ray.h"
 #include "raystep/scene/geometry.h"
+#include "raystep/trace/recorder.h"
 
 namespace raystep {
 
@@ -21,10 +22,13 @@ class Accelerator {
   virtual bool intersect(const Ray& ray, Hit* hit) const = 0;
   // Any hit with ray.tmin < t < ray.tmax (shadow rays).
   virtual bool occluded(const Ray& ray) const = 0;
+  // intersect(), counting its work (cells or nodes visited, primitive tests, mailbox hits): heat maps.
+  virtual bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const = 0;
 };
 
 // The names accepted by make_accelerator, for --help texts.
 std::vector<std::string> accelerator_names();
+// With default build options (accel/structure_options.h has the overload that takes options).
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name);
 

@@ -15,8 +15,12 @@ class BoundingVolumes final : public Accelerator {
   void build(const Geometry& geometry) override;
   bool intersect(const Ray& ray, Hit* hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override;
 
  private:
+  template <class Recorder>
+  bool walk(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
+
   const Geometry* geometry_ = nullptr;
   std::vector<Bounds3> boxes_;  // one per object
 };

@@ -11,6 +11,7 @@ class BruteForce final : public Accelerator {
   void build(const Geometry& geometry) override { geometry_ = &geometry; }
   bool intersect(const Ray& ray, Hit* hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override;
 
  private:
   const Geometry* geometry_ = nullptr;

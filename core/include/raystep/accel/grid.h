@@ -32,6 +32,9 @@ class UniformGrid final : public Accelerator {
   void build(const Geometry& geometry) override;
   bool intersect(const Ray& ray, Hit* hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
+    return traverse(ray, hit, false, counters);
+  }
 
   // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
   template <class Recorder>

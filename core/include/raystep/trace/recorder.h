@@ -33,6 +33,7 @@ struct NullRecorder {
   static constexpr bool enabled = false;
   void ray_begin(const Ray&) {}
   void cell(const GridCellStep&) {}
+  void box_entered(uint32_t /*object*/, float /*t_enter*/) {}
   void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
   void mailbox_hit(uint32_t /*prim*/) {}
   void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
@@ -43,9 +44,10 @@ struct NullRecorder {
 // Per-ray counters, summed over every ray traced with the same recorder.
 struct CountingRecorder {
   static constexpr bool enabled = false;  // counters only: no event payloads are built
-  uint64_t rays = 0, cells = 0, prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
+  uint64_t rays = 0, cells = 0, nodes = 0, prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
   void ray_begin(const Ray&) { ++rays; }
   void cell(const GridCellStep&) { ++cells; }
+  void box_entered(uint32_t, float) { ++nodes; }
   void prim_test(uint32_t, bool hit, float) {
     ++prim_tests;
     prim_hits += hit;
