@@ -52,10 +52,16 @@ class UniformGrid final : public Accelerator {
   const uint32_t* cell_begin(int i, int j, int k) const { return &prim_index_[cell_start_[cell_id(i, j, k)]]; }
   const uint32_t* cell_end(int i, int j, int k) const { return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1]; }
   const GridOptions& options() const { return options_; }
+  const Geometry& geometry() const { return *geometry_; }
+  const Mailboxes& mailboxes() const { return mailboxes_; }
+  // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
+  int cell_of(float p, int axis) const;
+  size_t cell_id(int i, int j, int k) const { return (size_t(k) * n_[1] + j) * n_[0] + i; }
+  uint32_t cell_start(size_t id) const { return cell_start_[id]; }
+  uint32_t reference(uint32_t r) const { return prim_index_[r]; }
+  bool empty() const { return cell_start_.empty(); }
 
  private:
-  size_t cell_id(int i, int j, int k) const { return (size_t(k) * n_[1] + j) * n_[0] + i; }
-  int cell_of(float p, int axis) const;
 
   GridOptions options_;
   const Geometry* geometry_ = nullptr;

@@ -33,6 +33,20 @@ class EventRecorder {
     e.next_axis = c.next_axis;
     ++counters_.cells;
   }
+  void box_entered(uint32_t, float) {}
+  void node(const TreeStep& s) {
+    tree_event(EventType::node, s);
+    ++counters_.nodes;
+  }
+  void push(const TreeStep& s) {
+    tree_event(EventType::push, s);
+    ++counters_.pushes;
+  }
+  void pop(const TreeStep& s) {
+    tree_event(EventType::pop, s);
+    ++counters_.pops;
+  }
+  void leaf(const TreeStep& s) { tree_event(EventType::leaf, s); }
   void prim_test(uint32_t prim, bool hit, float t) {
     Event& e = add(EventType::prim_test);
     e.prim = int32_t(prim);
@@ -65,6 +79,13 @@ class EventRecorder {
   }
 
  private:
+  void tree_event(EventType type, const TreeStep& s) {
+    Event& e = add(type);
+    e.node = s.node;
+    e.depth = s.depth;
+    e.t_min_node = s.t_min;
+    e.t_max_node = s.t_max;
+  }
   Event& add(EventType type) {
     Event e;
     e.seq = uint32_t(events_.size());

@@ -22,6 +22,13 @@ struct GridCellStep {
   int next_axis;      // the axis of the smallest t_max, stepped next (-1: the walk ends in this cell)
 };
 
+// A tree node on the walk (kd-tree, BVH): id, depth, and the ray's interval [t_min, t_max] inside it.
+struct TreeStep {
+  int32_t node;
+  int32_t depth;
+  float t_min, t_max;
+};
+
 // Why a hit was accepted as the nearest.
 enum class AcceptReason : uint8_t {
   inside_cell,     // the hit lies before the next cell's entry: "tmin(cell) > tmax(ray)"
@@ -34,6 +41,10 @@ struct NullRecorder {
   void ray_begin(const Ray&) {}
   void cell(const GridCellStep&) {}
   void box_entered(uint32_t /*object*/, float /*t_enter*/) {}
+  void node(const TreeStep&) {}  // an inner or leaf node visited
+  void push(const TreeStep&) {}  // the far child pushed on the stack, with its interval
+  void pop(const TreeStep&) {}   // an entry popped
+  void leaf(const TreeStep&) {}  // a leaf reached: its primitives are tested next
   void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
   void mailbox_hit(uint32_t /*prim*/) {}
   void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
@@ -44,10 +55,15 @@ struct NullRecorder {
 // Per-ray counters, summed over every ray traced with the same recorder.
 struct CountingRecorder {
   static constexpr bool enabled = false;  // counters only: no event payloads are built
-  uint64_t rays = 0, cells = 0, nodes = 0, prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
+  uint64_t rays = 0, cells = 0, nodes = 0, leaves = 0, pushes = 0, pops = 0;
+  uint64_t prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
   void ray_begin(const Ray&) { ++rays; }
   void cell(const GridCellStep&) { ++cells; }
   void box_entered(uint32_t, float) { ++nodes; }
+  void node(const TreeStep&) { ++nodes; }
+  void push(const TreeStep&) { ++pushes; }
+  void pop(const TreeStep&) { ++pops; }
+  void leaf(const TreeStep&) { ++leaves; }
   void prim_test(uint32_t, bool hit, float) {
     ++prim_tests;
     prim_hits += hit;

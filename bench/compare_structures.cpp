@@ -1,0 +1,189 @@
+// raystep_bench_structures: build time and single-thread ray throughput of raystep's structures against
+// Embree 3 in the same run, on the same rays (primary rays of the mesh's default camera, and random rays).
+// Usage: raystep_bench_structures [MESH.obj|SCENE.json] [--accel a,b,...] [--size N] [--random N] [--reps N]
+// Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
+// (exit 0, with a message) when that file is absent.
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "raystep/accel/structure_options.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/util/error.h"
+
+using namespace raystep;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Measured {
+  double build_ms;
+  double mrays[2];
+  std::vector<Hit> hits[2];
+};
+
+template <class Trace>
+double time_pass(const std::vector<Ray>& rays, std::vector<Hit>& hits, int reps, Trace trace) {
+  std::vector<double> times;
+  hits.assign(rays.size(), Hit{});
+  for (int r = 0; r < reps; ++r) {
+    auto t0 = Clock::now();
+    for (size_t i = 0; i < rays.size(); ++i) trace(rays[i], &hits[i]);
+    times.push_back(ms_since(t0));
+  }
+  return double(rays.size()) / (median(times) * 1e3);
+}
+
+// Embree 3, one thread, high-quality build, single-ray queries (rtcIntersect1).
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const Geometry& g) {
+    device_ = rtcNewDevice("threads=1");
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    size_t n = g.size();
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+    for (uint32_t id = 0; id < n; ++id)
+      for (int k = 0; k < 3; ++k) {
+        glm::vec3 p = g.vertex(id, k);
+        std::memcpy(v + 9 * id + 3 * k, &p, sizeof p);
+        idx[3 * id + k] = 3 * id + k;
+      }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+  }
+  ~EmbreeScene() {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+  void build() { rtcCommitScene(scene_); }
+  void intersect(const Ray& r, Hit* hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = r.origin.x;
+    rh.ray.org_y = r.origin.y;
+    rh.ray.org_z = r.origin.z;
+    rh.ray.dir_x = r.direction.x;
+    rh.ray.dir_y = r.direction.y;
+    rh.ray.dir_z = r.direction.z;
+    rh.ray.tnear = r.tmin;
+    rh.ray.tfar = r.tmax;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    *hit = Hit{};
+    if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      hit->prim = int32_t(rh.hit.primID);
+      hit->t = rh.ray.tfar;
+    }
+  }
+
+ private:
+  RTCDevice device_;
+  RTCScene scene_;
+};
+
+// Same primitive, or both miss, or (ties at shared edges) the same t within a relative 1e-5.
+size_t agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
+  size_t same = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    same += a[i].prim == b[i].prim ||
+            (a[i].found() && b[i].found() && std::fabs(a[i].t - b[i].t) <= 1e-5f * std::fabs(a[i].t));
+  return same;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
+  std::string accels = "grid";
+  int size = 512, reps = 5;
+  size_t random_count = 262144;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "error: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--accel") accels = next();
+    else if (a == "--size") size = std::stoi(next());
+    else if (a == "--random") random_count = std::stoul(next());
+    else if (a == "--reps") reps = std::stoi(next());
+    else mesh = a;
+  }
+  if (!std::filesystem::exists(mesh)) {
+    std::printf("skipped: %s not found (the shared meshes are not part of the repository)\n", mesh.c_str());
+    return 0;
+  }
+  try {
+    Scene scene = load_scene(mesh);
+    const Geometry& g = scene.geometry;
+    std::vector<Ray> rays[2] = {camera_rays(scene.camera, size, size), random_rays(g.bounds(), random_count, 7)};
+    std::printf("mesh: %s (%zu triangles); rays: camera %dx%d (%zu), random %zu; one thread, median of %d\n",
+                mesh.c_str(), g.size(), size, size, rays[0].size(), rays[1].size(), reps);
+
+    EmbreeScene embree(g);
+    Measured em;
+    auto t0 = Clock::now();
+    embree.build();
+    em.build_ms = ms_since(t0);
+    for (int k = 0; k < 2; ++k)
+      em.mrays[k] = time_pass(rays[k], em.hits[k], reps, [&](const Ray& r, Hit* h) { embree.intersect(r, h); });
+
+    std::printf("%-12s %10s %14s %8s %14s %8s %16s %16s\n", "structure", "build_ms", "primary_Mray/s", "ratio",
+                "random_Mray/s", "ratio", "agree_primary", "agree_random");
+    std::printf("%-12s %10.1f %14.3f %8s %14.3f %8s %16s %16s\n", "embree-high", em.build_ms, em.mrays[0], "1",
+                em.mrays[1], "1", "-", "-");
+    std::stringstream list(accels);
+    std::string name;
+    while (std::getline(list, name, ',')) {
+      auto acc = make_accelerator(name, StructureOptions{});
+      Measured m;
+      std::vector<double> builds;
+      for (int r = 0; r < 3; ++r) {
+        auto t1 = Clock::now();
+        acc->build(g);
+        builds.push_back(ms_since(t1));
+      }
+      m.build_ms = median(builds);
+      for (int k = 0; k < 2; ++k)
+        m.mrays[k] = time_pass(rays[k], m.hits[k], reps, [&](const Ray& r, Hit* h) { acc->intersect(r, h); });
+      std::printf("%-12s %10.1f %14.3f %8.3f %14.3f %8.3f %9zu/%-6zu %9zu/%-6zu\n", name.c_str(), m.build_ms,
+                  m.mrays[0], m.mrays[0] / em.mrays[0], m.mrays[1], m.mrays[1] / em.mrays[1],
+                  agreement(m.hits[0], em.hits[0]), rays[0].size(), agreement(m.hits[1], em.hits[1]),
+                  rays[1].size());
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
