@@ -42,7 +42,7 @@ class Geometry {
   uint32_t begin_object(const std::string& name, uint32_t material);  // returns the object index
   uint32_t add_triangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2);  // returns id
   uint32_t add_sphere(const Sphere& s);
-  // Optional smooth-shading normals for the last added triangle (one per vertex).
+  // Optional smooth-shading normals of a triangle primitive (one per vertex).
   void set_vertex_normals(uint32_t prim, const glm::vec3& n0, const glm::vec3& n1, const glm::vec3& n2);
 
   size_t size() const { return type_.size(); }

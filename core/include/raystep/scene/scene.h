@@ -48,7 +48,7 @@ struct Material {
 struct AntiAliasing {
   enum class Mode { none, regular, jitter, random, adaptive };
   Mode mode = Mode::none;
-  int k = 1;                // regular/jitter: k x k samples; random: k*k samples
+  int k = 1;                // regular/jitter: k x k samples; random: k samples (N, not a side)
   float threshold = 0.1f;   // adaptive: contrast (max - min) / (max + min) that triggers subdivision
   int max_depth = 3;        // adaptive: subdivision levels
 };
