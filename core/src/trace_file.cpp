@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raystep/scene/json_locate.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
@@ -364,115 +365,23 @@ class Reader {
   }
 
  private:
-  // The line where the value at a path like rays[0].events[3].prim starts: walk the text token by token.
-  // Runs only when reporting an error.
+  // The line where the value at a path like rays[0].events[3].prim starts (only when reporting an error).
   int line_of(const std::string& path) const;
 
   std::string name_;
   const std::string& text_;
 };
 
-// A minimal JSON scanner for error locations: follows the path's keys and indices through the raw text.
+// The line of a value named in display form ("rays[0].events[3].prim"): converted to a JSON pointer.
 int Reader::line_of(const std::string& path) const {
-  // Split "a.b[2].c" into steps.
-  std::vector<std::string> steps;
-  std::string cur;
-  for (size_t i = 0; i < path.size(); ++i) {
-    char c = path[i];
-    if (c == '.') {
-      if (!cur.empty()) steps.push_back(cur);
-      cur.clear();
-    } else if (c == '[') {
-      if (!cur.empty()) steps.push_back(cur);
-      cur = "[";
-    } else if (c == ']') {
-      steps.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
+  std::string pointer;
+  std::string rest = path.rfind("trace", 0) == 0 ? path.substr(5) : path;
+  for (char c : rest) {
+    if (c == '.' || c == '[') pointer += '/';
+    else if (c != ']') pointer += c;
   }
-  if (!cur.empty()) steps.push_back(cur);
-  if (!steps.empty() && steps[0] == "trace") steps.erase(steps.begin());
-
-  size_t pos = 0;
-  const std::string& s = text_;
-  auto skip_ws = [&] { while (pos < s.size() && std::isspace(static_cast<unsigned char>(s[pos]))) ++pos; };
-  auto skip_string = [&] {
-    ++pos;
-    while (pos < s.size() && s[pos] != '"') pos += (s[pos] == '\\') ? 2 : 1;
-    ++pos;
-  };
-  std::function<void()> skip_value = [&] {
-    skip_ws();
-    if (pos >= s.size()) return;
-    char c = s[pos];
-    if (c == '"') {
-      skip_string();
-    } else if (c == '{' || c == '[') {
-      char close = c == '{' ? '}' : ']';
-      ++pos;
-      skip_ws();
-      if (pos < s.size() && s[pos] == close) {
-        ++pos;
-        return;
-      }
-      for (;;) {
-        skip_ws();
-        if (c == '{') {
-          skip_string();
-          skip_ws();
-          ++pos;  // ':'
-        }
-        skip_value();
-        skip_ws();
-        if (pos >= s.size() || s[pos] == close) {
-          ++pos;
-          return;
-        }
-        ++pos;  // ','
-      }
-    } else {
-      while (pos < s.size() && !std::strchr(",}] \t\r\n", s[pos])) ++pos;
-    }
-  };
-  for (const std::string& step : steps) {
-    skip_ws();
-    if (pos >= s.size()) break;
-    if (step[0] == '[') {
-      if (s[pos] != '[') break;
-      long index = std::strtol(step.c_str() + 1, nullptr, 10);
-      ++pos;
-      for (long i = 0; i < index && pos < s.size(); ++i) {
-        skip_value();
-        skip_ws();
-        ++pos;  // ','
-      }
-    } else {
-      if (s[pos] != '{') break;
-      ++pos;
-      bool found = false;
-      while (pos < s.size()) {
-        skip_ws();
-        if (s[pos] == '}') break;
-        size_t key_start = pos + 1;
-        skip_string();
-        std::string key = s.substr(key_start, pos - key_start - 1);
-        skip_ws();
-        ++pos;  // ':'
-        if (key == step) {
-          found = true;
-          break;
-        }
-        skip_value();
-        skip_ws();
-        if (pos < s.size() && s[pos] == ',') ++pos;
-      }
-      if (!found) break;
-    }
-  }
-  skip_ws();
-  return 1 + int(std::count(s.begin(), s.begin() + std::min(pos, s.size()), '\n'));
+  if (!pointer.empty() && pointer[0] != '/') pointer.insert(pointer.begin(), '/');
+  return json_line_of(text_, pointer);
 }
 
 }  // namespace
@@ -482,8 +391,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
-    size_t at = std::min<size_t>(e.byte, text.size());
-    int line = 1 + int(std::count(text.begin(), text.begin() + at, '\n'));
+    int line = json_line_at_byte(text, e.byte);
     bool truncated = e.byte >= text.size();
     throw InputError(name, line, truncated ? "the trace is truncated (unexpected end of the file)"
                                            : std::string("malformed JSON: ") + e.what());
