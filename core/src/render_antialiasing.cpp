@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <glm/vec2.hpp>
 
@@ -23,49 +24,70 @@ const char* mode_name(AntiAliasing::Mode mode) {
   return "?";
 }
 
-struct Sample {
-  glm::vec2 p;   // raster position
-  glm::vec3 L;   // radiance
-};
-
-// Adaptive subdivision (Whitted 1980) of the square [x0, x0+s) x [y0, y0+s): one jittered sample per
-// quadrant, where `known` (if any) is a sample already taken inside the square and stands for its quadrant.
-// Returns the square's value: the average of its four samples at a leaf, else of its quadrants' values, so
-// the pixel is the area-weighted average of its leaf squares.
-struct AdaptiveSampler {
-  const AntiAliasing& aa;
-  Pcg32& rng;
-  const RadianceFn& radiance;
-  uint32_t samples = 0;
-
-  glm::vec3 square(float x0, float y0, float s, int depth, const Sample* known) {
-    float h = 0.5f * s;
-    int known_quadrant = -1;
-    if (known) known_quadrant = (known->p.x >= x0 + h ? 1 : 0) + (known->p.y >= y0 + h ? 2 : 0);
-
-    // Step 1: a 2 x 2 jittered pattern, reusing the known sample in its quadrant.
-    Sample q[4];
-    for (int i = 0; i < 4; ++i) {
-      if (i == known_quadrant) {
-        q[i] = *known;
-        continue;
-      }
-      float qx = x0 + (i & 1) * h, qy = y0 + (i >> 1) * h;
-      float u = rng.uniform(), v = rng.uniform();
-      q[i].p = glm::vec2(qx + u * h, qy + v * h);
-      q[i].L = radiance(q[i].p.x, q[i].p.y);
-      ++samples;
-    }
-
-    // Step 2: refine where the contrast is high, down to max_depth.
-    glm::vec3 values[4] = {q[0].L, q[1].L, q[2].L, q[3].L};
-    if (depth < aa.max_depth && contrast_exceeds(values, 4, aa.threshold)) {
-      glm::vec3 sum(0.f);
-      for (int i = 0; i < 4; ++i) sum += square(x0 + (i & 1) * h, y0 + (i >> 1) * h, h, depth + 1, &q[i]);
-      return 0.25f * sum;
-    }
-    return 0.25f * (values[0] + values[1] + values[2] + values[3]);
+// Adaptive supersampling after Whitted (1980): a square is sampled at its four corners and its centre;
+// where these samples differ too much (contrast above the threshold) it is split into quadrants, whose
+// corners and centres include the parent's samples, recursively down to max_depth. A leaf's value is the
+// average of its five samples, a parent's the average of its quadrants', so the pixel is the area-weighted
+// average of its leaf squares.
+// Why corners rather than 2 x 2 jittered samples: a straight edge that crosses a square always separates
+// two of its corners, so an edge is never missed, while four jittered samples all land on the same side
+// of it about half of the time (measured on the lecture's polygon scene, where that left adaptive
+// sampling worse than 16 jittered samples). What corners and centre can miss is a feature that touches
+// none of them: a sliver or an object smaller than the square.
+// Every sample lies on the lattice of spacing 2^-(max_depth+1) over the pixel; a sample shared by
+// neighbouring squares is taken once.
+class AdaptiveSampler {
+ public:
+  AdaptiveSampler(const AntiAliasing& aa, float x, float y, const RadianceFn& radiance)
+      : aa_(aa), radiance_(radiance), x_(x), y_(y), n_(2 << aa.max_depth), inv_n_(1.f / float(n_)) {
+    thread_local std::vector<glm::vec3> values;
+    thread_local std::vector<uint8_t> taken;
+    const size_t points = size_t(n_ + 1) * size_t(n_ + 1);
+    if (values.size() < points) values.resize(points);
+    taken.assign(points, 0);
+    values_ = values.data();
+    taken_ = taken.data();
   }
+
+  // The whole pixel.
+  glm::vec3 estimate() { return square(0, 0, n_, 0); }
+  uint32_t samples() const { return samples_; }
+
+ private:
+  // Radiance at lattice point (i, j), traced once.
+  glm::vec3 at(int i, int j) {
+    const size_t k = size_t(j) * size_t(n_ + 1) + size_t(i);
+    if (!taken_[k]) {
+      values_[k] = radiance_(x_ + float(i) * inv_n_, y_ + float(j) * inv_n_);
+      taken_[k] = 1;
+      ++samples_;
+    }
+    return values_[k];
+  }
+
+  // The square with corner (i0, j0) and side `size` lattice steps, at subdivision depth `depth`.
+  glm::vec3 square(int i0, int j0, int size, int depth) {
+    const int h = size / 2;
+    const glm::vec3 v[5] = {at(i0, j0), at(i0 + size, j0), at(i0, j0 + size), at(i0 + size, j0 + size),
+                            at(i0 + h, j0 + h)};  // corners and centre
+
+    // Leaf: the depth limit is reached, or the samples agree.
+    if (depth >= aa_.max_depth || !contrast_exceeds(v, 5, aa_.threshold))
+      return 0.2f * (v[0] + v[1] + v[2] + v[3] + v[4]);
+
+    // Subdivide into quadrants; the pixel value is the area-weighted average of the leaves.
+    return 0.25f * (square(i0, j0, h, depth + 1) + square(i0 + h, j0, h, depth + 1) +
+                    square(i0, j0 + h, h, depth + 1) + square(i0 + h, j0 + h, h, depth + 1));
+  }
+
+  const AntiAliasing& aa_;
+  const RadianceFn& radiance_;
+  const float x_, y_;   // the pixel's corner
+  const int n_;         // lattice steps per pixel side: 2^(max_depth + 1)
+  const float inv_n_;
+  glm::vec3* values_;
+  uint8_t* taken_;
+  uint32_t samples_ = 0;
 };
 
 }  // namespace
@@ -97,7 +119,11 @@ uint32_t max_samples_per_pixel(const AntiAliasing& aa) {
     case AntiAliasing::Mode::regular:
     case AntiAliasing::Mode::jitter: return uint32_t(aa.k * aa.k);
     case AntiAliasing::Mode::random: return uint32_t(aa.k);
-    case AntiAliasing::Mode::adaptive: return 1u << (2 * (aa.max_depth + 1));  // 4^(max_depth + 1)
+    case AntiAliasing::Mode::adaptive: {
+      // Fully refined: the (2^d + 1)^2 corners of the finest grid and the 4^d centres of its squares.
+      const uint32_t side = (1u << aa.max_depth) + 1u;
+      return side * side + (1u << (2 * aa.max_depth));
+    }
   }
   return 1;
 }
@@ -153,9 +179,9 @@ PixelEstimate estimate_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, c
     }
 
     case AntiAliasing::Mode::adaptive: {
-      AdaptiveSampler sampler{aa, rng, radiance};
-      e.value = sampler.square(fx, fy, 1.f, 0, nullptr);
-      e.samples = sampler.samples;
+      AdaptiveSampler sampler(aa, fx, fy, radiance);
+      e.value = sampler.estimate();
+      e.samples = sampler.samples();
       break;
     }
   }

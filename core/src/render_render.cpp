@@ -6,11 +6,14 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -121,6 +124,12 @@ RenderResult render_image(const Scene& scene, const Accelerator& accel, const Re
       progress.advance();
     }
   };
+  // An explicit thread count is honoured even above the number of cores (TBB caps its workers at the core
+  // count unless a global_control raises the cap).
+  std::unique_ptr<tbb::global_control> allow;
+  if (options.threads > tbb::info::default_concurrency())
+    allow = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  size_t(options.threads));
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), render_rows); });
 

@@ -1,7 +1,7 @@
 // Anti-aliasing by supersampling, every pattern box-filtered over the pixel (the lecture's sampling slides):
 // one sample at the centre; a regular k x k grid; jittered (stratified) k x k (Cook 1986), whose error on an
 // edge falls as N^-3/4 against N^-1/2 for N uniform random samples (Mitchell 1996); and adaptive
-// subdivision (Whitted 1980): sample a square 2 x 2 jittered, and where the samples' contrast
+// supersampling (Whitted 1980): sample a square at its corners and centre, and where the samples' contrast
 // (max - min) / (max + min) exceeds the threshold in some channel, split it into quadrants, recursively.
 #pragma once
 
@@ -30,8 +30,9 @@ constexpr uint32_t kMaxSamplesPerPixel = 1u << 14;
 // The largest number of samples the settings can spend on one pixel.
 uint32_t max_samples_per_pixel(const AntiAliasing& aa);
 
-// Estimates pixel (x, y), covering [x, x+1) x [y, y+1), with the settings' pattern; the random patterns draw
-// from rng in a fixed order.
+// Estimates pixel (x, y), covering [x, x+1) x [y, y+1), with the settings' pattern; jitter and random draw
+// from rng in a fixed order (regular, none and adaptive are deterministic). Adaptive samples the pixel's
+// corners and centre (5 samples on a flat pixel) and refines by contrast down to max_depth.
 PixelEstimate estimate_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, const RadianceFn& radiance);
 
 // The adaptive scheme's refinement test: contrast (max - min) / (max + min) above threshold in any channel
