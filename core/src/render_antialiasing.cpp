@@ -5,8 +5,6 @@
 #include <string>
 #include <vector>
 
-#include <glm/vec2.hpp>
-
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -93,8 +91,10 @@ class AdaptiveSampler {
 }  // namespace
 
 void validate(const AntiAliasing& aa) {
-  std::string mode = mode_name(aa.mode);
-  if (aa.k < 1) throw InputError("", 0, "anti-aliasing " + mode + ": k must be at least 1");
+  const std::string mode = mode_name(aa.mode);
+  const bool uses_k = aa.mode == AntiAliasing::Mode::regular || aa.mode == AntiAliasing::Mode::jitter ||
+                      aa.mode == AntiAliasing::Mode::random;
+  if (uses_k && aa.k < 1) throw InputError("", 0, "anti-aliasing " + mode + ": k must be at least 1");
   uint64_t samples = 1;
   switch (aa.mode) {
     case AntiAliasing::Mode::none: break;

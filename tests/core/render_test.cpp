@@ -123,6 +123,39 @@ TEST(Render, PixelCentreImageMatchesTheTracer) {
   EXPECT_EQ(r.image.at(0, 0), t.scene.render.background);  // the sky in the top-left corner
 }
 
+TEST(Render, PixelsDrawIndependentSamples) {
+  // A white half-plane whose edge halves pixel column 16 (orthographic, 2 world units over 32 pixels):
+  // with one random sample per pixel, the column's pixels are independent coin flips, so both
+  // colours occur (a shared stream would make the whole column one colour).
+  Scene scene;
+  scene.camera.type = CameraType::orthographic;
+  scene.camera.eye = glm::vec3(0.f, 0.f, 5.f);
+  scene.camera.look_at = glm::vec3(0.f);
+  scene.camera.ortho_height = 2.f;
+  scene.render.ambient = glm::vec3(1.f);
+  Material white;
+  white.diffuse = glm::vec3(1.f);
+  scene.materials = {white};
+  const float edge = -1.f + 16.5f / 16.f;
+  scene.geometry.add_triangle({-9.f, -9.f, 0.f}, {edge, -9.f, 0.f}, {edge, 9.f, 0.f});
+  scene.geometry.add_triangle({-9.f, -9.f, 0.f}, {edge, 9.f, 0.f}, {-9.f, 9.f, 0.f});
+  auto accel = make_accelerator("brute");
+  accel->build(scene.geometry);
+  RenderOptions o;
+  o.aa.mode = AntiAliasing::Mode::random;
+  o.aa.k = 1;
+  o.width = o.height = 32;
+  RenderResult r = render_image(scene, *accel, o);
+  int white_pixels = 0;
+  for (int y = 0; y < 32; ++y) {
+    EXPECT_EQ(r.image.at(15, y), glm::vec3(1.f));
+    EXPECT_EQ(r.image.at(17, y), glm::vec3(0.f));
+    white_pixels += r.image.at(16, y).x == 1.f;
+  }
+  EXPECT_GT(white_pixels, 4);
+  EXPECT_LT(white_pixels, 28);
+}
+
 TEST(Render, OptionsFromTheSceneAndBadOptions) {
   TestScene t;
   RenderSettings s;

@@ -155,6 +155,33 @@ TEST(Whitted, NoSelfShadowingFarFromTheOrigin) {
   }
 }
 
+TEST(Whitted, NoShadowAcneOnAFarAwaySphere) {
+  // The same for a sphere of radius 100 at x = 1e4: every visible point facing the light is fully lit,
+  // with exactly Lambert's n.l (the shadow ray must not hit the sphere it leaves).
+  World w;
+  w.sphere(w.material(diffuse(glm::vec3(1.f))), {1e4f, 0.f, 0.f}, 100.f);
+  const glm::vec3 to_light = glm::normalize(glm::vec3(-1.f, 0.6f, 0.3f));
+  w.sun(-to_light);
+  int lit = 0, checked = 0;
+  for (int i = 0; i < 400; ++i) {
+    const glm::vec3 target(1e4f - 100.f, -60.f + 0.3f * i, 37.f - 0.17f * i);  // over the near side
+    const glm::vec3 origin(1e4f - 400.f, 0.f, 0.f);
+    Ray r;
+    r.origin = origin;
+    r.direction = glm::normalize(target - origin);
+    float t;
+    ASSERT_TRUE(intersect_sphere(r, Sphere{{1e4f, 0.f, 0.f}, 100.f}, kInfinity, &t));
+    const glm::vec3 n = glm::normalize(r.at(t) - glm::vec3(1e4f, 0.f, 0.f));
+    const float n_dot_l = glm::dot(n, to_light);
+    if (n_dot_l < 0.05f) continue;  // keep away from the terminator
+    ++checked;
+    const glm::vec3 L = w.trace(origin, r.direction);
+    lit += std::fabs(L.x - n_dot_l) < 1e-3f;
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_EQ(lit, checked);
+}
+
 TEST(Whitted, MirrorSeesTheObjectItReflects) {
   for (float mirror : {1.f, 0.5f}) {
     World w;

@@ -23,6 +23,8 @@ struct PixelEstimate {
   uint32_t samples = 0;  // primary rays (radiance calls) spent on the pixel
 };
 
+// Settings: regular and jitter take k x k samples, random takes N = k samples (k is the sample count there),
+// adaptive uses threshold and max_depth.
 // Throws InputError("", 0, ...) for settings out of range: k < 1, more than kMaxSamplesPerPixel samples,
 // adaptive max_depth outside [0, 6], threshold negative or NaN.
 void validate(const AntiAliasing& aa);

@@ -19,8 +19,8 @@
 
 namespace raystep {
 
-// Rays traced, by kind: with m^2 pixels, k^2 samples per pixel, n lights and depth d the lecture's bound is
-// m^2 k^2 (1 + n) 2^d; these are the real numbers.
+// Rays traced, by kind: the lecture estimates m^2 k^2 n 2^d rays for m^2 pixels, k^2 samples per pixel,
+// n lights and depth d; these are the real numbers.
 struct RayCounts {
   uint64_t primary = 0, shadow = 0, reflected = 0, refracted = 0;
 
