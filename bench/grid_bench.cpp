@@ -10,6 +10,7 @@
 
 #include "grid_hookfree.h"
 #include "raystep/accel/grid.h"
+#include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
 

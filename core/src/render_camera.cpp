@@ -68,4 +68,13 @@ bool ProjectiveCamera::project(const glm::vec3& p, glm::dvec2* raster) const {
   return true;
 }
 
+std::vector<Ray> camera_rays(const Camera& camera, int width, int height) {
+  ProjectiveCamera cam(camera, width, height);
+  std::vector<Ray> rays;
+  rays.reserve(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) rays.push_back(cam.generate(float(x) + 0.5f, float(y) + 0.5f));
+  return rays;
+}
+
 }  // namespace raystep

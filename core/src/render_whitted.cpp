@@ -52,6 +52,7 @@ bool is_zero(const glm::vec3& v) { return v.x == 0.f && v.y == 0.f && v.z == 0.f
 
 glm::vec3 WhittedTracer::trace_primary(const Ray& ray, RayCounts* counts) const {
   ++counts->primary;
+  notify(ray, RayKind::primary, 0);
   return trace(ray, 0, 1.f, counts);
 }
 
@@ -85,6 +86,7 @@ glm::vec3 WhittedTracer::trace(const Ray& ray, int depth, float weight, RayCount
       const float n_dot_l = glm::dot(s.ns, l);
       if (!(n_dot_l > 0.f)) continue;  // the light is behind the surface (or undefined): no shadow ray
       ++counts->shadow;
+      notify(shadow, RayKind::shadow, depth + 1);
       if (accel_.occluded(shadow)) continue;
       glm::vec3 c = m.diffuse * n_dot_l;
       if (has_specular) {
@@ -107,7 +109,9 @@ glm::vec3 WhittedTracer::trace(const Ray& ray, int depth, float weight, RayCount
       const float w = weight * m.transparency;
       if (w >= settings.min_weight) {  // adaptive ray termination
         ++counts->refracted;
-        L += m.transparency * trace(spawn_ray(s.p, s.p_error, s.ng, t), depth + 1, w, counts);
+        const Ray refracted = spawn_ray(s.p, s.p_error, s.ng, t);
+        notify(refracted, RayKind::refracted, depth + 1);
+        L += m.transparency * trace(refracted, depth + 1, w, counts);
       }
     } else {
       mirror_weight += m.transparency;
@@ -119,7 +123,9 @@ glm::vec3 WhittedTracer::trace(const Ray& ray, int depth, float weight, RayCount
     const float w = weight * mirror_weight;
     if (w >= settings.min_weight) {  // adaptive ray termination
       ++counts->reflected;
-      L += mirror_weight * trace(spawn_ray(s.p, s.p_error, s.ng, reflect(d, s.ns)), depth + 1, w, counts);
+      const Ray reflected = spawn_ray(s.p, s.p_error, s.ng, reflect(d, s.ns));
+      notify(reflected, RayKind::reflected, depth + 1);
+      L += mirror_weight * trace(reflected, depth + 1, w, counts);
     }
   }
   return L;

@@ -4,6 +4,8 @@
 // pixel (x, y) covers [x, x+1) x [y, y+1), so its centre is (x + 0.5, y + 0.5).
 #pragma once
 
+#include <vector>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -40,5 +42,8 @@ class ProjectiveCamera {
   // units for the orthographic camera.
   float half_width_, half_height_;
 };
+
+// One ray through each pixel's centre, row-major from the top-left pixel (`raystep rays --kind camera`).
+std::vector<Ray> camera_rays(const Camera& camera, int width, int height);
 
 }  // namespace raystep

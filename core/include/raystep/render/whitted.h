@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -50,10 +51,16 @@ inline bool refract(const glm::vec3& d, const glm::vec3& n, float eta, glm::vec3
   return true;
 }
 
+// Told of every ray the tracer casts, with its kind and depth (primary 0, rays spawned at a depth-d hit d+1):
+// `raystep trace --secondary` records a pixel's whole ray tree this way.
+using RayListener = std::function<void(const Ray& ray, RayKind kind, int depth)>;
+
 class WhittedTracer {
  public:
   // Both must outlive the tracer; the accelerator must be built over scene.geometry.
   WhittedTracer(const Scene& scene, const Accelerator& accel) : scene_(scene), accel_(accel) {}
+  // Optional; must outlive the tracer. Null (the default) for rendering.
+  void set_listener(const RayListener* listener) { listener_ = listener; }
 
   // Radiance arriving along a camera ray; counts the ray as primary and every ray it spawns by kind.
   glm::vec3 trace_primary(const Ray& ray, RayCounts* counts) const;
@@ -63,8 +70,13 @@ class WhittedTracer {
   glm::vec3 trace(const Ray& ray, int depth, float weight, RayCounts* counts) const;
 
  private:
+  void notify(const Ray& ray, RayKind kind, int depth) const {
+    if (listener_) (*listener_)(ray, kind, depth);
+  }
+
   const Scene& scene_;
   const Accelerator& accel_;
+  const RayListener* listener_ = nullptr;
 };
 
 }  // namespace raystep

@@ -1,0 +1,37 @@
+// Heat maps of traversal work: one primary ray through each pixel's centre, counted by a CountingRecorder
+// (cells or nodes visited, primitive tests, or mailbox hits), shown on a perceptual colour ramp with a colour
+// bar beside the image. The picture of where a structure spends its effort.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raystep/accel/accelerator.h"
+#include "raystep/render/image.h"
+#include "raystep/scene/scene.h"
+
+namespace raystep {
+
+enum class HeatQuantity { cells, tests, mailbox };
+
+// "cells" (cells or tree nodes visited), "tests" (ray-primitive tests), "mailbox" (tests skipped by mailboxes).
+HeatQuantity parse_heat_quantity(const std::string& name);  // throws InputError for another name
+const char* heat_quantity_label(HeatQuantity q);
+
+struct HeatMap {
+  int width = 0, height = 0;
+  HeatQuantity quantity = HeatQuantity::cells;
+  std::vector<uint32_t> values;  // row-major, y = 0 at the top
+  uint32_t max_value = 0;
+  double mean_value = 0.0;
+};
+
+// Parallel over rows (threads 0: all cores); the same values whatever the thread count.
+HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int width, int height, HeatQuantity q,
+                        int threads);
+
+// The map on the colour ramp (0 .. max_value), with a colour bar (bottom 0, top max) in a strip on the right.
+Image heatmap_image(const HeatMap& heat);
+
+}  // namespace raystep

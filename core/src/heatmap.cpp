@@ -1,0 +1,81 @@
+#include "raystep/trace/heatmap.h"
+
+#include <algorithm>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "raystep/render/camera.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+
+HeatQuantity parse_heat_quantity(const std::string& name) {
+  if (name == "cells") return HeatQuantity::cells;
+  if (name == "tests") return HeatQuantity::tests;
+  if (name == "mailbox") return HeatQuantity::mailbox;
+  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells, tests or mailbox)");
+}
+
+const char* heat_quantity_label(HeatQuantity q) {
+  switch (q) {
+    case HeatQuantity::cells: return "cells or nodes visited";
+    case HeatQuantity::tests: return "ray-primitive tests";
+    case HeatQuantity::mailbox: return "mailbox hits (tests skipped)";
+  }
+  return "";
+}
+
+HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int width, int height, HeatQuantity q,
+                        int threads) {
+  ProjectiveCamera cam(camera, width, height);
+  HeatMap heat;
+  heat.width = width;
+  heat.height = height;
+  heat.quantity = q;
+  heat.values.assign(size_t(width) * height, 0);
+  auto rows = [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < width; ++x) {
+        CountingRecorder c;
+        Hit hit;
+        accel.intersect_counted(cam.generate(float(x) + 0.5f, float(y) + 0.5f), &hit, c);
+        uint64_t v = q == HeatQuantity::cells ? c.cells + c.nodes : q == HeatQuantity::tests ? c.prim_tests : c.mailbox_hits;
+        heat.values[size_t(y) * width + x] = uint32_t(std::min<uint64_t>(v, UINT32_MAX));
+      }
+  };
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height),
+                      [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
+  });
+  uint64_t sum = 0;
+  for (uint32_t v : heat.values) {
+    heat.max_value = std::max(heat.max_value, v);
+    sum += v;
+  }
+  heat.mean_value = heat.values.empty() ? 0.0 : double(sum) / double(heat.values.size());
+  return heat;
+}
+
+Image heatmap_image(const HeatMap& heat) {
+  // The map, then a strip on the right: a gap and a vertical colour bar (bottom 0, top max_value).
+  const int gap = std::max(2, heat.width / 64), bar = std::max(8, heat.width / 24);
+  Image img;
+  img.width = heat.width + 2 * gap + bar;
+  img.height = heat.height;
+  img.pixels.assign(size_t(img.width) * img.height, glm::vec3(0.02f));
+  float scale = heat.max_value > 0 ? 1.f / float(heat.max_value) : 0.f;
+  for (int y = 0; y < heat.height; ++y)
+    for (int x = 0; x < heat.width; ++x)
+      img.at(x, y) = viridis(float(heat.values[size_t(y) * heat.width + x]) * scale);
+  const int margin = std::max(1, heat.height / 32);
+  for (int y = margin; y < heat.height - margin; ++y) {
+    float t = 1.f - float(y - margin) / float(std::max(1, heat.height - 2 * margin - 1));
+    for (int x = heat.width + gap; x < heat.width + gap + bar; ++x) img.at(x, y) = viridis(t);
+  }
+  return img;
+}
+
+}  // namespace raystep
