@@ -54,7 +54,7 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
       *hit = candidate;
       t_nearest = candidate.t;
     }
-    if (hit->found() && t_nearest < t_cell_exit) break;
+    if (hit->found() && t_nearest * (1.f + 1.f / 4096.f) < t_cell_exit) break;
     if (t_max[axis] > t_exit) break;
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) break;

@@ -145,11 +145,13 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
         return true;
       }
       // A hit beyond this cell's exit may yet be beaten by a primitive of a later cell: keep it, go on.
-      if (t_nearest >= t_cell_exit) rec.hit_deferred(prim, t_nearest, t_cell_exit);
+      if (t_nearest * (1.f + 1.f / 4096.f) >= t_cell_exit) rec.hit_deferred(prim, t_nearest, t_cell_exit);
     }
 
-    // Traverse until tmin(next cell) > tmax(ray): the next cell starts at this cell's exit.
-    if (hit->found() && t_nearest < t_cell_exit) {
+    // Traverse until tmin(next cell) > tmax(ray): the next cell starts at this cell's exit. A computed t can
+    // stray a few ulps (slivers: ~1e-5 relative) past the exact plane distance, so a hit within a relative
+    // 2^-12 of the exit is left to the next cell, where a primitive hit just beyond the boundary is tested too.
+    if (hit->found() && t_nearest * (1.f + 1.f / 4096.f) < t_cell_exit) {
       rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::inside_cell);
       break;
     }

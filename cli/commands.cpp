@@ -1,0 +1,303 @@
+// The subcommands of `raystep`. See commands.h.
+#include "commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "raystep/accel/accelerator.h"
+#include "raystep/accel/structure_options.h"
+#include "raystep/trace/grid_trace.h"
+#include "raystep/trace/heatmap.h"
+#include "raystep/trace/pixel_rays.h"
+#include "raystep/io/image_io.h"
+#include "raystep/io/ray_files.h"
+#include "raystep/render/camera.h"
+#include "raystep/render/render.h"
+#include "raystep/scene/antialiasing_spec.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/util/error.h"
+
+namespace raystep::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// "WxH" with 1 <= W, H <= 16384.
+void parse_size(const std::string& spec, int* w, int* h) {
+  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
+  std::smatch m;
+  if (std::regex_match(spec, m, re)) {
+    int ww = std::stoi(m[1]), hh = std::stoi(m[2]);
+    if (ww >= 1 && hh >= 1 && ww <= 16384 && hh <= 16384) {
+      *w = ww;
+      *h = hh;
+      return;
+    }
+  }
+  throw InputError("", 0, "--size '" + spec + "': expected WxH with 1 <= W, H <= 16384");
+}
+
+std::string extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+// Refuse an output whose folder does not exist before spending time on the work.
+void check_output_folder(const std::string& path) {
+  std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent))
+    throw InputError(path, 0, "cannot write: folder '" + parent.string() + "' does not exist");
+}
+
+// "a,b,c,..." as exactly n finite numbers.
+std::vector<float> parse_numbers(const std::string& option, const std::string& spec, size_t n) {
+  std::vector<float> out;
+  std::stringstream ss(spec);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    float v = std::strtof(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v)) break;
+    out.push_back(v);
+  }
+  if (out.size() != n || std::count(spec.begin(), spec.end(), ',') != long(n - 1))
+    throw InputError("", 0, option + " '" + spec + "': expected " + std::to_string(n) + " comma-separated finite numbers");
+  return out;
+}
+
+std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
+  StructureOptions options;
+  if (!(s.grid_density > 0.f && s.grid_density <= 64.f))
+    throw InputError("", 0, "--grid-density must be in (0, 64]");
+  options.grid.density = s.grid_density;
+  options.grid.exact_insert = s.grid_insert != "bbox";
+  if (s.grid_res) {
+    std::vector<float> n = parse_numbers("--grid-res", *s.grid_res, 3);
+    std::array<int, 3> res;
+    for (int a = 0; a < 3; ++a) {
+      if (n[a] != std::floor(n[a]) || n[a] < 1 || n[a] > 4096)
+        throw InputError("", 0, "--grid-res '" + *s.grid_res + "': each of NX,NY,NZ must be a whole number 1..4096");
+      res[a] = int(n[a]);
+    }
+    options.grid.resolution = res;
+  }
+  try {
+    return make_accelerator(s.accel, options);
+  } catch (const InputError& e) {
+    throw InputError("", 0, "--accel: " + e.detail());
+  }
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& a) {
+  std::string ext = extension(a.output);
+  if (ext != ".png" && ext != ".pfm") throw InputError(a.output, 0, "unknown image format (use .png or .pfm)");
+  check_output_folder(a.output);
+  if (!a.samples_map.empty()) {
+    if (extension(a.samples_map) != ".png") throw InputError(a.samples_map, 0, "the samples map is a .png");
+    check_output_folder(a.samples_map);
+  }
+  if (a.threads < 0) throw InputError("", 0, "--threads must be >= 0");
+
+  Scene scene = load_scene(a.scene);
+  RenderOptions opt;
+  opt.aa = a.aa ? parse_antialiasing(*a.aa) : scene.render.aa;
+  opt.width = scene.render.width;
+  opt.height = scene.render.height;
+  if (a.size) parse_size(*a.size, &opt.width, &opt.height);
+  opt.threads = a.threads;
+  opt.seed = a.seed ? *a.seed : scene.render.seed;
+  opt.progress = true;
+  auto accel = build_structure(a.structure);
+
+  auto t0 = Clock::now();
+  accel->build(scene.geometry);
+  double build_ms = ms_since(t0);
+
+  if (!a.heatmap.empty()) {
+    if (ext != ".png") throw InputError(a.output, 0, "a heat map is written as .png");
+    HeatQuantity quantity = parse_heat_quantity(a.heatmap);
+    auto t1 = Clock::now();
+    HeatMap heat = compute_heatmap(scene.camera, *accel, opt.width, opt.height, quantity, opt.threads);
+    double heat_ms = ms_since(t1);
+    write_png(a.output, heatmap_image(heat));
+    std::printf("heat map: %s per primary ray (one ray through each pixel's centre), %s, %dx%d\n",
+                heat_quantity_label(quantity), accel->name().c_str(), opt.width, opt.height);
+    std::printf("scale: 0 (dark blue, bottom of the colour bar) .. %u (yellow, top); mean %.2f\n", heat.max_value,
+                heat.mean_value);
+    std::printf("time: build %.1f ms, heat map %.1f ms\n", build_ms, heat_ms);
+    std::printf("wrote %s\n", a.output.c_str());
+    return 0;
+  }
+  RenderResult r = render_image(scene, *accel, opt);
+
+  if (ext == ".png") write_png(a.output, r.image);
+  else write_pfm(a.output, r.image);
+  if (!a.samples_map.empty()) {
+    uint32_t max_count = 0;
+    write_png(a.samples_map, sample_count_image(r.samples, opt.width, opt.height, &max_count));
+    std::printf("samples map: %s (black 0 .. yellow %u samples per pixel)\n", a.samples_map.c_str(), max_count);
+  }
+
+  uint64_t samples = 0;
+  for (uint32_t s : r.samples) samples += s;
+  double pixels = double(opt.width) * opt.height;
+  std::printf("scene: %s (%zu primitives), accel %s, aa %s, %dx%d\n", scene.path.c_str(), scene.geometry.size(),
+              accel->name().c_str(), to_string(opt.aa).c_str(), opt.width, opt.height);
+  std::printf("rays: primary=%" PRIu64 " shadow=%" PRIu64 " reflected=%" PRIu64 " refracted=%" PRIu64
+              " total=%" PRIu64 " (%.2f samples per pixel)\n",
+              r.rays.primary, r.rays.shadow, r.rays.reflected, r.rays.refracted, r.rays.total(),
+              double(samples) / pixels);
+  std::printf("time: build %.1f ms, render %.1f ms\n", build_ms, r.seconds * 1e3);
+  std::printf("wrote %s\n", a.output.c_str());
+  return 0;
+}
+
+int run_cast(const CastArgs& a) {
+  if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
+  if (a.threads < 0) throw InputError("", 0, "--threads must be >= 0");
+  check_output_folder(a.hits);
+  Scene scene = load_scene(a.scene);
+  std::vector<Ray> rays = read_rays(a.rays);
+  auto accel = build_structure(a.structure);
+
+  auto t0 = Clock::now();
+  accel->build(scene.geometry);
+  double build_ms = ms_since(t0);
+
+  std::vector<Hit> hits(rays.size());
+  auto trace_range = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) accel->intersect(rays[i], &hits[i]);
+  };
+  int threads = a.threads == 0 ? tbb::this_task_arena::max_concurrency() : a.threads;
+  tbb::task_arena arena(threads);
+  std::vector<double> times;
+  for (int rep = 0; rep < a.reps; ++rep) {
+    auto t1 = Clock::now();
+    if (threads == 1) {
+      trace_range(0, rays.size());
+    } else {
+      arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 1024),
+                          [&](const tbb::blocked_range<size_t>& r) { trace_range(r.begin(), r.end()); });
+      });
+    }
+    times.push_back(ms_since(t1));
+  }
+  std::sort(times.begin(), times.end());
+  double trace_ms = times[times.size() / 2];
+  write_hits(a.hits, hits);
+
+  size_t found = std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.found(); });
+  std::printf("hits: %zu of %zu rays; wrote %s\n", found, rays.size(), a.hits.c_str());
+  std::printf("accel=%s prims=%zu rays=%zu build_ms=%.3f trace_ms=%.3f mrays_per_s=%.3f\n", accel->name().c_str(),
+              scene.geometry.size(), rays.size(), build_ms, trace_ms,
+              trace_ms > 0 ? double(rays.size()) / (trace_ms * 1e3) : 0.0);
+  return 0;
+}
+
+int run_rays(const RaysArgs& a) {
+  check_output_folder(a.output);
+  if (a.kind != "camera" && a.count > (uint64_t(1) << 28))
+    throw InputError("", 0, "--count must be at most 268435456");
+  Scene scene = load_scene(a.scene);
+  std::vector<Ray> rays;
+  if (a.kind == "camera") {
+    int w = scene.render.width, h = scene.render.height;
+    if (a.size) parse_size(*a.size, &w, &h);
+    rays = camera_rays(scene.camera, w, h);
+  } else if (a.kind == "random") {
+    rays = random_rays(scene.geometry.bounds(), a.count, a.seed);
+  } else {
+    rays = edge_rays(scene.geometry, a.count, a.seed);
+  }
+  write_rays(a.output, rays);
+  std::printf("wrote %zu %s rays to %s\n", rays.size(), a.kind.c_str(), a.output.c_str());
+  return 0;
+}
+
+int run_info(const InfoArgs& a) {
+  Scene scene = load_scene(a.scene);
+  const Geometry& g = scene.geometry;
+  size_t degenerate = 0;
+  for (uint32_t id = 0; id < g.size(); ++id) {
+    if (g.type(id) != PrimType::triangle) continue;
+    glm::vec3 n = triangle_normal(g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2));
+    if (!(glm::dot(n, n) > 0.f)) ++degenerate;
+  }
+  const Bounds3& b = g.bounds();
+  std::printf("scene: %s\n", scene.path.c_str());
+  std::printf("primitives: %zu (%zu triangles, %zu spheres)\n", g.size(), g.triangle_count(),
+              g.size() - g.triangle_count());
+  std::printf("degenerate triangles: %zu\n", degenerate);
+  std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+  std::printf("objects: %zu\n", g.objects().size());
+  for (const Object& o : g.objects())
+    std::printf("  %-28s primitives %u..%u  material %s\n", o.name.c_str(), o.first_prim,
+                o.first_prim + o.prim_count - (o.prim_count ? 1 : 0), scene.materials[o.material].name.c_str());
+  std::printf("materials: %zu, lights: %zu\n", scene.materials.size(), scene.lights.size());
+  std::printf("render: %dx%d, aa %s, max depth %d\n", scene.render.width, scene.render.height,
+              to_string(scene.render.aa).c_str(), scene.render.max_depth);
+  return 0;
+}
+
+int run_trace(const TraceArgs& a) {
+  if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
+  if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
+  check_output_folder(a.output);
+  Scene scene = load_scene(a.scene);
+  auto accel = build_structure(a.structure);
+  auto* grid = dynamic_cast<UniformGrid*>(accel.get());
+  if (!grid) throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid)");
+  grid->build(scene.geometry);
+
+  std::vector<RayRequest> requests;
+  if (a.ray) {
+    std::vector<float> v = parse_numbers("--ray", *a.ray, 6);
+    RayRequest req;
+    req.ray.origin = glm::vec3(v[0], v[1], v[2]);
+    req.ray.direction = glm::vec3(v[3], v[4], v[5]);
+    if (req.ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
+    requests.push_back(req);
+  } else {
+    int w = scene.render.width, h = scene.render.height;
+    if (a.size) parse_size(*a.size, &w, &h);
+    std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);
+    if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w || p[1] >= h)
+      throw InputError("", 0, "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
+                                  std::to_string(h) + " image");
+    int px = int(p[0]), py = int(p[1]);
+    requests = pixel_rays(scene, *grid, w, h, px, py, a.secondary);
+  }
+  Trace trace = record_grid_trace(scene.geometry, *grid, requests, a.scene, file_content_hash(a.scene));
+  if (a.format == "csv") write_trace_csv(a.output, trace);
+  else write_trace_json(a.output, trace);
+  std::printf("%s", trace_summary(trace).c_str());
+  std::printf("wrote %s\n", a.output.c_str());
+  return 0;
+}
+
+int run_trace_info(const TraceInfoArgs& a) {
+  Trace trace = read_trace_json(a.trace);
+  std::printf("%s: valid raystep trace, version %d\n", a.trace.c_str(), kTraceVersion);
+  std::printf("%s", trace_summary(trace).c_str());
+  return 0;
+}
+
+}  // namespace raystep::cli

@@ -1,0 +1,75 @@
+// The subcommands of `raystep`, as plain functions over option structs (no CLI11 here: main.cpp parses).
+// Each returns the process exit code and throws raystep::InputError on bad input.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace raystep::cli {
+
+// The acceleration structure and its build options (render, cast, trace).
+struct StructureArgs {
+  std::string accel = "bvol";
+  std::optional<std::string> grid_res;  // "NX,NY,NZ"
+  float grid_density = 3.f;             // d in max(nx, ny, nz) = d * cbrt(n)
+  std::string grid_insert = "exact";    // exact | bbox
+};
+
+struct RenderArgs {
+  std::string scene;  // scene JSON or bare OBJ mesh
+  std::string output;  // .png or .pfm
+  StructureArgs structure;
+  std::string heatmap;  // cells | tests | mailbox: write a heat map of per-pixel work instead of the picture
+  std::optional<std::string> aa;  // overrides the scene's anti-aliasing
+  std::optional<std::string> size;  // "WxH", overrides the scene's size
+  int threads = 0;  // 0: all cores
+  std::optional<uint64_t> seed;
+  std::string samples_map;  // optional PNG of per-pixel sample counts
+};
+
+struct CastArgs {
+  std::string scene;
+  std::string rays;
+  std::string hits;
+  StructureArgs structure;
+  int threads = 1;
+  int reps = 5;
+};
+
+struct RaysArgs {
+  std::string scene;
+  std::string kind;  // camera | random | edges
+  uint64_t count = 100000;
+  uint64_t seed = 1;
+  std::optional<std::string> size;  // camera rays: "WxH", default the scene's size
+  std::string output;
+};
+
+struct InfoArgs {
+  std::string scene;
+};
+
+struct TraceArgs {
+  std::string scene;
+  StructureArgs structure;
+  std::optional<std::string> pixel;  // "X,Y"
+  std::optional<std::string> ray;    // "ox,oy,oz,dx,dy,dz"
+  bool secondary = false;            // also the shadow, reflected and refracted rays the pixel spawns
+  std::optional<std::string> size;   // image size for --pixel, default the scene's
+  std::string format = "json";       // json | csv
+  std::string output;
+};
+
+struct TraceInfoArgs {
+  std::string trace;
+};
+
+int run_render(const RenderArgs& args);
+int run_trace(const TraceArgs& args);
+int run_trace_info(const TraceInfoArgs& args);
+int run_cast(const CastArgs& args);
+int run_rays(const RaysArgs& args);
+int run_info(const InfoArgs& args);
+
+}  // namespace raystep::cli

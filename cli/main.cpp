@@ -1,0 +1,126 @@
+// raystep: the command line. Parses arguments (the only place that includes CLI11) and runs a subcommand.
+// Any bad input prints one line "error: FILE:LINE: what" and exits with code 2.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "commands.h"
+#include "raystep/accel/accelerator.h"
+#include "raystep/util/error.h"
+
+namespace {
+
+std::string accel_help() {
+  std::string s = "acceleration structure:";
+  for (const std::string& n : raystep::accelerator_names()) s += " " + n;
+  return s;
+}
+
+void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const std::string& default_accel) {
+  s.accel = default_accel;
+  cmd->add_option("--accel", s.accel, accel_help())->capture_default_str();
+  cmd->add_option("--grid-res", s.grid_res, "grid: explicit resolution NX,NY,NZ");
+  cmd->add_option("--grid-density", s.grid_density, "grid: d in max(nx,ny,nz) = d * cbrt(primitives)")
+      ->capture_default_str();
+  cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "bbox"}));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace raystep::cli;
+  CLI::App app{"raystep: a step-debugger for anti-aliased, accelerated ray tracing"};
+  app.set_version_flag("--version", "raystep 0.1.0");
+  app.require_subcommand(1);
+
+  RenderArgs render;
+  CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
+  render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
+  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
+  add_structure_options(render_cmd, render.structure, "bvol");
+  render_cmd->add_option("--heatmap", render.heatmap,
+                         "write a heat map of per-pixel work instead of the picture: cells | tests | mailbox")
+      ->check(CLI::IsMember({"cells", "tests", "mailbox"}));
+  render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
+  render_cmd->add_option("--threads", render.threads, "threads (0: all cores)")->capture_default_str();
+  render_cmd->add_option("--seed", render.seed, "sampling seed (default: the scene's)");
+  render_cmd->add_option("--samples-map", render.samples_map, "also write a PNG of samples per pixel");
+
+  CastArgs cast;
+  CLI::App* cast_cmd = app.add_subcommand("cast", "Batch nearest-hit queries, to compare structures");
+  cast_cmd->add_option("scene", cast.scene, "scene .json or mesh .obj")->required();
+  cast_cmd->add_option("--rays", cast.rays, "input rays (.rays: 32 bytes per ray)")->required();
+  cast_cmd->add_option("--hits", cast.hits, "output hits (.hits: 8 bytes per ray)")->required();
+  add_structure_options(cast_cmd, cast.structure, "bvol");
+  cast_cmd->add_option("--threads", cast.threads, "threads (0: all cores)")->capture_default_str();
+  cast_cmd->add_option("--reps", cast.reps, "timed passes; trace_ms is their median")->capture_default_str();
+
+  RaysArgs rays;
+  CLI::App* rays_cmd = app.add_subcommand("rays", "Write a ray set for comparing structures");
+  rays_cmd->add_option("scene", rays.scene, "scene .json or mesh .obj")->required();
+  rays_cmd->add_option("--kind", rays.kind, "camera (one per pixel, row-major) | random | edges")
+      ->required()
+      ->check(CLI::IsMember({"camera", "random", "edges"}));
+  rays_cmd->add_option("--count", rays.count, "number of rays (random, edges)")->capture_default_str();
+  rays_cmd->add_option("--seed", rays.seed, "random seed")->capture_default_str();
+  rays_cmd->add_option("--size", rays.size, "camera rays: image size WxH (default: the scene's)");
+  rays_cmd->add_option("-o,--output", rays.output, "output .rays file")->required();
+
+  InfoArgs info;
+  CLI::App* info_cmd = app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
+  info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
+
+  TraceArgs trace;
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
+  trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
+  add_structure_options(trace_cmd, trace.structure, "grid");
+  auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
+  auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
+  pixel_opt->excludes(ray_opt);
+  trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
+  trace_cmd->add_option("--format", trace.format, "json (the trace format) | csv (one event per row)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"json", "csv"}));
+  trace_cmd->add_option("-o,--output", trace.output, "output trace file")->required();
+
+  TraceInfoArgs trace_info;
+  CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
+  trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (see raystep --help)\n", e.what());
+    return 2;
+  }
+
+  try {
+    if (*render_cmd) return run_render(render);
+    if (*cast_cmd) return run_cast(cast);
+    if (*rays_cmd) return run_rays(rays);
+    if (*info_cmd) return run_info(info);
+    if (*trace_cmd) return run_trace(trace);
+    if (*trace_info_cmd) return run_trace_info(trace_info);
+  } catch (const raystep::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of memory\n");
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 1;
+}

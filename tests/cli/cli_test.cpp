@@ -1,0 +1,202 @@
+// The `raystep` command end to end: every bad input gives one line "error: FILE:LINE: what", exit code 2 and
+// no output file; the good paths write what they say.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("raystep_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+
+  Outcome run(const std::string& args) const {
+    std::string out = path("stdout.txt"), err = path("stderr.txt");
+    std::string cmd = std::string(RAYSTEP_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+    int status = std::system(cmd.c_str());
+    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // Exit code 2 and a single line "error: <prefix>..." on stderr.
+  void expect_error(const Outcome& r, const std::string& prefix) const {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("error: " + prefix, 0), 0u) << "stderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
+  }
+
+  // An octahedron: 8 triangles, closed.
+  std::string octahedron() const {
+    return write("octa.obj",
+                 "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n"
+                 "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n");
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpOnEverySubcommand) {
+  for (const char* sub : {"", "render", "cast", "rays", "info"}) {
+    Outcome r = run(std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << sub;
+  }
+}
+
+TEST_F(Cli, MissingSceneFile) {
+  std::string missing = path("nope.json");
+  expect_error(run("render " + missing + " -o " + path("a.png")), missing);
+  EXPECT_FALSE(fs::exists(path("a.png")));
+}
+
+TEST_F(Cli, MalformedJsonNamesTheLine) {
+  std::string scene = write("bad.json", "{\n  \"camera\": {\n    \"fov\": 40,,\n  }\n}\n");
+  Outcome r = run("render " + scene + " -o " + path("a.png"));
+  expect_error(r, scene + ":3:");
+  EXPECT_FALSE(fs::exists(path("a.png")));
+}
+
+TEST_F(Cli, WrongTypeNamesTheLine) {
+  std::string scene = write("type.json",
+                            "{\n  \"objects\": [\n    {\"type\": \"sphere\", \"center\": [0, 0, 0],\n     \"radius\": \"big\"}\n  ]\n}\n");
+  expect_error(run("info " + scene), scene + ":4:");
+}
+
+TEST_F(Cli, UnknownKeyNamesTheLine) {
+  std::string scene = write("key.json",
+                            "{\n  \"objects\": [ {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1} ],\n  \"camra\": {}\n}\n");
+  Outcome r = run("info " + scene);
+  expect_error(r, scene + ":3:");
+  EXPECT_NE(r.err.find("camra"), std::string::npos);
+}
+
+TEST_F(Cli, ObjIndexOutOfRangeNamesTheLine) {
+  std::string mesh = write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+  expect_error(run("render " + mesh + " -o " + path("a.png")), mesh + ":5:");
+  EXPECT_FALSE(fs::exists(path("a.png")));
+}
+
+TEST_F(Cli, ObjNonFiniteCoordinateNamesTheLine) {
+  std::string mesh = write("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+  expect_error(run("info " + mesh), mesh + ":2:");
+  std::string inf = write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 inf\nf 1 2 3\n");
+  expect_error(run("info " + inf), inf + ":3:");
+}
+
+TEST_F(Cli, RayFileOfWrongSize) {
+  std::string mesh = octahedron();
+  std::string rays = write("bad.rays", std::string(33, '\0'));
+  Outcome r = run("cast " + mesh + " --rays " + rays + " --hits " + path("out.hits"));
+  expect_error(r, rays);
+  EXPECT_FALSE(fs::exists(path("out.hits")));
+}
+
+TEST_F(Cli, BadOptions) {
+  std::string mesh = octahedron();
+  std::string out = path("a.png");
+  expect_error(run("render " + mesh + " -o " + out + " --aa jitter:0"), "");
+  expect_error(run("render " + mesh + " -o " + out + " --size 0x10"), "--size");
+  expect_error(run("render " + mesh + " -o " + out + " --accel octree-of-dreams"), "--accel");
+  expect_error(run("render " + mesh + " -o " + path("a.bmp")), path("a.bmp"));
+  expect_error(run("render " + mesh + " -o " + path("no/such/dir/a.png")), path("no/such/dir/a.png"));
+  expect_error(run("render " + mesh + " -o " + out + " --frobnicate"), "");
+  expect_error(run("frobnicate"), "");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RenderWritesTheImageAndCountsRays) {
+  std::string mesh = octahedron();
+  Outcome r = run("render " + mesh + " -o " + path("a.png") + " --size 32x24 --aa jitter:2 --samples-map " +
+              path("s.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("a.png")));
+  EXPECT_TRUE(fs::exists(path("s.png")));
+  // 32 x 24 pixels x 4 samples: the primary ray count is exact.
+  EXPECT_NE(r.out.find("primary=3072 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("wrote " + path("a.png")), std::string::npos) << r.out;
+  // No temporary file is left beside the outputs.
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(Cli, RaysAndCastAgreeAcrossAccelerators) {
+  std::string mesh = octahedron();
+  ASSERT_EQ(run("rays " + mesh + " --kind random --count 5000 --seed 3 -o " + path("r.rays")).code, 0);
+  EXPECT_EQ(fs::file_size(path("r.rays")), 5000u * 32u);
+  std::string brute, bvol;
+  for (const char* accel : {"brute", "bvol"}) {
+    Outcome r = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path(std::string(accel) + ".hits") +
+                " --accel " + accel + " --reps 2");
+    ASSERT_EQ(r.code, 0) << r.err;
+    // The last line is the key=value summary.
+    std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
+    std::regex line("accel=" + std::string(accel) +
+                    " prims=8 rays=5000 build_ms=[0-9.]+ trace_ms=[0-9.]+ mrays_per_s=[0-9.]+\n");
+    EXPECT_TRUE(std::regex_match(last, line)) << last;
+    EXPECT_EQ(fs::file_size(path(std::string(accel) + ".hits")), 5000u * 8u);
+  }
+  EXPECT_EQ(slurp(path("brute.hits")), slurp(path("bvol.hits")));
+}
+
+TEST_F(Cli, CameraRaysOnePerPixel) {
+  std::string mesh = octahedron();
+  Outcome r = run("rays " + mesh + " --kind camera --size 20x10 -o " + path("c.rays"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(fs::file_size(path("c.rays")), 200u * 32u);
+  ASSERT_EQ(run("rays " + mesh + " --kind edges --count 100 -o " + path("e.rays")).code, 0);
+  EXPECT_EQ(fs::file_size(path("e.rays")), 100u * 32u);
+}
+
+TEST_F(Cli, InfoReportsDegenerateTriangles) {
+  std::string mesh = write("deg.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n");
+  Outcome r = run("info " + mesh);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("primitives: 2 (2 triangles, 0 spheres)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("degenerate triangles: 1"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, EveryShippedSceneRenders) {
+  for (const auto& e : fs::directory_iterator(fs::path(RAYSTEP_SOURCE_DIR) / "scenes")) {
+    if (e.path().extension() != ".json") continue;
+    Outcome r = run("render " + e.path().string() + " -o " + path("s.png") + " --size 40x30 --aa none");
+    EXPECT_EQ(r.code, 0) << e.path() << ": " << r.err;
+  }
+}
+
+}  // namespace
