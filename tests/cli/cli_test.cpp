@@ -199,4 +199,82 @@ TEST_F(Cli, EveryShippedSceneRenders) {
   }
 }
 
+TEST_F(Cli, TraceWritesAValidTraceThatTraceInfoReads) {
+  std::string mesh = octahedron();
+  Outcome r = run("trace " + mesh + " --ray -3,0.1,0.2,1,0,0 -o " + path("t.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string text = slurp(path("t.json"));
+  EXPECT_EQ(text.rfind("{\n \"format\": \"raystep-trace\",\n \"version\": 1,", 0), 0u) << text.substr(0, 80);
+  EXPECT_NE(text.find("\"type\":\"cell\""), std::string::npos);
+  EXPECT_NE(text.find("\"type\":\"hit_accepted\""), std::string::npos);
+  Outcome info = run("trace-info " + path("t.json"));
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("valid raystep trace"), std::string::npos);
+  EXPECT_NE(info.out.find("hit primitive"), std::string::npos) << info.out;
+  // CSV: a header and one row per event.
+  ASSERT_EQ(run("trace " + mesh + " --ray -3,0.1,0.2,1,0,0 --format csv -o " + path("t.csv")).code, 0);
+  EXPECT_EQ(slurp(path("t.csv")).rfind("ray,seq,type,i,j,k,", 0), 0u);
+}
+
+TEST_F(Cli, TraceOfAPixelWithSecondaryRays) {
+  std::string scene = write("mirror.json",
+                            "{\"camera\": {\"eye\": [0, 0, 5], \"look_at\": [0, 0, 0]},\n"
+                            " \"materials\": {\"mirror\": {\"diffuse\": 0.5, \"mirror\": 0.5}},\n"
+                            " \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1,"
+                            " \"material\": \"mirror\"}],\n"
+                            " \"render\": {\"size\": [20, 20]}}\n");
+  Outcome r = run("trace " + scene + " --pixel 10,10 --secondary -o " + path("t.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string text = slurp(path("t.json"));
+  EXPECT_NE(text.find("\"kind\":\"primary\""), std::string::npos);
+  EXPECT_NE(text.find("\"kind\":\"shadow\""), std::string::npos);
+  EXPECT_NE(text.find("\"kind\":\"reflected\""), std::string::npos);
+  EXPECT_NE(text.find("\"pixel\":[10,10]"), std::string::npos);
+}
+
+TEST_F(Cli, TraceRejectsBadRequests) {
+  std::string mesh = octahedron();
+  std::string out = path("t.json");
+  expect_error(run("trace " + mesh + " -o " + out), "trace: give --pixel");
+  expect_error(run("trace " + mesh + " --ray 1,2,3 -o " + out), "--ray");
+  expect_error(run("trace " + mesh + " --ray 0,0,0,0,0,0 -o " + out), "--ray");
+  expect_error(run("trace " + mesh + " --pixel 5000,1 -o " + out), "--pixel");
+  expect_error(run("trace " + mesh + " --accel bvol --ray 0,0,-3,0,0,1 -o " + out), "trace: --accel bvol");
+  expect_error(run("trace " + mesh + " --ray 0,0,-3,0,0,1 --grid-res 0,1,1 -o " + out), "--grid-res");
+  expect_error(run("trace " + mesh + " --ray 0,0,-3,0,0,1 --grid-insert maybe -o " + out), "");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, MalformedTracesExitTwoWithFileAndLine) {
+  std::string mesh = octahedron();
+  ASSERT_EQ(run("trace " + mesh + " --ray -3,0.1,0.2,1,0,0 -o " + path("t.json")).code, 0);
+  std::string text = slurp(path("t.json"));
+  std::string cut = write("cut.json", text.substr(0, text.size() / 2));
+  expect_error(run("trace-info " + cut), cut + ":");
+  std::string bad = text;
+  size_t at = bad.find("\"type\":\"cell\"");
+  bad.replace(at, 13, "\"type\":\"warp\"");
+  std::string line = std::to_string(1 + std::count(bad.begin(), bad.begin() + at, '\n'));
+  std::string unknown = write("unknown.json", bad);
+  Outcome r = run("trace-info " + unknown);
+  expect_error(r, unknown + ":" + line + ":");
+  EXPECT_NE(r.err.find("unknown event type \"warp\""), std::string::npos) << r.err;
+  expect_error(run("trace-info " + path("missing.json")), path("missing.json"));
+}
+
+TEST_F(Cli, HeatMapAndGridOptions) {
+  std::string mesh = octahedron();
+  Outcome r = run("render " + mesh + " --heatmap tests --size 24x16 -o " + path("heat.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("heat.png")));
+  EXPECT_NE(r.out.find("scale: 0"), std::string::npos) << r.out;
+  ASSERT_EQ(run("rays " + mesh + " --kind random --count 3000 -o " + path("r.rays")).code, 0);
+  ASSERT_EQ(run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code, 0);
+  for (const char* opts : {"--grid-res 4,4,4", "--grid-res 1,7,2 --grid-insert bbox", "--grid-density 0.5"}) {
+    Outcome c = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("g.hits") + " --accel grid " + opts);
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_EQ(slurp(path("g.hits")), slurp(path("b.hits"))) << opts;
+  }
+}
+
 }  // namespace
