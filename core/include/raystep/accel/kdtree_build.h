@@ -1,0 +1,98 @@
+// kd-tree construction (lecture: "kd-tree build by the Surface Area Heuristic"): the SAH cost
+// C = t_t + p_a N_a t_i + p_b N_b t_i with p = S_child / S_node (Crofton), candidate planes at the bounds of
+// each primitive clipped to the node ("perfect splits"), planar primitives tried on either side. Three
+// builders: the O(N log N) event sweep of Wald and Havran ("On building fast kd-trees for ray tracing, and on
+// doing that in O(N log N)", 2006), a plain O(N^2)-per-node reference that must build the same tree, and a
+// spatial-median builder for the lesson that shows why SAH wins.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "raystep/accel/kdtree_node.h"
+#include "raystep/scene/geometry.h"
+
+namespace raystep {
+
+enum class KdBuilder : uint8_t {
+  sah,            // Wald-Havran event sweep, O(N log N)
+  sah_reference,  // every candidate counted against every primitive: O(N^2) per node; tests only
+  median,         // split the longest axis of the node at its middle
+};
+
+struct KdOptions {
+  KdBuilder builder = KdBuilder::sah;
+  float t_i = 80.f;          // cost of one ray-primitive test (lecture: t_i = 80 t_t)
+  float t_t = 1.f;           // cost of one traversal step
+  float empty_bonus = 0.f;   // in [0, 1): a split with an empty child costs t_t + (1 - bonus) t_i (...)
+  int max_depth = 0;         // 0: 8 + 1.3 log2(N) (pbrt), at most kKdMaxDepth
+  int leaf_size = 1;         // a node with at most this many primitives is a leaf without a search
+};
+constexpr int kKdMaxDepth = 64;
+
+// The depth limit actually used for n primitives.
+int kd_max_depth(const KdOptions& options, size_t prim_count);
+
+// One candidate split plane of a node, as the SAH evaluated it. n_below and n_above count the planar
+// primitives (those lying in the plane) on the side they were given; n_planar says how many there were.
+struct SahCandidate {
+  int axis = 0;
+  float position = 0.f;
+  uint32_t n_below = 0, n_above = 0, n_planar = 0;
+  float area_below = 0.f, area_above = 0.f, area_node = 0.f;
+  float cost = 0.f;
+  bool planar_below = true;  // the side the planar primitives were put on (the cheaper one)
+};
+
+// Why a node became a leaf.
+enum class LeafReason : uint8_t {
+  few_primitives,  // N <= leaf_size
+  max_depth,       // the depth limit
+  no_cheaper_split,  // every candidate costs at least N * t_i
+  no_candidate,      // no plane strictly inside the node (e.g. all primitives span it)
+  budget,            // the reference budget is spent (bounded memory on pathological input)
+};
+const char* leaf_reason_name(LeafReason reason);
+
+// What a builder tells about its work. The kernel takes the recorder as a template parameter: with
+// NullBuildRecorder (`enabled` false) it costs nothing; BuildListenerRecorder forwards to a BuildListener
+// (the SAH inspector, streamed build events, tests). Candidates are made only for nodes the recorder wants.
+struct NullBuildRecorder {
+  static constexpr bool enabled = false;
+  bool wants_candidates(uint32_t /*node*/) const { return false; }
+  void sah_candidate(uint32_t /*node*/, const SahCandidate&) {}
+  void split(uint32_t /*node*/, const KdNodeInfo&, uint32_t /*n_prims*/, int /*axis*/, float /*position*/,
+             float /*cost*/, float /*leaf_cost*/) {}
+  void leaf_made(uint32_t /*node*/, const KdNodeInfo&, uint32_t /*n_prims*/, float /*leaf_cost*/,
+                 LeafReason) {}
+};
+
+class BuildListener {
+ public:
+  virtual ~BuildListener() = default;
+  virtual bool wants_candidates(uint32_t node) const = 0;
+  virtual void sah_candidate(uint32_t node, const SahCandidate& c) = 0;
+  virtual void split(uint32_t node, const KdNodeInfo& info, uint32_t n_prims, int axis, float position,
+                     float cost, float leaf_cost) = 0;
+  virtual void leaf_made(uint32_t node, const KdNodeInfo& info, uint32_t n_prims, float leaf_cost,
+                         LeafReason reason) = 0;
+};
+
+struct BuildListenerRecorder {
+  static constexpr bool enabled = true;
+  BuildListener* listener;
+  bool wants_candidates(uint32_t node) const { return listener->wants_candidates(node); }
+  void sah_candidate(uint32_t node, const SahCandidate& c) { listener->sah_candidate(node, c); }
+  void split(uint32_t node, const KdNodeInfo& info, uint32_t n, int axis, float pos, float cost, float leaf) {
+    listener->split(node, info, n, axis, pos, cost, leaf);
+  }
+  void leaf_made(uint32_t node, const KdNodeInfo& info, uint32_t n, float leaf_cost, LeafReason reason) {
+    listener->leaf_made(node, info, n, leaf_cost, reason);
+  }
+};
+
+// Build by options.builder. Throws InputError("", 0, ...) for options out of range.
+KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options);
+KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options, BuildListener& listener);
+
+}  // namespace raystep
