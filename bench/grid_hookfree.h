@@ -46,7 +46,9 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
     size_t id = grid.cell_id(cell[0], cell[1], cell[2]);
-    for (uint32_t r = grid.cell_start(id); r < grid.cell_start(id + 1); ++r) {
+    uint32_t first = 0, last = 0;
+    if (grid.occupied(id)) first = grid.cell_start(id), last = grid.cell_start(id + 1);
+    for (uint32_t r = first; r < last; ++r) {
       uint32_t prim = grid.reference(r);
       if (!mailbox.first_visit(prim)) continue;
       Hit candidate;

@@ -30,13 +30,6 @@ std::array<int, 3> UniformGrid::resolution_for(const Bounds3& bounds, size_t pri
   return n;
 }
 
-int UniformGrid::cell_of(float p, int axis) const {
-  float x = (p - bounds_.lo[axis]) * inv_cell_size_[axis];
-  if (!(x >= 0.f)) return 0;  // also NaN
-  if (x >= float(n_[axis])) return n_[axis] - 1;
-  return int(x);
-}
-
 Bounds3 UniformGrid::cell_bounds(int i, int j, int k) const {
   int c[3] = {i, j, k};
   Bounds3 b;
@@ -52,6 +45,7 @@ void UniformGrid::build(const Geometry& geometry) {
   geometry_ = &geometry;
   cell_start_.clear();
   prim_index_.clear();
+  occupied_.clear();
   mailboxes_.reset(geometry.size());
   if (geometry.size() == 0) return;
 
@@ -123,6 +117,9 @@ void UniformGrid::build(const Geometry& geometry) {
   prim_index_.resize(refs.size());
   std::vector<uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (const Ref& r : refs) prim_index_[fill[r.cell]++] = r.prim;
+  occupied_.assign((cells + 63) / 64, 0u);
+  for (size_t c = 0; c < cells; ++c)
+    if (cell_start_[c] < cell_start_[c + 1]) occupied_[c >> 6] |= uint64_t(1) << (c & 63);
 }
 
 bool UniformGrid::intersect(const Ray& ray, Hit* hit) const {

@@ -15,6 +15,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/mailbox.h"
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/component.h"
 #include "raystep/trace/recorder.h"
 
 namespace raystep {
@@ -55,11 +56,19 @@ class UniformGrid final : public Accelerator {
   const Geometry& geometry() const { return *geometry_; }
   const Mailboxes& mailboxes() const { return mailboxes_; }
   // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
-  int cell_of(float p, int axis) const;
+  int cell_of(float p, int axis) const {
+    float x = (p - component(bounds_.lo, axis)) * component(inv_cell_size_, axis);
+    if (!(x >= 0.f)) return 0;  // also NaN
+    if (x >= float(n_[axis])) return n_[axis] - 1;
+    return int(x);
+  }
   size_t cell_id(int i, int j, int k) const { return (size_t(k) * n_[1] + j) * n_[0] + i; }
   uint32_t cell_start(size_t id) const { return cell_start_[id]; }
   uint32_t reference(uint32_t r) const { return prim_index_[r]; }
   bool empty() const { return cell_start_.empty(); }
+  // One bit per cell: does it hold any primitive? The walk reads these bits (a few hundred KiB that stay in
+  // cache) and touches the offsets only for occupied cells, so empty space costs little even in a fine grid.
+  bool occupied(size_t id) const { return (occupied_[id >> 6] >> (id & 63)) & 1u; }
 
  private:
 
@@ -70,6 +79,7 @@ class UniformGrid final : public Accelerator {
   glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
   std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
   std::vector<uint32_t> prim_index_;
+  std::vector<uint64_t> occupied_;    // one bit per cell: cell_start_[id] < cell_start_[id + 1]
   Mailboxes mailboxes_;
 };
 
@@ -127,7 +137,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
 
     // Test the cell's primitives, skipping those already tested for this ray (mailbox).
     size_t id = cell_id(cell[0], cell[1], cell[2]);
-    for (uint32_t r = cell_start_[id]; r < cell_start_[id + 1]; ++r) {
+    uint32_t first = 0, last = 0;  // an empty cell's offsets are never read
+    if (occupied(id)) first = cell_start_[id], last = cell_start_[id + 1];
+    for (uint32_t r = first; r < last; ++r) {
       uint32_t prim = prim_index_[r];
       if (!mailbox.first_visit(prim)) {
         rec.mailbox_hit(prim);

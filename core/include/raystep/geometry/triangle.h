@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "raystep/geometry/component.h"
 #include "raystep/geometry/numerics.h"
 #include "raystep/geometry/ray.h"
 
@@ -54,9 +55,9 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
                                const glm::vec3& p2, float tmax, TriangleHit* hit) {
   // Translate the vertices to the ray origin, permute (kx, ky, kz) and shear so the ray runs along +z.
   glm::vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-  float ax = a[r.kx] + r.sx * a[r.kz], ay = a[r.ky] + r.sy * a[r.kz];
-  float bx = b[r.kx] + r.sx * b[r.kz], by = b[r.ky] + r.sy * b[r.kz];
-  float cx = c[r.kx] + r.sx * c[r.kz], cy = c[r.ky] + r.sy * c[r.kz];
+  float ax = component(a, r.kx) + r.sx * component(a, r.kz), ay = component(a, r.ky) + r.sy * component(a, r.kz);
+  float bx = component(b, r.kx) + r.sx * component(b, r.kz), by = component(b, r.ky) + r.sy * component(b, r.kz);
+  float cx = component(c, r.kx) + r.sx * component(c, r.kz), cy = component(c, r.ky) + r.sy * component(c, r.kz);
 
   // Edge functions: signed areas of the sheared triangle's edges seen from the ray (the origin in 2D).
   float e0 = bx * cy - by * cx;
@@ -74,7 +75,7 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
   if (det == 0.f) return false;
 
   // Scaled hit distance, compared with tmax without dividing.
-  float az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+  float az = r.sz * component(a, r.kz), bz = r.sz * component(b, r.kz), cz = r.sz * component(c, r.kz);
   float t_scaled = e0 * az + e1 * bz + e2 * cz;
   if (det < 0 && (t_scaled >= 0 || t_scaled < tmax * det)) return false;
   if (det > 0 && (t_scaled <= 0 || t_scaled > tmax * det)) return false;
@@ -89,7 +90,7 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
   // directions then reject valid hits, long ones accept t slightly below zero).
   float max_zt = detail::max_abs3(az, bz, cz);
   float delta_z = gamma(3) * max_zt;
-  float max_z = detail::max_abs3(a[r.kz], b[r.kz], c[r.kz]);
+  float max_z = detail::max_abs3(component(a, r.kz), component(b, r.kz), component(c, r.kz));
   float max_xt = detail::max_abs3(ax, bx, cx);
   float max_yt = detail::max_abs3(ay, by, cy);
   float delta_x = gamma(5) * (max_xt + max_z);
