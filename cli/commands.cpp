@@ -14,8 +14,10 @@
 #include <tbb/task_arena.h>
 
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/kdtree_entry_probability.h"
+#include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/structure_options.h"
-#include "raystep/trace/grid_trace.h"
+#include "raystep/trace/record_trace.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/io/image_io.h"
@@ -25,6 +27,7 @@
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
+#include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
 namespace raystep::cli {
@@ -80,6 +83,16 @@ std::vector<float> parse_numbers(const std::string& option, const std::string& s
   return out;
 }
 
+KdOptions kd_options(const StructureArgs& s) {
+  KdOptions kd;
+  kd.t_i = s.kd_ti;
+  kd.t_t = s.kd_tt;
+  kd.empty_bonus = s.kd_empty_bonus;
+  kd.max_depth = s.kd_max_depth;
+  kd.leaf_size = s.kd_leaf_size;
+  return kd;
+}
+
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   StructureOptions options;
   if (!(s.grid_density > 0.f && s.grid_density <= 64.f))
@@ -96,6 +109,8 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
     }
     options.grid.resolution = res;
   }
+  options.kd = kd_options(s);
+  options.kd_mailboxes = s.kd_mailbox != "off";
   try {
     return make_accelerator(s.accel, options);
   } catch (const InputError& e) {
@@ -263,9 +278,9 @@ int run_trace(const TraceArgs& a) {
   check_output_folder(a.output);
   Scene scene = load_scene(a.scene);
   auto accel = build_structure(a.structure);
-  auto* grid = dynamic_cast<UniformGrid*>(accel.get());
-  if (!grid) throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid)");
-  grid->build(scene.geometry);
+  if (!records_events(*accel))
+    throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid, kd or kd-median)");
+  accel->build(scene.geometry);
 
   std::vector<RayRequest> requests;
   if (a.ray) {
@@ -283,13 +298,116 @@ int run_trace(const TraceArgs& a) {
       throw InputError("", 0, "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
                                   std::to_string(h) + " image");
     int px = int(p[0]), py = int(p[1]);
-    requests = pixel_rays(scene, *grid, w, h, px, py, a.secondary);
+    requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
   }
-  Trace trace = record_grid_trace(scene.geometry, *grid, requests, a.scene, file_content_hash(a.scene));
+  Trace trace = record_trace(scene.geometry, *accel, requests, a.scene, file_content_hash(a.scene));
   if (a.format == "csv") write_trace_csv(a.output, trace);
   else write_trace_json(a.output, trace);
   std::printf("%s", trace_summary(trace).c_str());
   std::printf("wrote %s\n", a.output.c_str());
+  return 0;
+}
+
+int run_sah(const SahArgs& a) {
+  std::string ext = extension(a.output);
+  if (ext != ".csv" && ext != ".json") throw InputError(a.output, 0, "the curve is written as .csv or .json");
+  check_output_folder(a.output);
+  Scene scene = load_scene(a.scene);
+  KdOptions options = kd_options(a.structure);
+  uint32_t node = a.node ? *a.node : 0;
+  if (a.path) {
+    KdTreeData tree = build_kdtree(scene.geometry, options);
+    node = kd_node_by_path(tree, *a.path);
+  }
+  SahCurve curve = record_sah_curve(scene.geometry, options, node);
+  if (ext == ".csv") write_sah_csv(a.output, curve);
+  else write_sah_json(a.output, curve, options);
+  const char* axes = "xyz";
+  std::printf("node %u: depth %d, %u primitives, box [%g, %g, %g] .. [%g, %g, %g]\n", node, curve.info.depth,
+              curve.n_prims, curve.info.box.lo.x, curve.info.box.lo.y, curve.info.box.lo.z, curve.info.box.hi.x,
+              curve.info.box.hi.y, curve.info.box.hi.z);
+  if (curve.leaf)
+    std::printf("decision: leaf (%s), leaf cost N*t_i = %g\n", leaf_reason_name(curve.leaf_reason), curve.leaf_cost);
+  else
+    std::printf("decision: split %c = %.9g, cost %g against leaf cost N*t_i = %g\n", axes[curve.axis],
+                curve.position, curve.cost, curve.leaf_cost);
+  std::printf("candidates: %zu (t_i %g, t_t %g, empty bonus %g); wrote %s\n", curve.candidates.size(), options.t_i,
+              options.t_t, options.empty_bonus, a.output.c_str());
+  return 0;
+}
+
+int run_kdtree_stats(const KdStatsArgs& a) {
+  if (a.lines < 1 || a.lines > (uint64_t(1) << 26)) throw InputError("", 0, "--lines must be 1..67108864");
+  if (!a.csv.empty()) check_output_folder(a.csv);
+  Scene scene = load_scene(a.scene);
+  auto accel = build_structure(a.structure);
+  auto* tree = dynamic_cast<KdTree*>(accel.get());
+  auto t0 = Clock::now();
+  tree->build(scene.geometry);
+  double build_ms = ms_since(t0);
+  const KdTreeData& d = tree->data();
+  KdTreeStats st = kd_tree_stats(d, tree->options());
+  std::vector<KdNodeEntry> entry = measure_entry_probability(*tree, a.lines, a.seed);
+
+  size_t prims = scene.geometry.size();
+  double leaf_depth = 0, leaf_prims = 0;
+  for (size_t i = 0; i < d.nodes.size(); ++i)
+    if (d.nodes[i].is_leaf()) {
+      leaf_depth += d.info[i].depth;
+      leaf_prims += d.nodes[i].prim_count();
+    }
+  size_t full = st.leaves - st.empty_leaves;
+  std::printf("scene: %s (%zu primitives), %s, built in %.1f ms\n", scene.path.c_str(), prims,
+              tree->name().c_str(), build_ms);
+  std::printf("nodes: %zu (%zu inner, %zu leaves of which %zu empty)\n", st.nodes, st.nodes - st.leaves, st.leaves,
+              st.empty_leaves);
+  std::printf("depth: max %d (limit %d), mean leaf depth %.2f\n", st.max_depth,
+              kd_max_depth(tree->options(), prims), st.leaves ? leaf_depth / double(st.leaves) : 0.0);
+  std::printf("primitives per non-empty leaf: mean %.2f, max %zu\n", full ? leaf_prims / double(full) : 0.0,
+              st.max_leaf_prims);
+  std::printf("references per primitive: %.3f (%zu references)\n", prims ? double(st.references) / double(prims) : 0.0,
+              st.references);
+  std::printf("SAH cost of the tree: %.3f (t_i %g, t_t %g); a single leaf would cost %.1f\n", st.sah_cost,
+              tree->options().t_i, tree->options().t_t, double(prims) * tree->options().t_i);
+
+  // Predicted against measured entry probabilities: the top of the tree, then all nodes at once.
+  std::printf("\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
+              static_cast<unsigned long long>(a.lines));
+  std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
+  std::vector<std::string> paths(d.nodes.size());
+  for (size_t i = 0; i < d.nodes.size(); ++i) {
+    const KdNode& n = d.nodes[i];
+    if (!n.is_leaf()) {
+      paths[i + 1] = paths[i] + "L";
+      paths[n.above_child()] = paths[i] + "R";
+    }
+    if (d.info[i].depth <= 3)
+      std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, d.info[i].depth,
+                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines, entry[i].rays);
+  }
+  double sum_abs = 0, worst = 0, sum_over = 0;
+  for (const KdNodeEntry& e : entry) {
+    sum_abs += std::fabs(e.predicted - e.lines);
+    worst = std::max(worst, std::fabs(e.predicted - e.lines));
+    sum_over += e.predicted - e.rays;
+  }
+  double n = double(std::max<size_t>(entry.size(), 1));
+  std::printf("all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
+              "(rays stop at their first hit)\n",
+              entry.size(), sum_abs / n, worst, sum_over / n);
+  if (!a.csv.empty()) {
+    write_file_atomically(a.csv, [&](std::ostream& out) {
+      out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
+      char buf[160];
+      for (size_t i = 0; i < d.nodes.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, d.info[i].depth, d.info[i].parent,
+                      d.nodes[i].is_leaf() ? 1 : 0, d.nodes[i].is_leaf() ? d.nodes[i].prim_count() : 0u,
+                      entry[i].predicted, entry[i].lines, entry[i].rays);
+        out << buf;
+      }
+    });
+    std::printf("wrote %s\n", a.csv.c_str());
+  }
   return 0;
 }
 

@@ -14,6 +14,11 @@ struct StructureArgs {
   std::optional<std::string> grid_res;  // "NX,NY,NZ"
   float grid_density = 3.f;             // d in max(nx, ny, nz) = d * cbrt(n)
   std::string grid_insert = "exact";    // exact | bbox
+  // kd-tree (kd, kd-median)
+  float kd_ti = 80.f, kd_tt = 1.f, kd_empty_bonus = 0.f;
+  int kd_max_depth = 0;  // 0: 8 + 1.3 log2(N)
+  int kd_leaf_size = 1;
+  std::string kd_mailbox = "on";  // on | off
 };
 
 struct RenderArgs {
@@ -61,6 +66,22 @@ struct TraceArgs {
   std::string output;
 };
 
+struct SahArgs {
+  std::string scene;
+  StructureArgs structure;  // the kd-tree options (t_i, t_t, empty bonus, depth, leaf size)
+  std::optional<uint32_t> node;
+  std::optional<std::string> path;  // "LRL...": L below, R above, from the root
+  std::string output;               // .csv or .json
+};
+
+struct KdStatsArgs {
+  std::string scene;
+  StructureArgs structure;
+  uint64_t lines = 100000;  // random lines for the entry probabilities
+  uint64_t seed = 1;
+  std::string csv;  // optional: every node's predicted and measured entry probability
+};
+
 struct TraceInfoArgs {
   std::string trace;
 };
@@ -71,5 +92,7 @@ int run_trace_info(const TraceInfoArgs& args);
 int run_cast(const CastArgs& args);
 int run_rays(const RaysArgs& args);
 int run_info(const InfoArgs& args);
+int run_sah(const SahArgs& args);
+int run_kdtree_stats(const KdStatsArgs& args);
 
 }  // namespace raystep::cli

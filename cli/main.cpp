@@ -17,6 +17,9 @@ std::string accel_help() {
   return s;
 }
 
+void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s);
+
+// --accel and every structure's build options.
 void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const std::string& default_accel) {
   s.accel = default_accel;
   cmd->add_option("--accel", s.accel, accel_help())->capture_default_str();
@@ -26,6 +29,21 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
+  add_kd_options(cmd, s);
+}
+
+// The kd-tree's build options (also for the sah and kdtree-stats commands).
+void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
+  cmd->add_option("--ti", s.kd_ti, "kd: t_i, the cost of a ray-primitive test")->capture_default_str();
+  cmd->add_option("--tt", s.kd_tt, "kd: t_t, the cost of a traversal step")->capture_default_str();
+  cmd->add_option("--empty-bonus", s.kd_empty_bonus, "kd: bonus in [0,1) for splits that cut off empty space")
+      ->capture_default_str();
+  cmd->add_option("--max-depth", s.kd_max_depth, "kd: depth limit (0: 8 + 1.3 log2 N)")->capture_default_str();
+  cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
+      ->capture_default_str();
+  cmd->add_option("--mailbox", s.kd_mailbox, "kd: mailboxes on | off")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"on", "off"}));
 }
 
 }  // namespace
@@ -88,6 +106,29 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"json", "csv"}));
   trace_cmd->add_option("-o,--output", trace.output, "output trace file")->required();
 
+  SahArgs sah;
+  CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree node (x, y and z)");
+  sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
+  auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
+  auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
+  node_opt->excludes(path_opt);
+  add_kd_options(sah_cmd, sah.structure);
+  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
+
+  KdStatsArgs kd_stats;
+  CLI::App* kd_stats_cmd = app.add_subcommand(
+      "kdtree-stats", "kd-tree statistics, and each node's predicted entry probability against measurement");
+  kd_stats_cmd->add_option("scene", kd_stats.scene, "scene .json or mesh .obj")->required();
+  kd_stats.structure.accel = "kd";
+  kd_stats_cmd->add_option("--accel", kd_stats.structure.accel, "kd (SAH) | kd-median")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"kd", "kd-median"}));
+  add_kd_options(kd_stats_cmd, kd_stats.structure);
+  kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
+      ->capture_default_str();
+  kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
+  kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
+
   TraceInfoArgs trace_info;
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
@@ -112,6 +153,8 @@ int main(int argc, char** argv) {
     if (*info_cmd) return run_info(info);
     if (*trace_cmd) return run_trace(trace);
     if (*trace_info_cmd) return run_trace_info(trace_info);
+    if (*sah_cmd) return run_sah(sah);
+    if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
   } catch (const raystep::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

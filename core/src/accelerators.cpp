@@ -4,6 +4,7 @@
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/util/error.h"
 
@@ -112,7 +113,7 @@ bool BoundingVolumes::intersect_counted(const Ray& ray, Hit* hit, CountingRecord
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid"}; }
+std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
   return make_accelerator(name, StructureOptions{});
@@ -122,6 +123,11 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
   if (name == "brute") return std::make_unique<BruteForce>();
   if (name == "bvol") return std::make_unique<BoundingVolumes>();
   if (name == "grid") return std::make_unique<UniformGrid>(options.grid);
+  if (name == "kd" || name == "kd-median") {
+    KdOptions kd = options.kd;
+    kd.builder = name == "kd-median" ? KdBuilder::median : KdBuilder::sah;
+    return std::make_unique<KdTree>(kd, options.kd_mailboxes);
+  }
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

@@ -28,7 +28,8 @@ namespace {
 const char* const kEventNames[kEventTypeCount] = {
     "ray_begin", "cell",         "node",     "push",          "pop",   "leaf",     "prim_test",
     "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate", "split", "leaf_made"};
-const char* const kReasonNames[3] = {"inside_cell", "any_hit", "structure_done"};
+const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", "structure_done",
+                                                     "next_node_beyond"};
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
 const char* const kAxes[3] = {"x", "y", "z"};
 }  // namespace
@@ -47,7 +48,7 @@ bool parse_event_type(const std::string& name, EventType* type) {
 const char* accept_reason_name(AcceptReason reason) { return kReasonNames[int(reason)]; }
 
 bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < kAcceptReasonCount; ++i)
     if (name == kReasonNames[i]) {
       *reason = AcceptReason(i);
       return true;
@@ -208,6 +209,27 @@ std::string trace_to_json(const Trace& t) {
     out << (i ? ",\n   " : "\n   ") << jc.dump();
   }
   out << (t.cells.empty() ? "],\n" : "\n  ],\n");
+  if (!t.nodes.empty()) {
+    out << "  \"nodes\": [";
+    for (size_t i = 0; i < t.nodes.size(); ++i) {
+      const TraceNode& n = t.nodes[i];
+      ordered jn;
+      jn["id"] = n.id;
+      jn["parent"] = n.parent;
+      jn["depth"] = n.depth;
+      jn["min"] = vec(n.box.lo);
+      jn["max"] = vec(n.box.hi);
+      jn["leaf"] = n.leaf;
+      if (n.leaf) {
+        jn["prims"] = n.prims;
+      } else {
+        jn["axis"] = kAxes[n.axis];
+        jn["split"] = number(n.split);
+      }
+      out << (i ? ",\n   " : "\n   ") << jn.dump();
+    }
+    out << "\n  ],\n";
+  }
   out << "  \"primitives\": [";
   for (size_t i = 0; i < t.primitives.size(); ++i) {
     const TracePrimitive& p = t.primitives[i];
@@ -438,6 +460,9 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   }
 
   const int64_t max_prim = int64_t(t.scene_primitives) - 1;
+  int64_t max_node = INT32_MAX;  // trees: ids below the structure's node count, when it gives one
+  for (const TraceParam& p : t.structure.params)
+    if (p.key == "nodes" && !p.is_text) max_node = std::min<int64_t>(int64_t(p.number) - 1, INT32_MAX);
   auto axis_index = [&](const json& v, const std::string& path) {
     if (v.is_null()) return -1;
     for (int a = 0; a < 3; ++a)
@@ -497,7 +522,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         case EventType::push:
         case EventType::pop:
         case EventType::leaf:
-          e.node = int32_t(rd.integer_at(je, ep, "node", 0, INT32_MAX));
+          e.node = int32_t(rd.integer_at(je, ep, "node", 0, max_node));
           e.depth = int32_t(rd.integer_at(je, ep, "depth", 0, 1 << 16));
           e.t_min_node = rd.real_at(je, ep, "t_min");
           e.t_max_node = rd.real_at(je, ep, "t_max");
@@ -555,6 +580,47 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     c.box.hi = rd.vec_at(cells[i], cp, "max");
     t.cells.push_back(c);
   }
+  // Tree nodes: ids below the structure's node count, each listed once, every node an event names listed.
+  std::set<int32_t> listed;
+  if (geo.contains("nodes")) {
+    const json& nodes = rd.array_at(geo, "geometry", "nodes");
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      std::string np = "geometry.nodes[" + std::to_string(i) + "]";
+      const json& jn = nodes[i];
+      TraceNode n;
+      n.id = int32_t(rd.integer_at(jn, np, "id", 0, max_node));
+      if (!listed.insert(n.id).second) rd.fail(np + ".id", "node " + std::to_string(n.id) + " is listed twice");
+      n.parent = int32_t(rd.integer_at(jn, np, "parent", -1, max_node));
+      n.depth = int32_t(rd.integer_at(jn, np, "depth", 0, 1 << 16));
+      n.box.lo = rd.vec_at(jn, np, "min");
+      n.box.hi = rd.vec_at(jn, np, "max");
+      const json& leaf = rd.member(jn, np, "leaf");
+      if (!leaf.is_boolean()) rd.fail(np + ".leaf", "expected true or false");
+      n.leaf = leaf.get<bool>();
+      if (n.leaf) {
+        const json& ids = rd.array_at(jn, np, "prims");
+        for (size_t k = 0; k < ids.size(); ++k)
+          n.prims.push_back(int32_t(rd.integer(ids[k], np + ".prims[" + std::to_string(k) + "]", 0, max_prim)));
+      } else {
+        n.axis = axis_index(rd.member(jn, np, "axis"), np + ".axis");
+        if (n.axis < 0) rd.fail(np + ".axis", "an inner node has a split axis");
+        n.split = rd.real_at(jn, np, "split");
+      }
+      t.nodes.push_back(std::move(n));
+    }
+  }
+  if (t.structure.kind != "grid") {
+    for (size_t r = 0; r < t.rays.size(); ++r)
+      for (size_t i = 0; i < t.rays[r].events.size(); ++i) {
+        const Event& e = t.rays[r].events[i];
+        bool tree_event = e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop ||
+                          e.type == EventType::leaf;
+        if (tree_event && !listed.count(e.node))
+          rd.fail("rays[" + std::to_string(r) + "].events[" + std::to_string(i) + "].node",
+                  "node " + std::to_string(e.node) + " is not in geometry.nodes");
+      }
+  }
+
   const json& prims = rd.array_at(geo, "geometry", "primitives");
   for (size_t i = 0; i < prims.size(); ++i) {
     std::string pp = "geometry.primitives[" + std::to_string(i) + "]";
@@ -602,8 +668,10 @@ std::string trace_summary(const Trace& t) {
     const Event& end = tr.events.back();
     out << "ray " << r << ": " << ray_kind_name(tr.kind) << ", depth " << tr.depth;
     if (tr.has_pixel) out << ", pixel " << tr.pixel[0] << "," << tr.pixel[1];
-    out << ", " << tr.events.size() << " events, " << c.cells << " cells, " << c.nodes << " nodes, "
-        << c.prim_tests << " tests (" << c.prim_hits << " hits), " << c.mailbox_hits << " mailbox hits; ";
+    out << ", " << tr.events.size() << " events, ";
+    if (t.structure.kind == "grid") out << c.cells << " cells, ";
+    else out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";
+    out << c.prim_tests << " tests (" << c.prim_hits << " hits), " << c.mailbox_hits << " mailbox hits; ";
     if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
     else out << "miss\n";
     for (const Event& e : tr.events) ++totals[event_type_name(e.type)];

@@ -7,11 +7,14 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree_build.h"
 
 namespace raystep {
 
 struct StructureOptions {
   GridOptions grid;
+  KdOptions kd;  // the builder is chosen by the name: "kd" (SAH) or "kd-median"
+  bool kd_mailboxes = true;
 };
 
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.

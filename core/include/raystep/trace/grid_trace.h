@@ -6,18 +6,10 @@
 #include <vector>
 
 #include "raystep/accel/grid.h"
+#include "raystep/trace/ray_request.h"
 #include "raystep/trace/trace_file.h"
 
 namespace raystep {
-
-// A ray to record, with what the tracer knows of it.
-struct RayRequest {
-  Ray ray;
-  RayKind kind = RayKind::primary;
-  int depth = 0;
-  bool has_pixel = false;
-  int pixel[2] = {0, 0};
-};
 
 // Shadow rays are walked as any-hit queries, the others as nearest-hit queries.
 Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid, const std::vector<RayRequest>& rays,

@@ -6,7 +6,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/scene/scene.h"
-#include "raystep/trace/grid_trace.h"
+#include "raystep/trace/ray_request.h"
 
 namespace raystep {
 

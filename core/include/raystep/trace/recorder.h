@@ -34,7 +34,9 @@ enum class AcceptReason : uint8_t {
   inside_cell,     // the hit lies before the next cell's entry: "tmin(cell) > tmax(ray)"
   any_hit,         // a shadow ray: any hit will do
   structure_done,  // the walk left the structure with this hit as the nearest
+  next_node_beyond,  // trees: the next node on the stack starts beyond the hit (its tmin > the hit's t)
 };
+constexpr int kAcceptReasonCount = 4;
 
 struct NullRecorder {
   static constexpr bool enabled = false;

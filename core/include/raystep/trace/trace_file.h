@@ -25,7 +25,7 @@ struct TraceParam {
 };
 
 struct TraceStructure {
-  std::string kind;                     // "grid", "kd", ...
+  std::string kind;                     // "grid", "kd", "kd-median"
   Bounds3 bounds;
   std::array<int, 3> resolution{1, 1, 1};  // grid only
   std::vector<TraceParam> params;          // every build parameter, sorted by key
@@ -45,6 +45,17 @@ struct TraceCell {
   int cell[3];
   Bounds3 box;
 };
+// A tree node that an event names (visited, pushed or popped): its cell, and its split plane or its primitives.
+struct TraceNode {
+  int32_t id = 0;
+  int32_t parent = -1;  // -1: the root
+  int32_t depth = 0;
+  Bounds3 box;
+  bool leaf = false;
+  int axis = 0;        // inner: the split plane's axis (0, 1, 2) and position
+  float split = 0.f;
+  std::vector<int32_t> prims;  // leaf: its primitive ids
+};
 struct TracePrimitive {
   int32_t id = 0;
   PrimType type = PrimType::triangle;
@@ -58,7 +69,8 @@ struct Trace {
   uint64_t scene_primitives = 0;
   TraceStructure structure;
   std::vector<TracedRay> rays;
-  std::vector<TraceCell> cells;            // every visited cell, once
+  std::vector<TraceCell> cells;            // grid: every visited cell, once
+  std::vector<TraceNode> nodes;            // trees: every node an event names, once, by id
   std::vector<TracePrimitive> primitives;  // every primitive an event names, once, by id
 };
 

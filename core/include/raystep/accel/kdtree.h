@@ -1,0 +1,169 @@
+// The kd-tree accelerator (lecture: "kd-tree traversal"): depth-first, front to back, with an explicit stack.
+// At an inner node compute t* on the split plane; if the ray crosses only the near child go there, only the far
+// child go there, otherwise Intersect(near, tmin, t*) and push (far, t*, tmax). Pop when a leaf ends; stop when
+// the nearest hit lies before the popped node's tmin. After pbrt-v3's KdTreeAccel::Intersect, with mailboxes
+// for primitives that several leaves reference. Built by kdtree_build.h (SAH or spatial median).
+#pragma once
+
+#include <cmath>
+
+#include "raystep/accel/accelerator.h"
+#include "raystep/accel/kdtree_build.h"
+#include "raystep/accel/mailbox.h"
+#include "raystep/geometry/component.h"
+#include "raystep/trace/recorder.h"
+
+namespace raystep {
+
+class KdTree final : public Accelerator {
+ public:
+  explicit KdTree(KdOptions options = {}, bool mailboxes = true) : options_(options), use_mailboxes_(mailboxes) {}
+  std::string name() const override { return options_.builder == KdBuilder::median ? "kd-median" : "kd"; }
+  void build(const Geometry& geometry) override;
+  // The same build, telling a listener about every node (SAH inspection, streamed build events).
+  void build(const Geometry& geometry, BuildListener& listener);
+  bool intersect(const Ray& ray, Hit* hit) const override;
+  bool occluded(const Ray& ray) const override;
+  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
+    return traverse(ray, hit, false, counters);
+  }
+
+  // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
+  template <class Recorder>
+  bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
+
+  const KdTreeData& data() const { return tree_; }
+  const KdOptions& options() const { return options_; }
+  bool mailboxes() const { return use_mailboxes_; }
+  const Geometry& geometry() const { return *geometry_; }
+
+ private:
+  KdOptions options_;
+  bool use_mailboxes_;
+  const Geometry* geometry_ = nullptr;
+  KdTreeData tree_;
+  Mailboxes mailboxes_;
+};
+
+namespace detail {
+// b lies clearly beyond a: by more than a relative 2^-12 of the smaller magnitude (an infinity is beyond every
+// finite value). Computed t values stray a few ulps from the exact plane distances (slivers: ~1e-5 relative), so
+// decisions that skip a node are taken only with that margin: a node within it is visited, which costs a little
+// time and never a hit.
+inline bool clearly_beyond(float a, float b) {
+  return b - a > std::min(std::fabs(a), std::fabs(b)) * (1.f / 4096.f);
+}
+}  // namespace detail
+
+template <class Recorder>
+bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+  *hit = Hit{};
+  rec.ray_begin(ray);
+  // Clip the ray to the root's box: the walk covers [t_min, t_max].
+  SlabRay slab(ray);
+  float t_min, t_max;
+  if (tree_.nodes.empty() || !intersect_slabs(tree_.bounds, slab, &t_min, &t_max)) {
+    rec.ray_end(*hit);
+    return false;
+  }
+
+  // The stack of far children still to visit, with the part of the ray inside each.
+  struct Entry {
+    uint32_t node;
+    int32_t depth;
+    float t_min, t_max;
+  };
+  Entry stack[kKdMaxDepth + 1];
+  int stack_size = 0;
+
+  MailboxStamp mailbox = use_mailboxes_ ? mailboxes_.begin_ray() : MailboxStamp(0, nullptr);
+  WatertightRay wray(ray);
+  Hit nearest;
+  float t_nearest = ray.tmax;
+  uint32_t node_id = 0;
+  int32_t depth = 0;
+  for (;;) {
+    // Stop when the nearest hit lies before this node's entry: no primitive of it can be nearer.
+    if (nearest.found() && detail::clearly_beyond(t_nearest, t_min)) {
+      rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::next_node_beyond);
+      break;
+    }
+    const KdNode& node = tree_.nodes[node_id];
+    rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
+
+    if (!node.is_leaf()) {
+      // Inner node: t* where the ray meets the split plane.
+      int axis = node.axis();
+      float o = component(ray.origin, axis), d = component(ray.direction, axis);
+      float t_split = (node.split - o) / d;  // NaN when the ray lies in the plane (d = +-0, o = split)
+      if (d == 0.f && !std::isnan(t_split)) t_split = kInfinity;  // parallel beside the plane: never crosses
+
+      // The near child is the side the ray is on before it crosses the plane (for an origin in front of the
+      // plane, the origin's side; for an origin on it, the side the ray goes away from); a ray parallel to
+      // the plane stays on its origin's side.
+      bool below_first = d > 0.f || (d == 0.f && o <= node.split);
+      uint32_t below = node_id + 1, above = node.above_child();
+      uint32_t near_child = below_first ? below : above, far_child = below_first ? above : below;
+
+      // Advance to the next child node, possibly push the other one.
+      if (std::isnan(t_split)) {
+        // The ray lies in the split plane: it touches both children over the whole interval.
+        rec.push(TreeStep{int32_t(far_child), depth + 1, t_min, t_max});
+        stack[stack_size++] = Entry{far_child, depth + 1, t_min, t_max};
+        node_id = near_child;
+      } else if (detail::clearly_beyond(t_max, t_split)) {
+        node_id = near_child;  // the ray leaves the node before it reaches the plane
+      } else if (detail::clearly_beyond(t_split, t_min)) {
+        node_id = far_child;  // the ray crossed the plane before it entered the node
+      } else {
+        // Both: Intersect(near, t_min, t*) now, push (far, t*, t_max) for later.
+        float t_star = std::min(std::max(t_split, t_min), t_max);
+        rec.push(TreeStep{int32_t(far_child), depth + 1, t_star, t_max});
+        stack[stack_size++] = Entry{far_child, depth + 1, t_star, t_max};
+        node_id = near_child;
+        t_max = t_star;
+      }
+      ++depth;
+      continue;
+    }
+
+    // Leaf: test its primitives, skipping those already tested for this ray (mailbox).
+    rec.leaf(TreeStep{int32_t(node_id), depth, t_min, t_max});
+    const uint32_t* prims = tree_.prim_index.data() + node.first_prim;
+    for (uint32_t i = 0, n = node.prim_count(); i < n; ++i) {
+      uint32_t prim = prims[i];
+      if (use_mailboxes_ && !mailbox.first_visit(prim)) {
+        rec.mailbox_hit(prim);
+        continue;
+      }
+      Hit candidate;
+      bool found = geometry_->intersect(prim, ray, wray, t_nearest, &candidate);
+      rec.prim_test(prim, found, candidate.t);
+      if (!found) continue;
+      nearest = candidate;
+      t_nearest = candidate.t;
+      if (any_hit) break;
+    }
+    if (any_hit && nearest.found()) {
+      rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::any_hit);
+      break;
+    }
+
+    // Pop the next far child; with an empty stack the walk is over.
+    if (stack_size == 0) {
+      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::structure_done);
+      break;
+    }
+    const Entry& e = stack[--stack_size];
+    rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
+    node_id = e.node;
+    depth = e.depth;
+    t_min = e.t_min;
+    t_max = e.t_max;
+  }
+  *hit = nearest;
+  rec.ray_end(*hit);
+  return hit->found();
+}
+
+}  // namespace raystep

@@ -1,0 +1,74 @@
+#include "raystep/trace/kd_trace.h"
+
+#include <set>
+
+#include "trace_recording.h"
+
+namespace raystep {
+
+namespace {
+const char* builder_name(KdBuilder b) {
+  return b == KdBuilder::median ? "median" : b == KdBuilder::sah ? "sah" : "sah_reference";
+}
+}  // namespace
+
+Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::vector<RayRequest>& rays,
+                      const std::string& scene_path, const std::string& scene_hash) {
+  const KdTreeData& data = tree.data();
+  const KdOptions& o = tree.options();
+  Trace t;
+  t.scene_path = scene_path;
+  t.scene_hash = scene_hash;
+  t.scene_primitives = geometry.size();
+  t.structure.kind = tree.name();
+  t.structure.bounds = data.bounds;
+  size_t leaves = 0;
+  for (const KdNode& n : data.nodes) leaves += n.is_leaf();
+  auto param = [&](const char* key, double number) { t.structure.params.push_back({key, false, number, ""}); };
+  auto text = [&](const char* key, const char* value) { t.structure.params.push_back({key, true, 0.0, value}); };
+  text("builder", builder_name(o.builder));
+  param("t_i", o.t_i);
+  param("t_t", o.t_t);
+  param("empty_bonus", o.empty_bonus);
+  param("max_depth", kd_max_depth(o, geometry.size()));
+  param("leaf_size", o.leaf_size);
+  text("mailboxes", tree.mailboxes() ? "on" : "off");
+  param("nodes", double(data.nodes.size()));
+  param("leaves", double(leaves));
+  param("references", double(data.prim_index.size()));
+  detail::sort_params(&t.structure);
+
+  detail::record_rays(
+      geometry, rays,
+      [&](const RayRequest& req, EventRecorder& rec) {
+        Hit hit;
+        tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
+      },
+      &t);
+  std::set<int32_t> named;
+  for (const TracedRay& tr : t.rays)
+    for (const Event& e : tr.events)
+      if (e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop ||
+          e.type == EventType::leaf)
+        named.insert(e.node);
+  for (int32_t id : named) {
+    const KdNode& n = data.nodes[size_t(id)];
+    const KdNodeInfo& info = data.info[size_t(id)];
+    TraceNode tn;
+    tn.id = id;
+    tn.parent = info.parent;
+    tn.depth = info.depth;
+    tn.box = info.box;
+    tn.leaf = n.is_leaf();
+    if (tn.leaf) {
+      for (uint32_t i = 0; i < n.prim_count(); ++i) tn.prims.push_back(int32_t(data.prim_index[n.first_prim + i]));
+    } else {
+      tn.axis = n.axis();
+      tn.split = n.split;
+    }
+    t.nodes.push_back(std::move(tn));
+  }
+  return t;
+}
+
+}  // namespace raystep

@@ -1,0 +1,332 @@
+// The kd-tree's traversal: agreement with brute force (same primitive, same t) on random rays and on the hard
+// ones (axis-parallel with +0 and -0, rays lying in split planes, origins on planes, faces on candidate planes,
+// coplanar and identical triangles, edge-aimed rays), and the recorded walk's invariants (every push popped or
+// the walk ended on a hit, intervals shrinking down the tree, each primitive tested once with mailboxes).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "raystep/accel/brute_force.h"
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/structure_options.h"
+#include "raystep/geometry/icosphere.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/scene/triangle_mesh.h"
+#include "raystep/trace/event_recorder.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+namespace {
+
+// A soup of random small triangles and a few spheres in [-2, 2]^3.
+Geometry make_soup(uint32_t seed, int triangles, int spheres) {
+  Geometry g;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.f, 2.f), s(-0.4f, 0.4f);
+  g.begin_object("soup", 0);
+  for (int i = 0; i < triangles; ++i) {
+    glm::vec3 p(u(rng), u(rng), u(rng));
+    g.add_triangle(p, p + glm::vec3(s(rng), s(rng), s(rng)), p + glm::vec3(s(rng), s(rng), s(rng)));
+  }
+  for (int i = 0; i < spheres; ++i) g.add_sphere(Sphere{glm::vec3(u(rng), u(rng), u(rng)), 0.3f});
+  return g;
+}
+
+// Axis-aligned boxes on a lattice: their faces lie on each other's candidate planes, many are coplanar.
+Geometry make_boxes() {
+  Geometry g;
+  g.begin_object("boxes", 0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      glm::vec3 lo(float(i), float(j), float((i + j) % 2));
+      add_mesh(g, make_box(lo, lo + glm::vec3(1.f, 1.f, 1.f + float(i))), glm::mat4(1.f));
+    }
+  return g;
+}
+
+// n triangles in the plane z = 0.5, tiling a square.
+Geometry make_coplanar(int n) {
+  Geometry g;
+  g.begin_object("coplanar", 0);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0.f, 10.f), s(0.05f, 0.5f);
+  for (int i = 0; i < n; ++i) {
+    glm::vec3 p(u(rng), u(rng), 0.5f);
+    g.add_triangle(p, p + glm::vec3(s(rng), 0.f, 0.f), p + glm::vec3(0.f, s(rng), 0.f));
+  }
+  // Something off the plane, so that the scene has depth.
+  add_mesh(g, make_box(glm::vec3(2.f, 2.f, -1.f), glm::vec3(3.f, 3.f, 2.f)), glm::mat4(1.f));
+  return g;
+}
+
+Geometry make_identical(int n) {
+  Geometry g;
+  g.begin_object("identical", 0);
+  for (int i = 0; i < n; ++i) g.add_triangle(glm::vec3(0.f), glm::vec3(1.f, 0.f, 0.2f), glm::vec3(0.f, 1.f, 0.4f));
+  g.add_triangle(glm::vec3(-1.f, -1.f, 1.f), glm::vec3(2.f, -1.f, 1.f), glm::vec3(-1.f, 2.f, 1.f));
+  return g;
+}
+
+std::unique_ptr<KdTree> make_tree(const Geometry& g, KdBuilder builder, bool mailboxes = true,
+                                  KdOptions options = {}) {
+  options.builder = builder;
+  auto tree = std::make_unique<KdTree>(options, mailboxes);
+  tree->build(g);
+  return tree;
+}
+
+// Same primitive and same t as brute force, for intersect and occluded. With ties_by_t, two hits at the same t
+// also agree (rays aimed at a shared edge may report either triangle).
+int count_disagreements(const Accelerator& acc, const BruteForce& brute, const std::vector<Ray>& rays,
+                        bool ties_by_t = false) {
+  int bad = 0;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    bool ha = brute.intersect(r, &a), hb = acc.intersect(r, &b);
+    bool same = ha == hb && a.t == b.t && (a.prim == b.prim || (ties_by_t && ha));
+    if (!same || brute.occluded(r) != acc.occluded(r)) ++bad;
+  }
+  return bad;
+}
+
+const KdBuilder kBuilders[] = {KdBuilder::sah, KdBuilder::median};
+
+TEST(KdTree, AgreesWithBruteForceOnRandomRays) {
+  Geometry g = make_soup(5, 400, 8);
+  BruteForce brute;
+  brute.build(g);
+  std::vector<Ray> rays = random_rays(g.bounds(), 100000, 9);
+  for (KdBuilder builder : kBuilders)
+    for (bool mailboxes : {true, false}) {
+      auto tree = make_tree(g, builder, mailboxes);
+      EXPECT_GT(tree->data().nodes.size(), 1u);
+      EXPECT_EQ(count_disagreements(*tree, brute, rays), 0)
+          << "builder " << int(builder) << " mailboxes " << mailboxes;
+    }
+}
+
+TEST(KdTree, AgreesWithBruteForceUnderEveryOption) {
+  Geometry g = make_soup(6, 200, 4);
+  BruteForce brute;
+  brute.build(g);
+  std::vector<Ray> rays = random_rays(g.bounds(), 20000, 10);
+  std::vector<KdOptions> variants(5);
+  variants[0].empty_bonus = 0.5f;
+  variants[1].leaf_size = 8;
+  variants[2].max_depth = 3;
+  variants[3].t_i = 2.f;
+  variants[3].t_t = 5.f;
+  variants[4].t_i = 1000.f;
+  for (size_t v = 0; v < variants.size(); ++v)
+    for (KdBuilder builder : kBuilders)
+      EXPECT_EQ(count_disagreements(*make_tree(g, builder, true, variants[v]), brute, rays), 0)
+          << "variant " << v << " builder " << int(builder);
+}
+
+TEST(KdTree, WatertightOnEdgeAimedRays) {
+  // A closed icosphere; rays aimed exactly at shared edges and vertices, from outside and inside.
+  Geometry g;
+  add_to_geometry(make_icosphere(3), g);
+  BruteForce brute;
+  brute.build(g);
+  std::vector<Ray> rays = edge_rays(g, 100000, 12);
+  for (KdBuilder builder : kBuilders) {
+    auto tree = make_tree(g, builder);
+    EXPECT_EQ(count_disagreements(*tree, brute, rays, true), 0) << int(builder);
+    // From the centre outwards every ray must hit: no leak between the leaves.
+    int leaks = 0;
+    for (size_t i = 0; i < 20000; ++i) {
+      Ray r;
+      r.origin = glm::vec3(0.f);
+      r.direction = rays[i].origin + rays[i].direction;  // the edge target
+      Hit h;
+      leaks += !tree->intersect(r, &h);
+    }
+    EXPECT_EQ(leaks, 0) << int(builder);
+  }
+}
+
+// Rays along the split planes of the tree itself: lying in them (direction component +0 or -0 on the axis),
+// starting on them, axis-parallel with signed zeros, and through node corners.
+std::vector<Ray> plane_rays(const KdTree& tree, uint32_t seed) {
+  const KdTreeData& d = tree.data();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::normal_distribution<float> n;
+  std::vector<Ray> rays;
+  Bounds3 b = d.bounds;
+  glm::vec3 lo = b.lo - 0.25f * b.extent(), e = 1.5f * b.extent();
+  for (size_t id = 0; id < d.nodes.size(); ++id) {
+    const KdNode& node = d.nodes[id];
+    if (node.is_leaf()) continue;
+    int axis = node.axis();
+    const Bounds3& box = d.info[id].box;
+    for (int k = 0; k < 6; ++k) {
+      Ray r;
+      r.origin = lo + e * glm::vec3(u(rng), u(rng), u(rng));
+      r.origin[axis] = node.split;
+      r.direction = glm::vec3(n(rng), n(rng), n(rng));
+      if (k < 2) r.direction[axis] = k == 0 ? 0.f : -0.f;  // lying in the plane
+      if (k == 2) {                                        // axis-parallel in the plane, through the node
+        r.direction = glm::vec3(0.f);
+        r.direction[(axis + 1) % 3] = u(rng) < 0.5f ? 1.f : -1.f;
+        r.origin[(axis + 2) % 3] = box.lo[(axis + 2) % 3];  // on a node face too
+      }
+      if (k == 3) {  // axis-parallel across the plane, with -0 on the other axes
+        r.direction = glm::vec3(-0.f);
+        r.direction[axis] = u(rng) < 0.5f ? 1.f : -1.f;
+        r.origin[axis] = u(rng) < 0.5f ? b.lo[axis] - 1.f : b.hi[axis] + 1.f;
+      }
+      if (k == 4) {  // from a corner of the node's box to the opposite corner
+        r.origin = box.lo;
+        r.direction = box.hi - box.lo;
+        r.origin[axis] = node.split;
+      }
+      rays.push_back(r);
+    }
+  }
+  return rays;
+}
+
+TEST(KdTree, HardRaysOnBoxesWhoseFacesAreCandidatePlanes) {
+  Geometry g = make_boxes();
+  BruteForce brute;
+  brute.build(g);
+  for (KdBuilder builder : kBuilders) {
+    auto tree = make_tree(g, builder);
+    std::vector<Ray> rays = plane_rays(*tree, 3);
+    ASSERT_GT(rays.size(), 30u);
+    EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << int(builder);
+    std::vector<Ray> random = random_rays(g.bounds(), 50000, 13);
+    EXPECT_EQ(count_disagreements(*tree, brute, random), 0) << int(builder);
+  }
+}
+
+TEST(KdTree, CoplanarAndIdenticalTriangles) {
+  for (int scene = 0; scene < 2; ++scene) {
+    Geometry g = scene == 0 ? make_coplanar(2000) : make_identical(3000);
+    BruteForce brute;
+    brute.build(g);
+    std::vector<Ray> rays = random_rays(g.bounds(), 20000, 14);
+    for (KdBuilder builder : kBuilders) {
+      auto tree = make_tree(g, builder);
+      std::vector<Ray> hard = plane_rays(*tree, 5);
+      rays.insert(rays.end(), hard.begin(), hard.end());
+      // Rays straight down onto the plane of the coplanar set, and grazing along it.
+      for (int i = 0; i < 200; ++i) {
+        Ray r;
+        r.origin = glm::vec3(0.05f * float(i), 0.037f * float(i), 3.f);
+        r.direction = glm::vec3(0.f, -0.f, -1.f);
+        rays.push_back(r);
+        r.origin.z = 0.5f;
+        r.direction = glm::vec3(1.f, 0.3f, 0.f);
+        rays.push_back(r);
+      }
+      EXPECT_EQ(count_disagreements(*tree, brute, rays, true), 0) << "scene " << scene << " " << int(builder);
+    }
+  }
+}
+
+TEST(KdTree, NonFiniteRaysMissAndTerminate) {
+  Geometry g = make_soup(8, 50, 1);
+  auto tree = make_tree(g, KdBuilder::sah);
+  float nan = std::nanf(""), inf = kInfinity;
+  for (glm::vec3 o : {glm::vec3(nan, 0, 0), glm::vec3(inf, 0, 0), glm::vec3(0.f)})
+    for (glm::vec3 d : {glm::vec3(1, nan, 0), glm::vec3(inf, 1, 0), glm::vec3(0.f), glm::vec3(-0.f)}) {
+      Ray r;
+      r.origin = o;
+      r.direction = d;
+      Hit h;
+      EXPECT_FALSE(tree->intersect(r, &h));
+      EXPECT_EQ(h.prim, -1);
+      EXPECT_FALSE(tree->occluded(r));
+    }
+}
+
+TEST(KdTree, EmptySceneAndFactory) {
+  Geometry empty;
+  auto tree = make_tree(empty, KdBuilder::sah);
+  Ray r;
+  Hit h;
+  EXPECT_FALSE(tree->intersect(r, &h));
+  EXPECT_EQ(make_accelerator("kd")->name(), "kd");
+  EXPECT_EQ(make_accelerator("kd-median")->name(), "kd-median");
+  StructureOptions bad;
+  bad.kd.t_i = -1.f;
+  Geometry g = make_soup(1, 10, 0);
+  EXPECT_THROW(make_accelerator("kd", bad)->build(g), InputError);
+}
+
+// The recorded walk of many rays: intervals shrink down the tree, every push is popped unless the walk ended
+// on a hit, popped entries are the pushed ones, and with mailboxes no primitive is tested twice.
+TEST(KdTree, RecordedWalkInvariants) {
+  Geometry g = make_soup(9, 300, 4);
+  for (KdBuilder builder : kBuilders) {
+    auto tree = make_tree(g, builder);
+    const KdTreeData& d = tree->data();
+    std::vector<Ray> rays = random_rays(g.bounds(), 3000, 15);
+    EventRecorder rec;
+    int pushes = 0;
+    for (const Ray& r : rays) {
+      rec.clear();
+      Hit hit;
+      bool found = tree->traverse(r, &hit, false, rec);
+      const std::vector<Event>& ev = rec.events();
+      ASSERT_EQ(ev.front().type, EventType::ray_begin);
+      ASSERT_EQ(ev.back().type, EventType::ray_end);
+      std::vector<Event> stack;
+      std::map<int32_t, int> tested;
+      const Event* last_node = nullptr;
+      for (const Event& e : ev) {
+        if (e.type == EventType::node) {
+          EXPECT_LE(e.t_min_node, e.t_max_node);
+          if (last_node && d.info[size_t(e.node)].parent == last_node->node) {
+            // A child on the descent: its interval lies inside its parent's.
+            EXPECT_GE(e.t_min_node, last_node->t_min_node);
+            EXPECT_LE(e.t_max_node, last_node->t_max_node);
+            EXPECT_EQ(e.depth, last_node->depth + 1);
+          }
+          EXPECT_EQ(e.depth, d.info[size_t(e.node)].depth);
+          last_node = &e;
+        } else if (e.type == EventType::push) {
+          stack.push_back(e);
+          ++pushes;
+        } else if (e.type == EventType::pop) {
+          ASSERT_FALSE(stack.empty());
+          EXPECT_EQ(stack.back().node, e.node);
+          EXPECT_EQ(stack.back().t_min_node, e.t_min_node);
+          EXPECT_EQ(stack.back().t_max_node, e.t_max_node);
+          stack.pop_back();
+          last_node = nullptr;
+        } else if (e.type == EventType::prim_test) {
+          EXPECT_EQ(++tested[e.prim], 1) << "primitive " << e.prim << " tested twice";
+        }
+      }
+      if (!found) EXPECT_TRUE(stack.empty()) << "a miss must have popped every push";
+      EXPECT_EQ(ev.back().prim, hit.prim);
+    }
+    EXPECT_GT(pushes, 100) << "the rays should cross split planes";
+  }
+}
+
+TEST(KdTree, CountedQueriesGiveTheSameHits) {
+  Geometry g = make_soup(10, 300, 2);
+  auto tree = make_tree(g, KdBuilder::sah);
+  std::vector<Ray> rays = random_rays(g.bounds(), 2000, 16);
+  CountingRecorder counters;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    tree->intersect(r, &a);
+    tree->intersect_counted(r, &b, counters);
+    EXPECT_EQ(a.prim, b.prim);
+    EXPECT_EQ(a.t, b.t);
+  }
+  EXPECT_EQ(counters.rays, rays.size());
+  EXPECT_GT(counters.nodes, counters.rays);
+  EXPECT_GE(counters.pushes, counters.pops);  // a walk that ends on a hit may leave entries on the stack
+  EXPECT_GT(counters.prim_tests, 0u);
+}
+
+}  // namespace
+}  // namespace raystep
