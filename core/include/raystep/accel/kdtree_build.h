@@ -27,11 +27,16 @@ struct KdOptions {
   float empty_bonus = 0.f;   // in [0, 1): a split with an empty child costs t_t + (1 - bonus) t_i (...)
   int max_depth = 0;         // 0: 8 + 1.3 log2(N) (pbrt), at most kKdMaxDepth
   int leaf_size = 1;         // a node with at most this many primitives is a leaf without a search
+  // Bounded memory on pathological input: the leaves hold at most reference_budget * N primitive references
+  // (never fewer than N). A split that would exceed it is not made (LeafReason::budget). At least 1.
+  float reference_budget = 8.f;
 };
 constexpr int kKdMaxDepth = 64;
 
 // The depth limit actually used for n primitives.
 int kd_max_depth(const KdOptions& options, size_t prim_count);
+// The reference budget actually used for n primitives: max(n, reference_budget * n).
+size_t kd_reference_budget(const KdOptions& options, size_t prim_count);
 
 // One candidate split plane of a node, as the SAH evaluated it. n_below and n_above count the planar
 // primitives (those lying in the plane) on the side they were given; n_planar says how many there were.
@@ -91,8 +96,28 @@ struct BuildListenerRecorder {
   }
 };
 
-// Build by options.builder. Throws InputError("", 0, ...) for options out of range.
+// Build by options.builder. Throws InputError("", 0, "kd-tree: ...") for options out of range and for a
+// primitive with non-finite bounds.
+//
+// Tie rule (both SAH builders, so that they build the same tree): the lowest cost wins; at equal cost the
+// lower axis (x, y, z), then the lower position, then planar primitives below. A split is made only if its
+// cost is strictly below the leaf cost N * t_i. Leaf rules, in the order tested: N <= leaf_size
+// (few_primitives), depth = kd_max_depth (max_depth), no candidate plane strictly inside the node or a node
+// box of zero surface area (no_candidate), best cost >= N * t_i (no_cheaper_split), the split's straddling
+// primitives would exceed kd_reference_budget (budget). Nodes are made depth first, below child first, so the
+// budget is spent in the same order by every builder. Empty geometry: one empty leaf whose box is empty.
 KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options);
 KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options, BuildListener& listener);
+
+// The shape of a built tree, and its SAH cost: the expected cost of a random ray through the root,
+// sum over inner nodes of t_t * S(node) / S(root) plus over leaves of t_i * N_leaf * S(leaf) / S(root).
+struct KdTreeStats {
+  size_t nodes = 0, leaves = 0, empty_leaves = 0;
+  int max_depth = 0;
+  size_t references = 0;        // prim_index.size()
+  size_t max_leaf_prims = 0;
+  double sah_cost = 0.0;
+};
+KdTreeStats kd_tree_stats(const KdTreeData& tree, const KdOptions& options);
 
 }  // namespace raystep

@@ -1,0 +1,99 @@
+// The bounds of the part of a triangle inside an axis-aligned box, by Sutherland-Hodgman polygon clipping
+// ("Reentrant polygon clipping", 1974) against the box's six planes: the kd-tree's "perfect splits" (Havran
+// 2000; Wald and Havran 2006). Computed in double and rounded outward to float, so the result contains the
+// exact clipped triangle: a structure built on these bounds never loses a primitive to rounding.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <glm/vec3.hpp>
+
+#include "raystep/geometry/bounds.h"
+#include "raystep/geometry/numerics.h"
+
+namespace raystep {
+
+inline Bounds3 intersection_of(const Bounds3& a, const Bounds3& b) {
+  Bounds3 r;
+  r.lo = glm::max(a.lo, b.lo);
+  r.hi = glm::min(a.hi, b.hi);
+  return r;
+}
+
+// Bounds of triangle (p0, p1, p2) intersected with box. Conservative: they contain every point of the exact
+// intersection (up to a few double ulps near the box's faces, far below float resolution), and they lie
+// within the triangle's own bounds intersected with the box. Empty when the triangle misses the box.
+// Coordinates that are inputs (a vertex inside the box, a box plane) come out exactly; interpolated ones are
+// widened by 2^-40 of the coordinates' magnitude and rounded outward, about one float ulp at most.
+inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                                    const Bounds3& box) {
+  Bounds3 tri(p0, p1);
+  tri.extend(p2);
+  Bounds3 limit = intersection_of(tri, box);
+  if (limit.empty()) return Bounds3();
+
+  // A polygon vertex, and which of its coordinates are exact floats (bit a: coordinate a).
+  struct Vertex {
+    glm::dvec3 p;
+    uint32_t exact;
+  };
+  Vertex poly[10], next[10];  // a triangle clipped by six planes has at most 9 vertices
+  int n = 3;
+  poly[0] = {glm::dvec3(p0), 7u};
+  poly[1] = {glm::dvec3(p1), 7u};
+  poly[2] = {glm::dvec3(p2), 7u};
+
+  // Sutherland-Hodgman: clip the polygon by one half-space at a time; only planes the triangle crosses.
+  for (int a = 0; a < 3; ++a) {
+    for (int side = 0; side < 2; ++side) {
+      bool keep_above = side == 0;  // the half-space x_a >= box.lo[a], else x_a <= box.hi[a]
+      if (keep_above ? tri.lo[a] >= box.lo[a] : tri.hi[a] <= box.hi[a]) continue;
+      double plane = keep_above ? box.lo[a] : box.hi[a];
+      auto inside = [&](const Vertex& v) { return keep_above ? v.p[a] >= plane : v.p[a] <= plane; };
+      int m = 0;
+      for (int i = 0; i < n; ++i) {
+        const Vertex& s = poly[i];
+        const Vertex& e = poly[(i + 1) % n];
+        bool s_in = inside(s), e_in = inside(e);
+        if (s_in) next[m++] = s;
+        if (s_in != e_in) {
+          // The edge crosses the plane: the crossing point, exact on this axis by construction.
+          double t = (plane - s.p[a]) / (e.p[a] - s.p[a]);
+          t = std::fmin(1.0, std::fmax(0.0, t));
+          Vertex x;
+          x.p = s.p + t * (e.p - s.p);
+          x.p[a] = plane;
+          x.exact = 1u << a;
+          for (int b = 0; b < 3; ++b)
+            if (b != a && (s.exact & e.exact & (1u << b)) && s.p[b] == e.p[b]) x.exact |= 1u << b;
+          next[m++] = x;
+        }
+      }
+      n = m;
+      if (n == 0) return Bounds3();
+      for (int i = 0; i < n; ++i) poly[i] = next[i];
+    }
+  }
+
+  // The clipped polygon's bounds, rounded outward; interpolated coordinates widened first.
+  glm::dvec3 magnitude = glm::max(glm::abs(glm::dvec3(p0)), glm::max(glm::abs(glm::dvec3(p1)), glm::abs(glm::dvec3(p2))));
+  glm::dvec3 widen = magnitude * (1.0 / double(uint64_t(1) << 40));
+  glm::dvec3 lo(kInfinity), hi(-kInfinity);
+  for (int i = 0; i < n; ++i)
+    for (int b = 0; b < 3; ++b) {
+      double w = (poly[i].exact >> b) & 1u ? 0.0 : widen[b];
+      lo[b] = std::fmin(lo[b], poly[i].p[b] - w);
+      hi[b] = std::fmax(hi[b], poly[i].p[b] + w);
+    }
+  Bounds3 r;
+  for (int b = 0; b < 3; ++b) {
+    float l = float(lo[b]), h = float(hi[b]);
+    if (double(l) > lo[b]) l = next_float_down(l);
+    if (double(h) < hi[b]) h = next_float_up(h);
+    r.lo[b] = l;
+    r.hi[b] = h;
+  }
+  return intersection_of(r, limit);
+}
+
+}  // namespace raystep

@@ -1,0 +1,132 @@
+// What the three kd-tree builders share (kdtree_build_sah.cpp, kdtree_build_reference.cpp,
+// kdtree_build_median.cpp): a primitive's bounds clipped to a node ("perfect splits"), the SAH cost of one
+// candidate plane with the planar primitives on the cheaper side (Wald and Havran 2006, section 4.2), and the
+// tree being written with its depth limit and reference budget. Internal to raystep_core.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raystep/accel/kdtree_build.h"
+#include "raystep/geometry/bounds.h"
+#include "raystep/scene/geometry.h"
+
+namespace raystep::kd {
+
+// The bounds of primitive `prim` inside `box`: a triangle clipped to the box (Sutherland-Hodgman, rounded
+// outward), a sphere's bounding box intersected with the box. -0 becomes +0, so that equal positions have
+// equal bits in every builder.
+Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& box);
+
+// A straddling primitive's bounds in one child. When in doubt, both: should clipping leave nothing (the
+// primitive reaches the child only within rounding), it keeps its own bounds intersected with the child.
+Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& child);
+
+// The SAH cost model: C = t_t + t_i (p_b N_b + p_a N_a), p = S_child / S_node; with an empty child and
+// empty_bonus > 0, C = t_t + (1 - bonus) t_i (p_b N_b + p_a N_a) (pbrt's form). A leaf costs N t_i.
+struct SahModel {
+  float t_t, t_i, empty_bonus;
+
+  float leaf_cost(uint32_t n) const { return t_i * float(n); }
+
+  // Written in the order of the inspector's CSV contract: t_t + t_i * (S_b/S * N_b + S_a/S * N_a).
+  float cost(float area_below, float area_above, float area_node, uint32_t n_below, uint32_t n_above) const {
+    float weighted = area_below / area_node * float(n_below) + area_above / area_node * float(n_above);
+    float bonus = (n_below == 0 || n_above == 0) ? empty_bonus : 0.f;
+    return t_t + (1.f - bonus) * t_i * weighted;
+  }
+
+  // The candidate at `position` on `axis`: n_left primitives reach below the plane, n_right above, n_planar
+  // lie in it. The planar ones are tried on both sides and put on the cheaper one; below on a tie.
+  SahCandidate candidate(const Bounds3& box, float area_node, int axis, float position, uint32_t n_left,
+                         uint32_t n_right, uint32_t n_planar) const {
+    SahCandidate c;
+    c.axis = axis;
+    c.position = position;
+    c.n_planar = n_planar;
+    Bounds3 below = box, above = box;
+    below.hi[axis] = position;
+    above.lo[axis] = position;
+    c.area_below = below.surface_area();
+    c.area_above = above.surface_area();
+    c.area_node = area_node;
+    c.n_below = n_left + n_planar;
+    c.n_above = n_right;
+    c.cost = cost(c.area_below, c.area_above, area_node, c.n_below, c.n_above);
+    c.planar_below = true;
+    if (n_planar > 0) {
+      float cost_above = cost(c.area_below, c.area_above, area_node, n_left, n_right + n_planar);
+      if (cost_above < c.cost) {
+        c.n_below = n_left;
+        c.n_above = n_right + n_planar;
+        c.cost = cost_above;
+        c.planar_below = false;
+      }
+    }
+    return c;
+  }
+};
+
+// The tie rule, given candidates offered in the order axis x, y, z and increasing position: a later
+// candidate replaces the best only when strictly cheaper.
+inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.cost < best.cost; }
+
+// The tree as it is written, node by node in depth-first preorder, with the build's limits.
+class TreeWriter {
+ public:
+  TreeWriter(const Geometry& geometry, const KdOptions& options);
+
+  const KdOptions& options() const { return options_; }
+  const SahModel& model() const { return model_; }
+  int max_depth() const { return max_depth_; }
+
+  // A new node (its kind is set later); throws InputError when the node array is full.
+  uint32_t add_node(const Bounds3& box, int32_t parent, int32_t depth);
+  const KdNodeInfo& info(uint32_t node) const { return tree_.info[node]; }
+  // prims: the leaf's primitive ids in increasing order.
+  void set_leaf(uint32_t node, const uint32_t* prims, uint32_t count, float cost);
+  // The split's cost is set when it is chosen (so that the recorder sees it), the above child once it exists.
+  void set_split_cost(uint32_t node, float cost) { tree_.info[node].cost = cost; }
+  void set_inner(uint32_t node, int axis, float split, uint32_t above_child);
+  uint32_t node_count() const { return uint32_t(tree_.nodes.size()); }
+
+  // The reference budget: the leaves' references are N plus one per straddling primitive of every split.
+  bool budget_allows(size_t straddlers) const { return references_ + straddlers <= budget_; }
+  void spend_budget(size_t straddlers) { references_ += straddlers; }
+
+  KdTreeData finish() { return std::move(tree_); }
+
+ private:
+  KdOptions options_;
+  SahModel model_;
+  int max_depth_;
+  size_t budget_;
+  size_t references_;
+  KdTreeData tree_;
+};
+
+// The list-based builders (reference and median) carry each primitive with its bounds clipped to the node.
+struct PrimRef {
+  uint32_t prim;
+  Bounds3 bounds;
+};
+
+// Every primitive of the scene with its bounds in the root box, in id order.
+std::vector<PrimRef> root_prim_refs(const Geometry& geometry);
+
+// Classification into the children of the plane (axis, position): below if the clipped bounds reach below the
+// plane, above if they reach above, both (re-clipped to each child) if they straddle it; planar primitives
+// (lo = hi = position) to the side planar_below says. The id order is kept.
+void classify_prim_refs(const Geometry& geometry, const std::vector<PrimRef>& prims, int axis, float position,
+                        bool planar_below, const Bounds3& below_box, const Bounds3& above_box,
+                        std::vector<PrimRef>* below, std::vector<PrimRef>* above);
+
+// The builder kernels, explicitly instantiated for NullBuildRecorder and BuildListenerRecorder.
+template <class Recorder>
+KdTreeData build_sah(const Geometry& geometry, const KdOptions& options, Recorder& rec);
+template <class Recorder>
+KdTreeData build_sah_reference(const Geometry& geometry, const KdOptions& options, Recorder& rec);
+template <class Recorder>
+KdTreeData build_median(const Geometry& geometry, const KdOptions& options, Recorder& rec);
+
+}  // namespace raystep::kd
