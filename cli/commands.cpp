@@ -17,6 +17,7 @@
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/trace/build_event_writer.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/pixel_rays.h"
@@ -275,34 +276,64 @@ int run_info(const InfoArgs& a) {
 int run_trace(const TraceArgs& a) {
   if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
+  if (a.build_events && a.format != "json") throw InputError("", 0, "trace: --build-events needs --format json");
   check_output_folder(a.output);
   Scene scene = load_scene(a.scene);
   auto accel = build_structure(a.structure);
   if (!records_events(*accel))
     throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid, kd or kd-median)");
-  accel->build(scene.geometry);
+  auto* kd = dynamic_cast<KdTree*>(accel.get());
+  if (a.build_events && !kd) throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");
 
-  std::vector<RayRequest> requests;
+  // The rays to record, checked before the (possibly long) build; pixel rays need the built structure.
+  std::optional<RayRequest> by_hand;
+  int w = scene.render.width, h = scene.render.height, px = 0, py = 0;
   if (a.ray) {
     std::vector<float> v = parse_numbers("--ray", *a.ray, 6);
-    RayRequest req;
-    req.ray.origin = glm::vec3(v[0], v[1], v[2]);
-    req.ray.direction = glm::vec3(v[3], v[4], v[5]);
-    if (req.ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
-    requests.push_back(req);
+    by_hand.emplace();
+    by_hand->ray.origin = glm::vec3(v[0], v[1], v[2]);
+    by_hand->ray.direction = glm::vec3(v[3], v[4], v[5]);
+    if (by_hand->ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
   } else {
-    int w = scene.render.width, h = scene.render.height;
     if (a.size) parse_size(*a.size, &w, &h);
     std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);
     if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w || p[1] >= h)
       throw InputError("", 0, "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
                                   std::to_string(h) + " image");
-    int px = int(p[0]), py = int(p[1]);
-    requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
+    px = int(p[0]);
+    py = int(p[1]);
   }
-  Trace trace = record_trace(scene.geometry, *accel, requests, a.scene, file_content_hash(a.scene));
-  if (a.format == "csv") write_trace_csv(a.output, trace);
-  else write_trace_json(a.output, trace);
+  auto record = [&]() {
+    std::vector<RayRequest> requests;
+    if (by_hand) requests.push_back(*by_hand);
+    else requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
+    return record_trace(scene.geometry, *accel, requests, a.scene, file_content_hash(a.scene));
+  };
+
+  Trace trace;
+  if (a.build_events) {
+    // The build is logged while it runs, straight into the (temporary) file: memory stays bounded.
+    Trace opening;
+    opening.scene_path = a.scene;
+    opening.scene_hash = file_content_hash(a.scene);
+    opening.scene_primitives = scene.geometry.size();
+    size_t logged = 0;
+    write_file_atomically(a.output, [&](std::ostream& out) {
+      out << trace_json_opening(opening) << " \"build\": [";
+      BuildEventWriter writer(out);
+      kd->build(scene.geometry, writer);
+      out << "\n ],\n";
+      logged = writer.count();
+      trace = record();
+      out << trace_json_rest(trace);
+    });
+    std::printf("build: %zu events logged\n", logged);
+  } else {
+    accel->build(scene.geometry);
+    trace = record();
+    if (a.format == "csv") write_trace_csv(a.output, trace);
+    else write_trace_json(a.output, trace);
+  }
   std::printf("%s", trace_summary(trace).c_str());
   std::printf("wrote %s\n", a.output.c_str());
   return 0;

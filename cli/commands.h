@@ -61,6 +61,7 @@ struct TraceArgs {
   std::optional<std::string> pixel;  // "X,Y"
   std::optional<std::string> ray;    // "ox,oy,oz,dx,dy,dz"
   bool secondary = false;            // also the shadow, reflected and refracted rays the pixel spawns
+  bool build_events = false;         // kd-trees: also stream every build event into the trace
   std::optional<std::string> size;   // image size for --pixel, default the scene's
   std::string format = "json";       // json | csv
   std::string output;

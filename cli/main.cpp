@@ -100,6 +100,8 @@ int main(int argc, char** argv) {
   auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
   pixel_opt->excludes(ray_opt);
   trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_flag("--build-events", trace.build_events,
+                      "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
   trace_cmd->add_option("--format", trace.format, "json (the trace format) | csv (one event per row)")
       ->capture_default_str()

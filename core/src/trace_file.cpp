@@ -58,6 +58,16 @@ bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
 
 const char* ray_kind_name(RayKind kind) { return kRayKinds[int(kind)]; }
 
+bool parse_leaf_reason(const std::string& name, LeafReason* reason) {
+  for (LeafReason r : {LeafReason::few_primitives, LeafReason::max_depth, LeafReason::no_cheaper_split,
+                       LeafReason::no_candidate, LeafReason::budget})
+    if (name == leaf_reason_name(r)) {
+      *reason = r;
+      return true;
+    }
+  return false;
+}
+
 std::string file_content_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot read the file");
@@ -157,8 +167,43 @@ RayCounters count_events(const std::vector<Event>& events) {
 
 }  // namespace
 
-// Laid out for people: one event, cell or primitive per line, small objects on one line.
-std::string trace_to_json(const Trace& t) {
+std::string build_event_json(const TraceBuildEvent& b, size_t seq) {
+  ordered j;
+  j["seq"] = seq;
+  j["type"] = event_type_name(b.type);
+  j["node"] = b.node;
+  if (b.type == EventType::sah_candidate) {
+    const SahCandidate& c = b.candidate;
+    j["axis"] = kAxes[c.axis];
+    j["position"] = number(c.position);
+    j["n_below"] = c.n_below;
+    j["n_above"] = c.n_above;
+    j["n_planar"] = c.n_planar;
+    j["area_below"] = number(c.area_below);
+    j["area_above"] = number(c.area_above);
+    j["area_node"] = number(c.area_node);
+    j["cost"] = number(c.cost);
+    j["planar_side"] = c.planar_below ? "below" : "above";
+    return j.dump();
+  }
+  j["depth"] = b.depth;
+  j["min"] = vec(b.box.lo);
+  j["max"] = vec(b.box.hi);
+  j["prims"] = b.prims;
+  j["leaf_cost"] = number(b.leaf_cost);
+  if (b.type == EventType::split) {
+    j["axis"] = kAxes[b.axis];
+    j["position"] = number(b.position);
+    j["cost"] = number(b.cost);
+  } else {
+    j["reason"] = leaf_reason_name(b.reason);
+  }
+  return j.dump();
+}
+
+std::string trace_to_json(const Trace& t) { return trace_json_opening(t) + trace_json_rest(t); }
+
+std::string trace_json_opening(const Trace& t) {
   std::ostringstream out;
   out << "{\n";
   out << " \"format\": " << ordered(kTraceFormat).dump() << ",\n";
@@ -166,6 +211,17 @@ std::string trace_to_json(const Trace& t) {
   out << " \"scene\": "
       << ordered({{"path", t.scene_path}, {"hash", t.scene_hash}, {"primitives", t.scene_primitives}}).dump()
       << ",\n";
+  return out.str();
+}
+
+// Laid out for people: one event, cell or primitive per line, small objects on one line.
+std::string trace_json_rest(const Trace& t) {
+  std::ostringstream out;
+  if (!t.build.empty()) {
+    out << " \"build\": [";
+    for (size_t i = 0; i < t.build.size(); ++i) out << (i ? ",\n  " : "\n  ") << build_event_json(t.build[i], i);
+    out << "\n ],\n";
+  }
   ordered s;
   s["kind"] = t.structure.kind;
   s["bounds_min"] = vec(t.structure.bounds.lo);
@@ -621,6 +677,54 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       }
   }
 
+  if (doc.contains("build")) {
+    const json& build = rd.array_at(doc, root, "build");
+    for (size_t i = 0; i < build.size(); ++i) {
+      std::string bp = "build[" + std::to_string(i) + "]";
+      const json& jb = build[i];
+      TraceBuildEvent b;
+      if (rd.integer_at(jb, bp, "seq", 0, 1ll << 40) != int64_t(i))
+        rd.fail(bp + ".seq", "expected " + std::to_string(i) + " (build events are numbered in order)");
+      std::string type = rd.text_at(jb, bp, "type");
+      if (!parse_event_type(type, &b.type) ||
+          (b.type != EventType::sah_candidate && b.type != EventType::split && b.type != EventType::leaf_made))
+        rd.fail(bp + ".type", "unknown build event type \"" + type + "\" (sah_candidate, split, leaf_made)");
+      b.node = uint32_t(rd.integer_at(jb, bp, "node", 0, std::max<int64_t>(max_node, 0)));
+      if (b.type == EventType::sah_candidate) {
+        SahCandidate& c = b.candidate;
+        c.axis = axis_index(rd.member(jb, bp, "axis"), bp + ".axis");
+        if (c.axis < 0) rd.fail(bp + ".axis", "expected \"x\", \"y\" or \"z\"");
+        c.position = rd.real_at(jb, bp, "position");
+        c.n_below = uint32_t(rd.integer_at(jb, bp, "n_below", 0, UINT32_MAX));
+        c.n_above = uint32_t(rd.integer_at(jb, bp, "n_above", 0, UINT32_MAX));
+        c.n_planar = uint32_t(rd.integer_at(jb, bp, "n_planar", 0, UINT32_MAX));
+        c.area_below = rd.real_at(jb, bp, "area_below");
+        c.area_above = rd.real_at(jb, bp, "area_above");
+        c.area_node = rd.real_at(jb, bp, "area_node");
+        c.cost = rd.real_at(jb, bp, "cost");
+        std::string side = rd.text_at(jb, bp, "planar_side");
+        if (side != "below" && side != "above") rd.fail(bp + ".planar_side", "expected \"below\" or \"above\"");
+        c.planar_below = side == "below";
+      } else {
+        b.depth = int32_t(rd.integer_at(jb, bp, "depth", 0, 1 << 16));
+        b.box.lo = rd.vec_at(jb, bp, "min");
+        b.box.hi = rd.vec_at(jb, bp, "max");
+        b.prims = uint32_t(rd.integer_at(jb, bp, "prims", 0, UINT32_MAX));
+        b.leaf_cost = rd.real_at(jb, bp, "leaf_cost");
+        if (b.type == EventType::split) {
+          b.axis = axis_index(rd.member(jb, bp, "axis"), bp + ".axis");
+          if (b.axis < 0) rd.fail(bp + ".axis", "expected \"x\", \"y\" or \"z\"");
+          b.position = rd.real_at(jb, bp, "position");
+          b.cost = rd.real_at(jb, bp, "cost");
+        } else {
+          std::string reason = rd.text_at(jb, bp, "reason");
+          if (!parse_leaf_reason(reason, &b.reason)) rd.fail(bp + ".reason", "unknown leaf reason \"" + reason + "\"");
+        }
+      }
+      t.build.push_back(b);
+    }
+  }
+
   const json& prims = rd.array_at(geo, "geometry", "primitives");
   for (size_t i = 0; i < prims.size(); ++i) {
     std::string pp = "geometry.primitives[" + std::to_string(i) + "]";
@@ -675,6 +779,12 @@ std::string trace_summary(const Trace& t) {
     if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
     else out << "miss\n";
     for (const Event& e : tr.events) ++totals[event_type_name(e.type)];
+  }
+  if (!t.build.empty()) {
+    size_t n[3] = {0, 0, 0};
+    for (const TraceBuildEvent& b : t.build)
+      ++n[b.type == EventType::sah_candidate ? 0 : b.type == EventType::split ? 1 : 2];
+    out << "build: " << n[0] << " sah_candidate, " << n[1] << " split, " << n[2] << " leaf_made\n";
   }
   out << "events by type:";
   for (const auto& [name, n] : totals) out << " " << name << "=" << n;

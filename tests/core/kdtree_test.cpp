@@ -197,21 +197,22 @@ TEST(KdTree, HardRaysOnBoxesWhoseFacesAreCandidatePlanes) {
     auto tree = make_tree(g, builder);
     std::vector<Ray> rays = plane_rays(*tree, 3);
     ASSERT_GT(rays.size(), 30u);
-    EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << int(builder);
+    // Neighbouring boxes share faces: coincident triangles are hit at the same t, either may be reported.
+    EXPECT_EQ(count_disagreements(*tree, brute, rays, true), 0) << int(builder);
     std::vector<Ray> random = random_rays(g.bounds(), 50000, 13);
-    EXPECT_EQ(count_disagreements(*tree, brute, random), 0) << int(builder);
+    EXPECT_EQ(count_disagreements(*tree, brute, random, true), 0) << int(builder);
   }
 }
 
 TEST(KdTree, CoplanarAndIdenticalTriangles) {
   for (int scene = 0; scene < 2; ++scene) {
-    Geometry g = scene == 0 ? make_coplanar(2000) : make_identical(3000);
+    Geometry g = scene == 0 ? make_coplanar(1000) : make_identical(1000);
     BruteForce brute;
     brute.build(g);
-    std::vector<Ray> rays = random_rays(g.bounds(), 20000, 14);
+    std::vector<Ray> random = random_rays(g.bounds(), 10000, 14);
     for (KdBuilder builder : kBuilders) {
       auto tree = make_tree(g, builder);
-      std::vector<Ray> hard = plane_rays(*tree, 5);
+      std::vector<Ray> rays = random, hard = plane_rays(*tree, 5);
       rays.insert(rays.end(), hard.begin(), hard.end());
       // Rays straight down onto the plane of the coplanar set, and grazing along it.
       for (int i = 0; i < 200; ++i) {

@@ -72,9 +72,11 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     uint32_t node;
     int32_t depth;
     float t_min, t_max;
+    bool in_plane;  // pushed by a ray lying in the split plane, with the whole interval
   };
   Entry stack[kKdMaxDepth + 1];
   int stack_size = 0;
+  int in_plane_entries = 0;  // while one is on the stack, the entries are not ordered by t_min
 
   MailboxStamp mailbox = use_mailboxes_ ? mailboxes_.begin_ray() : MailboxStamp(0, nullptr);
   WatertightRay wray(ray);
@@ -82,20 +84,17 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   float t_nearest = ray.tmax;
   uint32_t node_id = 0;
   int32_t depth = 0;
+  const KdNode* nodes = tree_.nodes.data();
   for (;;) {
-    // Stop when the nearest hit lies before this node's entry: no primitive of it can be nearer.
-    if (nearest.found() && detail::clearly_beyond(t_nearest, t_min)) {
-      rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::next_node_beyond);
-      break;
-    }
-    const KdNode& node = tree_.nodes[node_id];
+    const KdNode& node = nodes[node_id];
     rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
 
     if (!node.is_leaf()) {
       // Inner node: t* where the ray meets the split plane.
       int axis = node.axis();
       float o = component(ray.origin, axis), d = component(ray.direction, axis);
-      float t_split = (node.split - o) / d;  // NaN when the ray lies in the plane (d = +-0, o = split)
+      // A multiplication by the reciprocal, not a division: t* is on the path from one node to the next.
+      float t_split = (node.split - o) * component(slab.inv_dir, axis);  // NaN when the ray lies in the plane
       if (d == 0.f && !std::isnan(t_split)) t_split = kInfinity;  // parallel beside the plane: never crosses
 
       // The near child is the side the ray is on before it crosses the plane (for an origin in front of the
@@ -109,7 +108,8 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       if (std::isnan(t_split)) {
         // The ray lies in the split plane: it touches both children over the whole interval.
         rec.push(TreeStep{int32_t(far_child), depth + 1, t_min, t_max});
-        stack[stack_size++] = Entry{far_child, depth + 1, t_min, t_max};
+        stack[stack_size++] = Entry{far_child, depth + 1, t_min, t_max, true};
+        ++in_plane_entries;
         node_id = near_child;
       } else if (detail::clearly_beyond(t_max, t_split)) {
         node_id = near_child;  // the ray leaves the node before it reaches the plane
@@ -119,7 +119,7 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         // Both: Intersect(near, t_min, t*) now, push (far, t*, t_max) for later.
         float t_star = std::min(std::max(t_split, t_min), t_max);
         rec.push(TreeStep{int32_t(far_child), depth + 1, t_star, t_max});
-        stack[stack_size++] = Entry{far_child, depth + 1, t_star, t_max};
+        stack[stack_size++] = Entry{far_child, depth + 1, t_star, t_max, false};
         node_id = near_child;
         t_max = t_star;
       }
@@ -149,17 +149,32 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       break;
     }
 
-    // Pop the next far child; with an empty stack the walk is over.
-    if (stack_size == 0) {
-      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::structure_done);
+    // Pop the next far child; with an empty stack the walk is over. Stop when the nearest hit lies before the
+    // popped node's t_min: the entries below it start later still, so no primitive of theirs can be nearer.
+    // (Not so while an in-plane entry is on the stack: it spans the whole interval, so only the popped entry
+    // is skipped.)
+    bool more = false;
+    AcceptReason reason = AcceptReason::structure_done;
+    while (stack_size > 0) {
+      const Entry& e = stack[--stack_size];
+      in_plane_entries -= e.in_plane;
+      rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
+      if (nearest.found() && detail::clearly_beyond(t_nearest, e.t_min)) {
+        reason = AcceptReason::next_node_beyond;
+        if (in_plane_entries == 0) break;
+        continue;
+      }
+      node_id = e.node;
+      depth = e.depth;
+      t_min = e.t_min;
+      t_max = e.t_max;
+      more = true;
       break;
     }
-    const Entry& e = stack[--stack_size];
-    rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
-    node_id = e.node;
-    depth = e.depth;
-    t_min = e.t_min;
-    t_max = e.t_max;
+    if (!more) {
+      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.prim), t_nearest, reason);
+      break;
+    }
   }
   *hit = nearest;
   rec.ray_end(*hit);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "raystep/accel/kdtree_build.h"
 #include "raystep/geometry/bounds.h"
 #include "raystep/scene/geometry.h"
 #include "raystep/trace/events.h"
@@ -63,6 +64,22 @@ struct TracePrimitive {
   float radius = 0.f;
 };
 
+// A kd-tree build event (trace ... --build-events): a candidate plane of a node, the split chosen, or a leaf made.
+struct TraceBuildEvent {
+  EventType type = EventType::split;  // sah_candidate, split or leaf_made
+  uint32_t node = 0;
+  SahCandidate candidate;             // sah_candidate
+  int32_t depth = 0;                  // split, leaf_made: the node's depth, box and primitive count
+  Bounds3 box;
+  uint32_t prims = 0;
+  int axis = 0;                       // split: the plane and its cost
+  float position = 0.f, cost = 0.f;
+  float leaf_cost = 0.f;              // split, leaf_made: N * t_i
+  LeafReason reason = LeafReason::few_primitives;  // leaf_made
+};
+// leaf_reason_name is in kdtree_build.h.
+bool parse_leaf_reason(const std::string& name, LeafReason* reason);
+
 struct Trace {
   std::string scene_path;
   std::string scene_hash;  // "fnv1a64:<16 hex digits>" of the scene file's bytes
@@ -72,6 +89,7 @@ struct Trace {
   std::vector<TraceCell> cells;            // grid: every visited cell, once
   std::vector<TraceNode> nodes;            // trees: every node an event names, once, by id
   std::vector<TracePrimitive> primitives;  // every primitive an event names, once, by id
+  std::vector<TraceBuildEvent> build;      // the whole build's events, when recorded (--build-events)
 };
 
 const char* ray_kind_name(RayKind kind);
@@ -80,6 +98,12 @@ const char* ray_kind_name(RayKind kind);
 std::string file_content_hash(const std::string& path);
 
 std::string trace_to_json(const Trace& trace);
+// The document in two parts, for a writer that streams the "build" section while the tree is built: the opening
+// (format, version, scene) and the rest (the build events, if any, then structure, rays and geometry).
+std::string trace_json_opening(const Trace& trace);
+std::string trace_json_rest(const Trace& trace);
+// One build event as the one-line JSON object of the "build" array (seq: its position there).
+std::string build_event_json(const TraceBuildEvent& event, size_t seq);
 void write_trace_json(const std::string& path, const Trace& trace);  // atomically
 void write_trace_csv(const std::string& path, const Trace& trace);   // atomically; one event per row
 
