@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
+#include <vector>
 #include <sstream>
 #include <string>
 
@@ -275,6 +277,130 @@ TEST_F(Cli, HeatMapAndGridOptions) {
     ASSERT_EQ(c.code, 0) << c.err;
     EXPECT_EQ(slurp(path("g.hits")), slurp(path("b.hits"))) << opts;
   }
+}
+
+
+// Rows of a CSV file as fields (no quoting: raystep's CSVs have none).
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::stringstream ss(line);
+    std::string f;
+    while (std::getline(ss, f, ',')) fields.push_back(f);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+TEST_F(Cli, KdTreesCastLikeBruteForce) {
+  std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/torus_knot.json";
+  ASSERT_EQ(run("rays " + scene + " --kind random --count 5000 --seed 5 -o " + path("r.rays")).code, 0);
+  ASSERT_EQ(run("cast " + scene + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code, 0);
+  for (const char* opts : {"--accel kd", "--accel kd-median", "--accel kd --mailbox off --leaf-size 4",
+                           "--accel kd --ti 10 --tt 2 --empty-bonus 0.5 --max-depth 12"}) {
+    Outcome c = run("cast " + scene + " --rays " + path("r.rays") + " --hits " + path("k.hits") + " " + opts);
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_NE(c.out.find(std::string("accel=") + (std::string(opts).find("median") != std::string::npos ? "kd-median" : "kd ")),
+              std::string::npos) << c.out;
+    EXPECT_EQ(slurp(path("k.hits")), slurp(path("b.hits"))) << opts;
+  }
+}
+
+TEST_F(Cli, SahCurveFollowsTheLecturesFormula) {
+  std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
+  for (const char* node : {"--node 0", "--path L", "--path RL"}) {
+    Outcome r = run("sah " + scene + " " + node + " --ti 80 --tt 1 --empty-bonus 0 -o " + path("c.csv"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    auto rows = csv_rows(slurp(path("c.csv")));
+    ASSERT_GT(rows.size(), 2u) << node;
+    std::string header = "axis,position,n_below,n_above,n_planar,area_below,area_above,area_node,cost,chosen\n";
+    EXPECT_EQ(slurp(path("c.csv")).substr(0, header.size()), header);
+    int chosen = -1;
+    double min_cost = 1e30;
+    std::set<std::string> axes;
+    for (size_t i = 1; i < rows.size(); ++i) {
+      const auto& f = rows[i];
+      ASSERT_EQ(f.size(), 10u);
+      axes.insert(f[0]);
+      double nb = std::stod(f[2]), na = std::stod(f[3]), ab = std::stod(f[5]), aa = std::stod(f[6]),
+             an = std::stod(f[7]), cost = std::stod(f[8]);
+      // C = t_t + p_a N_a t_i + p_b N_b t_i with p = S_child / S_node.
+      EXPECT_NEAR(cost, 1.0 + 80.0 * (ab / an * nb + aa / an * na), 1e-4 * cost) << node << " row " << i;
+      min_cost = std::min(min_cost, cost);
+      if (f[9] == "1") {
+        EXPECT_EQ(chosen, -1) << "one chosen row";
+        chosen = int(i);
+      }
+    }
+    ASSERT_GT(chosen, 0) << node << ": an inner node has its chosen split";
+    EXPECT_EQ(std::stod(rows[size_t(chosen)][8]), min_cost) << node;
+    EXPECT_GE(axes.size(), 2u) << node << ": candidates on several axes";
+  }
+  // A node that stays a leaf: no row chosen, every candidate at least N t_i.
+  Outcome leaf = run("sah " + scene + " --node 0 --ti 0.01 --empty-bonus 0 -o " + path("leaf.csv"));
+  ASSERT_EQ(leaf.code, 0) << leaf.err;
+  EXPECT_NE(leaf.out.find("decision: leaf"), std::string::npos) << leaf.out;
+  auto rows = csv_rows(slurp(path("leaf.csv")));
+  ASSERT_GT(rows.size(), 2u);
+  for (size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][9], "0");
+    EXPECT_GE(std::stod(rows[i][8]), 23 * 0.01);
+  }
+  ASSERT_EQ(run("sah " + scene + " --path L -o " + path("c.json")).code, 0);
+  EXPECT_NE(slurp(path("c.json")).find("\"candidates\""), std::string::npos);
+}
+
+TEST_F(Cli, SahAndKdOptionsRejectBadInput) {
+  std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
+  expect_error(run("sah " + scene + " --node 100000 -o " + path("c.csv")), "--node 100000");
+  expect_error(run("sah " + scene + " --path LXR -o " + path("c.csv")), "--path");
+  expect_error(run("sah " + scene + " --path LLLLLLLLLLLLLLLLLLLL -o " + path("c.csv")), "--path");
+  expect_error(run("sah " + scene + " --node 0 -o " + path("c.txt")), path("c.txt"));
+  expect_error(run("sah " + scene + " --node 0 --ti -1 -o " + path("c.csv")), "kd-tree");
+  expect_error(run("sah " + scene + " --node 0 --empty-bonus 1 -o " + path("c.csv")), "kd-tree");
+  expect_error(run("trace " + scene + " --accel kd --pixel 1,1 --max-depth 99 -o " + path("t.json")), "kd-tree");
+  expect_error(run("trace " + scene + " --accel grid --pixel 1,1 --build-events -o " + path("t.json")),
+               "trace: --build-events");
+  EXPECT_FALSE(fs::exists(path("c.csv")));
+  EXPECT_FALSE(fs::exists(path("t.json")));
+}
+
+TEST_F(Cli, KdTreeStatsPredictsEntryProbabilities) {
+  std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/torus_knot.json";
+  Outcome r = run("kdtree-stats " + scene + " --lines 20000 --csv " + path("n.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* key : {"nodes:", "depth: max", "primitives per non-empty leaf", "references per primitive",
+                          "SAH cost of the tree", "(root)"})
+    EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+  auto rows = csv_rows(slurp(path("n.csv")));
+  ASSERT_GT(rows.size(), 10u);
+  EXPECT_EQ(rows[0].size(), 8u);
+  // The root is entered by every line; a child's measured fraction is near S_child / S_root (Crofton).
+  EXPECT_EQ(rows[1][5], "1");
+  EXPECT_EQ(rows[1][6], "1");
+  for (size_t i = 2; i < std::min<size_t>(rows.size(), 8); ++i)
+    EXPECT_NEAR(std::stod(rows[i][6]), std::stod(rows[i][5]), 0.02) << "node " << rows[i][0];
+}
+
+TEST_F(Cli, KdTraceWithBuildEvents) {
+  std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
+  Outcome r = run("trace " + scene + " --accel kd --pixel 100,80 --secondary --build-events -o " + path("t.json"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string text = slurp(path("t.json"));
+  for (const char* key : {"\"build\": [", "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"",
+                          "\"kind\":\"kd\"", "\"nodes\": [", "\"type\":\"push\"", "\"type\":\"leaf\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  Outcome info = run("trace-info " + path("t.json"));
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("build: "), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("pushes"), std::string::npos) << info.out;
+  // A trace whose events name a node the geometry does not list is refused.
+  size_t at = text.find("\"nodes\": [");
+  std::string broken = text.substr(0, at) + "\"nodes\": [],\n  \"unused\": [" + text.substr(at + 10);
+  expect_error(run("trace-info " + write("broken.json", broken)), path("broken.json") + ":");
 }
 
 }  // namespace
