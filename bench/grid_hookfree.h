@@ -41,7 +41,7 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
   MailboxStamp mailbox = grid.mailboxes().begin_ray();
   WatertightRay wray(ray);
   const Geometry& geometry = grid.geometry();
-  float t_nearest = ray.tmax;
+  float t_nearest = ray.tmax, t_limit = ray.tmax;
   for (;;) {
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
@@ -52,9 +52,11 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
       uint32_t prim = grid.reference(r);
       if (!mailbox.first_visit(prim)) continue;
       Hit candidate;
-      if (!geometry.intersect(prim, ray, wray, t_nearest, &candidate)) continue;
+      if (!geometry.intersect(prim, ray, wray, t_limit, &candidate)) continue;
+      if (candidate.t == t_nearest && int32_t(prim) > hit->prim) continue;
       *hit = candidate;
       t_nearest = candidate.t;
+      t_limit = next_float_up(t_nearest);
     }
     if (hit->found() && t_nearest * (1.f + 1.f / 4096.f) < t_cell_exit) break;
     if (t_max[axis] > t_exit) break;

@@ -12,10 +12,10 @@
 namespace raystep {
 
 HeatQuantity parse_heat_quantity(const std::string& name) {
-  if (name == "cells") return HeatQuantity::cells;
+  if (name == "cells" || name == "nodes") return HeatQuantity::cells;  // grid cells or tree nodes
   if (name == "tests") return HeatQuantity::tests;
   if (name == "mailbox") return HeatQuantity::mailbox;
-  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells, tests or mailbox)");
+  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox)");
 }
 
 const char* heat_quantity_label(HeatQuantity q) {

@@ -112,5 +112,43 @@ TEST(Accelerator, CountedQueriesGiveTheSameHitsAndCountWork) {
   }
 }
 
+// Two coincident triangles, and a third whose edge the ray passes through: the same t from several primitives.
+// Every structure that promises brute force's answer gives the lower id.
+TEST(Accelerator, TiesGoToTheLowerPrimitiveId) {
+  for (bool reversed : {false, true}) {
+    Geometry g;
+    g.begin_object("ties", 0);
+    glm::vec3 a(-1.f, -1.f, 2.f), b(1.f, -1.f, 2.f), c(-1.f, 1.f, 2.f), d(1.f, 1.f, 2.f);
+    g.add_triangle(glm::vec3(-3.f, -3.f, 5.f), glm::vec3(3.f, -3.f, 5.f), glm::vec3(0.f, 3.f, 5.f));  // behind
+    if (reversed) {
+      g.add_triangle(b, d, c);  // shares the diagonal b-c with the next one
+      g.add_triangle(a, b, c);
+      g.add_triangle(a, b, c);  // coincident with the one before
+    } else {
+      g.add_triangle(a, b, c);
+      g.add_triangle(a, b, c);
+      g.add_triangle(b, d, c);
+    }
+    for (int k = 0; k < 30; ++k) g.add_triangle(glm::vec3(5.f + k, 0.f, 0.f), glm::vec3(6.f + k, 0.f, 0.f),
+                                                 glm::vec3(5.f + k, 1.f, 0.5f));  // elsewhere, for the trees
+    Ray on_diagonal, inside;
+    on_diagonal.origin = glm::vec3(0.f, 0.f, 0.f);  // through the middle of the shared edge b-c
+    on_diagonal.direction = glm::vec3(0.f, 0.f, 1.f);
+    inside.origin = glm::vec3(-0.5f, -0.5f, 0.f);   // inside the coincident pair only
+    inside.direction = glm::vec3(0.f, 0.f, 1.f);
+    for (const std::string& name : {std::string("brute"), std::string("grid"), std::string("kd"),
+                                    std::string("kd-median")}) {
+      auto acc = make_accelerator(name);
+      acc->build(g);
+      Hit h;
+      ASSERT_TRUE(acc->intersect(on_diagonal, &h)) << name;
+      EXPECT_EQ(h.prim, 1) << name << " reversed " << reversed;
+      EXPECT_EQ(h.t, 2.f);
+      ASSERT_TRUE(acc->intersect(inside, &h)) << name;
+      EXPECT_EQ(h.prim, reversed ? 2 : 1) << name << " reversed " << reversed;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace raystep

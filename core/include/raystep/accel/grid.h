@@ -123,6 +123,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   MailboxStamp mailbox = mailboxes_.begin_ray();
   WatertightRay wray(ray);
   float t_nearest = ray.tmax;
+  float t_limit = ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
   float t_cell_enter = t_enter;
   for (;;) {
     // The axis whose boundary comes first is stepped next; ties go to the lowest axis (x, then y, then z),
@@ -146,11 +147,15 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
         continue;
       }
       Hit candidate;
-      bool found = geometry_->intersect(prim, ray, wray, t_nearest, &candidate);
+      bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
       rec.prim_test(prim, found, candidate.t);
       if (!found) continue;
+      // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute force, so
+      // every structure reports the same hit.
+      if (candidate.t == t_nearest && int32_t(prim) > hit->prim) continue;
       *hit = candidate;
       t_nearest = candidate.t;
+      t_limit = next_float_up(t_nearest);
       if (any_hit) {
         rec.hit_accepted(prim, t_nearest, AcceptReason::any_hit);
         rec.ray_end(*hit);

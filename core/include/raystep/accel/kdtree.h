@@ -82,6 +82,7 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   WatertightRay wray(ray);
   Hit nearest;
   float t_nearest = ray.tmax;
+  float t_limit = ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
   uint32_t node_id = 0;
   int32_t depth = 0;
   const KdNode* nodes = tree_.nodes.data();
@@ -137,11 +138,15 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         continue;
       }
       Hit candidate;
-      bool found = geometry_->intersect(prim, ray, wray, t_nearest, &candidate);
+      bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
       rec.prim_test(prim, found, candidate.t);
       if (!found) continue;
+      // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute force, so
+      // every structure reports the same hit.
+      if (candidate.t == t_nearest && int32_t(prim) > nearest.prim) continue;
       nearest = candidate;
       t_nearest = candidate.t;
+      t_limit = next_float_up(t_nearest);
       if (any_hit) break;
     }
     if (any_hit && nearest.found()) {
