@@ -71,6 +71,21 @@ struct SahModel {
 // candidate replaces the best only when strictly cheaper.
 inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.cost < best.cost; }
 
+// The reference budget, shared out down the tree: the root has kd_reference_budget(N); a node may split only if
+// its children's primitives fit, n_below + n_above <= its budget, and then hands its budget to the children in
+// proportion to n_below and n_above (each gets at least its own count). So the leaves' references never exceed
+// the root's budget, and no part of the tree is starved by the parts built before it.
+struct BudgetShare {
+  size_t below, above;
+};
+inline bool budget_allows(size_t budget, uint32_t n_below, uint32_t n_above) {
+  return size_t(n_below) + n_above <= budget;
+}
+inline BudgetShare share_budget(size_t budget, uint32_t n_below, uint32_t n_above) {
+  size_t below = size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above));
+  return {below, budget - below};
+}
+
 // The tree as it is written, node by node in depth-first preorder, with the build's limits.
 class TreeWriter {
  public:
@@ -90,9 +105,8 @@ class TreeWriter {
   void set_inner(uint32_t node, int axis, float split, uint32_t above_child);
   uint32_t node_count() const { return uint32_t(tree_.nodes.size()); }
 
-  // The reference budget: the leaves' references are N plus one per straddling primitive of every split.
-  bool budget_allows(size_t straddlers) const { return references_ + straddlers <= budget_; }
-  void spend_budget(size_t straddlers) { references_ += straddlers; }
+  // The root's reference budget.
+  size_t root_budget() const { return budget_; }
 
   KdTreeData finish() { return std::move(tree_); }
 
@@ -101,7 +115,6 @@ class TreeWriter {
   SahModel model_;
   int max_depth_;
   size_t budget_;
-  size_t references_;
   KdTreeData tree_;
 };
 

@@ -70,7 +70,7 @@ class SweepBuilder {
     }
     root.n_prims = n;
     side_.assign(n, Side::both);
-    build_node(box, -1, 0, root);
+    build_node(box, -1, 0, out_.root_budget(), root);
     return out_.finish();
   }
 
@@ -187,7 +187,7 @@ class SweepBuilder {
     above->n_prims = plane.n_above;
   }
 
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, const NodeEvents& ev) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, const NodeEvents& ev) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const uint32_t n = ev.n_prims;
     const float leaf_cost = out_.model().leaf_cost(n);
@@ -200,11 +200,9 @@ class SweepBuilder {
     SahCandidate best;
     if (!find_plane(node, box, ev, &best)) return make_leaf(node, ev, leaf_cost, LeafReason::no_candidate);
     if (!(best.cost < leaf_cost)) return make_leaf(node, ev, leaf_cost, LeafReason::no_cheaper_split);
-    size_t straddlers = size_t(best.n_below) + best.n_above - n;
-    if (!out_.budget_allows(straddlers)) return make_leaf(node, ev, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, best.n_below, best.n_above)) return make_leaf(node, ev, leaf_cost, LeafReason::budget);
 
     // 4. Split the events, then build below, then above (depth-first preorder).
-    out_.spend_budget(straddlers);
     out_.set_split_cost(node, best.cost);
     rec_.split(node, out_.info(node), n, best.axis, best.position, best.cost, leaf_cost);
     Bounds3 below_box = box, above_box = box;
@@ -212,9 +210,10 @@ class SweepBuilder {
     above_box.lo[best.axis] = best.position;
     NodeEvents below, above;
     split_events(ev, best, below_box, above_box, &below, &above);
-    build_node(below_box, int32_t(node), depth + 1, below);
+    const BudgetShare share = share_budget(budget, best.n_below, best.n_above);
+    build_node(below_box, int32_t(node), depth + 1, share.below, below);
     uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, above);
+    build_node(above_box, int32_t(node), depth + 1, share.above, above);
     out_.set_inner(node, best.axis, best.position, above_child);
   }
 
