@@ -452,10 +452,9 @@ TEST(KdSahCurve, CandidatesComeFromClippedTriangles) {
   uint32_t above = t.nodes[0].above_child();
   const auto& c = log.candidates.at(above);
   ASSERT_EQ(c.size(), 2u);
-  // y = 0.5 (to within the clip's outward rounding, one ulp): N_b = 1, N_a = 1, S = 4, S_b = 0.5, S_a = 3.5.
+  // y = 0.5 exactly (the clip's arithmetic is exact here): N_b = 1, N_a = 1, S = 4, S_b = 0.5, S_a = 3.5.
   EXPECT_EQ(c[0].axis, 1);
-  EXPECT_NEAR(c[0].position, 0.5f, 1e-6);
-  EXPECT_GE(c[0].position, 0.5f);  // conservative: never inside the triangle
+  EXPECT_EQ(c[0].position, 0.5f);
   EXPECT_EQ(c[0].n_below, 1u);
   EXPECT_EQ(c[0].n_above, 1u);
   EXPECT_NEAR(c[0].area_below, 0.5f, 1e-5);
@@ -567,6 +566,19 @@ TEST(KdSweep, BuildsTheSameTreeAsTheReference) {
   Geometry ico;
   add_to_geometry(make_icosphere(2), ico);
   expect_same_tree(build_kdtree(ico, KdOptions{}), build_kdtree(ico, with_builder(KdBuilder::sah_reference)));
+}
+
+TEST(KdSweep, BoxesOnALatticeSplitOnExactPlanes) {
+  // Clipping box faces at lattice planes is exact arithmetic: no plane one ulp off a face, no sliver nodes.
+  Geometry g = make_scene(14, 0, 0, 30, 0);
+  KdTreeData t = build_kdtree(g, KdOptions{});
+  size_t inner = 0;
+  for (const KdNode& n : t.nodes) {
+    if (n.is_leaf()) continue;
+    ++inner;
+    EXPECT_EQ(std::fmod(n.split * 256.f, 1.f), 0.f) << n.split;
+  }
+  EXPECT_GT(inner, 20u);
 }
 
 TEST(KdSweep, RecorderDoesNotChangeTheTree) {
