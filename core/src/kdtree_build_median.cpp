@@ -52,7 +52,7 @@ class MedianBuilder {
       if (lo < position) ++n_left;
       if (hi > position) ++n_right;
     }
-    SahCandidate c = out_.model().candidate(box, area_node, axis, position, n_left, n_right, n_planar);
+    SahCandidate c = out_.model().candidate(SplitAreas(box, axis), position, n_left, n_right, n_planar);
     if constexpr (Recorder::enabled)
       if (rec_.wants_candidates(node)) rec_.sah_candidate(node, c);
     if (c.n_below == n && c.n_above == n) return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);

@@ -47,6 +47,7 @@ class ReferenceBuilder {
     SahCandidate best;
     bool found = false;
     for (int axis = 0; axis < 3 && area_node > 0.f; ++axis) {
+      const SplitAreas areas(box, axis);
       std::vector<float> positions;
       for (const PrimRef& r : prims)
         for (float x : {r.bounds.lo[axis], r.bounds.hi[axis]})
@@ -62,7 +63,7 @@ class ReferenceBuilder {
           if (lo < x) ++n_left;
           if (hi > x) ++n_right;
         }
-        SahCandidate c = model.candidate(box, area_node, axis, x, n_left, n_right, n_planar);
+        SahCandidate c = model.candidate(areas, x, n_left, n_right, n_planar);
         if constexpr (Recorder::enabled)
           if (record) rec_.sah_candidate(node, c);
         if (!found || cheaper(c, best)) {

@@ -95,20 +95,23 @@ class SweepBuilder {
     if (!(area_node > 0.f)) return false;  // a segment or a point: no ray can tell the children apart
     bool found = false;
     for (int axis = 0; axis < 3; ++axis) {
+      const SplitAreas areas(box, axis);
       const Event* e = events_[axis].data() + ev.begin[axis];
       const size_t count = ev.end[axis] - ev.begin[axis];
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p+, p-, p|: the events at this position, by type.
+        // p-, p|, p+: how many events of each type lie at this position.
         const float position = e[i].position;
-        uint32_t ends = 0, planars = 0, starts = 0;
-        while (i < count && e[i].position == position && e[i].type() == kEnd) ++ends, ++i;
-        while (i < count && e[i].position == position && e[i].type() == kPlanar) ++planars, ++i;
-        while (i < count && e[i].position == position && e[i].type() == kStart) ++starts, ++i;
+        uint32_t at[3] = {0, 0, 0};  // indexed by EventType
+        do {
+          ++at[e[i].type()];
+          ++i;
+        } while (i < count && e[i].position == position);
+        const uint32_t ends = at[kEnd], planars = at[kPlanar], starts = at[kStart];
         // Move the plane onto p: N_P = p|, N_R -= p| + p-; evaluate; then N_L += p+ + p|.
         n_right -= planars + ends;
         if (box.lo[axis] < position && position < box.hi[axis]) {
-          SahCandidate c = model.candidate(box, area_node, axis, position, n_left, n_right, planars);
+          SahCandidate c = model.candidate(areas, position, n_left, n_right, planars);
           if constexpr (Recorder::enabled)
             if (record) rec_.sah_candidate(node, c);
           if (!found || cheaper(c, *best)) {

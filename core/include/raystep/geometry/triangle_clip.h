@@ -84,9 +84,9 @@ inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, co
           x.exact = 1u << a;
           // The other coordinates are exact when the inputs were and no operation rounded.
           double num = plane - s.p[a], den = e.p[a] - s.p[a];
-          bool t_exact = ((s.exact & e.exact) >> a & 1u) && t > 0.0 && t < 1.0 &&
-                         two_sum_error(plane, -s.p[a], num) == 0.0 && two_sum_error(e.p[a], -s.p[a], den) == 0.0 &&
-                         t * den == num && two_product_error(t, den, t * den) == 0.0;
+          bool t_exact = ((s.exact & e.exact) >> a & 1u) && t > 0.0 && t < 1.0 && t * den == num &&
+                         two_product_error(t, den, t * den) == 0.0 && two_sum_error(plane, -s.p[a], num) == 0.0 &&
+                         two_sum_error(e.p[a], -s.p[a], den) == 0.0;
           for (int b = 0; b < 3; ++b) {
             if (b == a || !(s.exact & e.exact & (1u << b))) continue;
             double d = e.p[b] - s.p[b], r = t * d;
