@@ -681,12 +681,12 @@ TEST(KdPathological, TeapotInAStadium) {
   }
 }
 
-TEST(KdPathological, BudgetStopsDuplication) {
-  // Long thin triangles along x, y and z through the same region: every split duplicates a third of them.
+// Long thin triangles along x, y and z through the same region: every split duplicates a third of them.
+Geometry make_slivers(int count, uint32_t seed) {
   Geometry g;
-  std::mt19937 rng(71);
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.f, 1.f);
-  for (int i = 0; i < 3000; ++i) {
+  for (int i = 0; i < count; ++i) {
     int a = i % 3;
     glm::vec3 p(u(rng), u(rng), u(rng)), q = p;
     p[a] = -1.f;
@@ -695,6 +695,25 @@ TEST(KdPathological, BudgetStopsDuplication) {
     r[(a + 1) % 3] += 0.01f;
     g.add_triangle(p, q, r);
   }
+  return g;
+}
+
+TEST(KdPathological, BudgetLeavesAreTheSameInBothSahBuilders) {
+  Geometry g = make_slivers(240, 72);
+  for (float budget : {1.f, 1.25f, 2.f}) {
+    KdOptions o;
+    o.reference_budget = budget;
+    BuildLog a(-2), b(-2);
+    KdTreeData fast = build_kdtree(g, o, a);
+    KdTreeData ref = build_kdtree(g, with_builder(KdBuilder::sah_reference, o), b);
+    expect_same_tree(fast, ref);
+    EXPECT_GT(a.count(LeafReason::budget), 0u);
+    EXPECT_EQ(a.count(LeafReason::budget), b.count(LeafReason::budget));
+  }
+}
+
+TEST(KdPathological, BudgetStopsDuplication) {
+  Geometry g = make_slivers(3000, 71);
   for (float budget : {1.f, 1.5f}) {
     KdOptions o;
     o.reference_budget = budget;
