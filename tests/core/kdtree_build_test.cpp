@@ -591,7 +591,7 @@ TEST(KdSweep, RecorderDoesNotChangeTheTree) {
 
 TEST(KdInvariants, HoldOnEveryBuilder) {
   Geometry ico;
-  add_to_geometry(make_icosphere(4), ico);  // 5120 triangles, a closed surface like a scanned mesh
+  add_to_geometry(make_icosphere(3), ico);  // 1280 triangles, a closed surface like a scanned mesh
   Geometry mixed = make_scene(31, 400, 10, 10, 40);
   for (const Geometry* g : {&ico, &mixed})
     for (KdBuilder b : {KdBuilder::sah, KdBuilder::median}) {
