@@ -158,8 +158,7 @@ TreeWriter::TreeWriter(const Geometry& geometry, const KdOptions& options)
     : options_(options),
       model_{options.t_t, options.t_i, options.empty_bonus},
       max_depth_(kd_max_depth(options, geometry.size())),
-      budget_(kd_reference_budget(options, geometry.size())),
-      references_(geometry.size()) {
+      budget_(kd_reference_budget(options, geometry.size())) {
   tree_.bounds = geometry.bounds();
   tree_.nodes.reserve(2 * geometry.size() + 1);
   tree_.info.reserve(2 * geometry.size() + 1);

@@ -22,6 +22,22 @@ Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& b
 // primitive reaches the child only within rounding), it keeps its own bounds intersected with the child.
 Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& child);
 
+// The surface areas of the two children of a node box cut on one axis: S = 2 (e_u e_v + e_a (e_u + e_v)) with
+// e_a the child's extent on the axis (the other two extents are the node's).
+struct SplitAreas {
+  int axis;
+  float lo, hi, cross, sum, node;
+  SplitAreas(const Bounds3& box, int a) : axis(a), lo(box.lo[a]), hi(box.hi[a]) {
+    glm::vec3 e = box.extent();
+    float eu = e[(a + 1) % 3], ev = e[(a + 2) % 3];
+    cross = eu * ev;
+    sum = eu + ev;
+    node = box.surface_area();
+  }
+  float below(float position) const { return 2.f * (cross + (position - lo) * sum); }
+  float above(float position) const { return 2.f * (cross + (hi - position) * sum); }
+};
+
 // The SAH cost model: C = t_t + t_i (p_b N_b + p_a N_a), p = S_child / S_node; with an empty child and
 // empty_bonus > 0, C = t_t + (1 - bonus) t_i (p_b N_b + p_a N_a) (pbrt's form). A leaf costs N t_i.
 struct SahModel {
@@ -38,24 +54,21 @@ struct SahModel {
 
   // The candidate at `position` on `axis`: n_left primitives reach below the plane, n_right above, n_planar
   // lie in it. The planar ones are tried on both sides and put on the cheaper one; below on a tie.
-  SahCandidate candidate(const Bounds3& box, float area_node, int axis, float position, uint32_t n_left,
-                         uint32_t n_right, uint32_t n_planar) const {
+  SahCandidate candidate(const SplitAreas& areas, float position, uint32_t n_left, uint32_t n_right,
+                         uint32_t n_planar) const {
     SahCandidate c;
-    c.axis = axis;
+    c.axis = areas.axis;
     c.position = position;
     c.n_planar = n_planar;
-    Bounds3 below = box, above = box;
-    below.hi[axis] = position;
-    above.lo[axis] = position;
-    c.area_below = below.surface_area();
-    c.area_above = above.surface_area();
-    c.area_node = area_node;
+    c.area_below = areas.below(position);
+    c.area_above = areas.above(position);
+    c.area_node = areas.node;
     c.n_below = n_left + n_planar;
     c.n_above = n_right;
-    c.cost = cost(c.area_below, c.area_above, area_node, c.n_below, c.n_above);
+    c.cost = cost(c.area_below, c.area_above, c.area_node, c.n_below, c.n_above);
     c.planar_below = true;
     if (n_planar > 0) {
-      float cost_above = cost(c.area_below, c.area_above, area_node, n_left, n_right + n_planar);
+      float cost_above = cost(c.area_below, c.area_above, c.area_node, n_left, n_right + n_planar);
       if (cost_above < c.cost) {
         c.n_below = n_left;
         c.n_above = n_right + n_planar;
@@ -70,6 +83,21 @@ struct SahModel {
 // The tie rule, given candidates offered in the order axis x, y, z and increasing position: a later
 // candidate replaces the best only when strictly cheaper.
 inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.cost < best.cost; }
+
+// The reference budget, shared out down the tree: the root has kd_reference_budget(N); a node may split only if
+// its children's primitives fit, n_below + n_above <= its budget, and then hands its budget to the children in
+// proportion to n_below and n_above (each gets at least its own count). So the leaves' references never exceed
+// the root's budget, and no part of the tree is starved by the parts built before it.
+struct BudgetShare {
+  size_t below, above;
+};
+inline bool budget_allows(size_t budget, uint32_t n_below, uint32_t n_above) {
+  return size_t(n_below) + n_above <= budget;
+}
+inline BudgetShare share_budget(size_t budget, uint32_t n_below, uint32_t n_above) {
+  size_t below = size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above));
+  return {below, budget - below};
+}
 
 // The tree as it is written, node by node in depth-first preorder, with the build's limits.
 class TreeWriter {
@@ -90,9 +118,8 @@ class TreeWriter {
   void set_inner(uint32_t node, int axis, float split, uint32_t above_child);
   uint32_t node_count() const { return uint32_t(tree_.nodes.size()); }
 
-  // The reference budget: the leaves' references are N plus one per straddling primitive of every split.
-  bool budget_allows(size_t straddlers) const { return references_ + straddlers <= budget_; }
-  void spend_budget(size_t straddlers) { references_ += straddlers; }
+  // The root's reference budget.
+  size_t root_budget() const { return budget_; }
 
   KdTreeData finish() { return std::move(tree_); }
 
@@ -101,7 +128,6 @@ class TreeWriter {
   SahModel model_;
   int max_depth_;
   size_t budget_;
-  size_t references_;
   KdTreeData tree_;
 };
 

@@ -18,7 +18,7 @@ class MedianBuilder {
       : geometry_(geometry), out_(geometry, options), rec_(rec) {}
 
   KdTreeData build() {
-    build_node(geometry_.bounds(), -1, 0, root_prim_refs(geometry_));
+    build_node(geometry_.bounds(), -1, 0, out_.root_budget(), root_prim_refs(geometry_));
     return out_.finish();
   }
 
@@ -30,7 +30,7 @@ class MedianBuilder {
     rec_.leaf_made(node, out_.info(node), uint32_t(prims.size()), leaf_cost, reason);
   }
 
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, std::vector<PrimRef> prims) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, std::vector<PrimRef> prims) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const uint32_t n = uint32_t(prims.size());
     const float leaf_cost = out_.model().leaf_cost(n);
@@ -52,15 +52,13 @@ class MedianBuilder {
       if (lo < position) ++n_left;
       if (hi > position) ++n_right;
     }
-    SahCandidate c = out_.model().candidate(box, area_node, axis, position, n_left, n_right, n_planar);
+    SahCandidate c = out_.model().candidate(SplitAreas(box, axis), position, n_left, n_right, n_planar);
     if constexpr (Recorder::enabled)
       if (rec_.wants_candidates(node)) rec_.sah_candidate(node, c);
     if (c.n_below == n && c.n_above == n) return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);
-    size_t straddlers = size_t(c.n_below) + c.n_above - n;
-    if (!out_.budget_allows(straddlers)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, c.n_below, c.n_above)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
 
     // Split, then build below, then above.
-    out_.spend_budget(straddlers);
     out_.set_split_cost(node, c.cost);
     rec_.split(node, out_.info(node), n, axis, position, c.cost, leaf_cost);
     Bounds3 below_box = box, above_box = box;
@@ -69,9 +67,10 @@ class MedianBuilder {
     std::vector<PrimRef> below, above;
     classify_prim_refs(geometry_, prims, axis, position, c.planar_below, below_box, above_box, &below, &above);
     std::vector<PrimRef>().swap(prims);
-    build_node(below_box, int32_t(node), depth + 1, std::move(below));
+    const BudgetShare share = share_budget(budget, c.n_below, c.n_above);
+    build_node(below_box, int32_t(node), depth + 1, share.below, std::move(below));
     uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, std::move(above));
+    build_node(above_box, int32_t(node), depth + 1, share.above, std::move(above));
     out_.set_inner(node, axis, position, above_child);
   }
 

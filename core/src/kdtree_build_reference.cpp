@@ -17,7 +17,7 @@ class ReferenceBuilder {
       : geometry_(geometry), out_(geometry, options), rec_(rec) {}
 
   KdTreeData build() {
-    build_node(geometry_.bounds(), -1, 0, root_prim_refs(geometry_));
+    build_node(geometry_.bounds(), -1, 0, out_.root_budget(), root_prim_refs(geometry_));
     return out_.finish();
   }
 
@@ -29,7 +29,7 @@ class ReferenceBuilder {
     rec_.leaf_made(node, out_.info(node), uint32_t(prims.size()), leaf_cost, reason);
   }
 
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, std::vector<PrimRef> prims) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, std::vector<PrimRef> prims) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const SahModel& model = out_.model();
     const uint32_t n = uint32_t(prims.size());
@@ -47,6 +47,7 @@ class ReferenceBuilder {
     SahCandidate best;
     bool found = false;
     for (int axis = 0; axis < 3 && area_node > 0.f; ++axis) {
+      const SplitAreas areas(box, axis);
       std::vector<float> positions;
       for (const PrimRef& r : prims)
         for (float x : {r.bounds.lo[axis], r.bounds.hi[axis]})
@@ -62,7 +63,7 @@ class ReferenceBuilder {
           if (lo < x) ++n_left;
           if (hi > x) ++n_right;
         }
-        SahCandidate c = model.candidate(box, area_node, axis, x, n_left, n_right, n_planar);
+        SahCandidate c = model.candidate(areas, x, n_left, n_right, n_planar);
         if constexpr (Recorder::enabled)
           if (record) rec_.sah_candidate(node, c);
         if (!found || cheaper(c, best)) {
@@ -75,11 +76,9 @@ class ReferenceBuilder {
     // 3. Leaves decided by the search.
     if (!found) return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);
     if (!(best.cost < leaf_cost)) return make_leaf(node, prims, leaf_cost, LeafReason::no_cheaper_split);
-    size_t straddlers = size_t(best.n_below) + best.n_above - n;
-    if (!out_.budget_allows(straddlers)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, best.n_below, best.n_above)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
 
     // 4. Split: classify into the children, then build below, then above (depth-first preorder).
-    out_.spend_budget(straddlers);
     out_.set_split_cost(node, best.cost);
     rec_.split(node, out_.info(node), n, best.axis, best.position, best.cost, leaf_cost);
     Bounds3 below_box = box, above_box = box;
@@ -89,9 +88,10 @@ class ReferenceBuilder {
     classify_prim_refs(geometry_, prims, best.axis, best.position, best.planar_below, below_box, above_box, &below,
                        &above);
     std::vector<PrimRef>().swap(prims);
-    build_node(below_box, int32_t(node), depth + 1, std::move(below));
+    const BudgetShare share = share_budget(budget, best.n_below, best.n_above);
+    build_node(below_box, int32_t(node), depth + 1, share.below, std::move(below));
     uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, std::move(above));
+    build_node(above_box, int32_t(node), depth + 1, share.above, std::move(above));
     out_.set_inner(node, best.axis, best.position, above_child);
   }
 

@@ -70,7 +70,7 @@ class SweepBuilder {
     }
     root.n_prims = n;
     side_.assign(n, Side::both);
-    build_node(box, -1, 0, root);
+    build_node(box, -1, 0, out_.root_budget(), root);
     return out_.finish();
   }
 
@@ -95,20 +95,23 @@ class SweepBuilder {
     if (!(area_node > 0.f)) return false;  // a segment or a point: no ray can tell the children apart
     bool found = false;
     for (int axis = 0; axis < 3; ++axis) {
+      const SplitAreas areas(box, axis);
       const Event* e = events_[axis].data() + ev.begin[axis];
       const size_t count = ev.end[axis] - ev.begin[axis];
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p+, p-, p|: the events at this position, by type.
+        // p-, p|, p+: how many events of each type lie at this position.
         const float position = e[i].position;
-        uint32_t ends = 0, planars = 0, starts = 0;
-        while (i < count && e[i].position == position && e[i].type() == kEnd) ++ends, ++i;
-        while (i < count && e[i].position == position && e[i].type() == kPlanar) ++planars, ++i;
-        while (i < count && e[i].position == position && e[i].type() == kStart) ++starts, ++i;
+        uint32_t at[3] = {0, 0, 0};  // indexed by EventType
+        do {
+          ++at[e[i].type()];
+          ++i;
+        } while (i < count && e[i].position == position);
+        const uint32_t ends = at[kEnd], planars = at[kPlanar], starts = at[kStart];
         // Move the plane onto p: N_P = p|, N_R -= p| + p-; evaluate; then N_L += p+ + p|.
         n_right -= planars + ends;
         if (box.lo[axis] < position && position < box.hi[axis]) {
-          SahCandidate c = model.candidate(box, area_node, axis, position, n_left, n_right, planars);
+          SahCandidate c = model.candidate(areas, position, n_left, n_right, planars);
           if constexpr (Recorder::enabled)
             if (record) rec_.sah_candidate(node, c);
           if (!found || cheaper(c, *best)) {
@@ -187,7 +190,7 @@ class SweepBuilder {
     above->n_prims = plane.n_above;
   }
 
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, const NodeEvents& ev) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, const NodeEvents& ev) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const uint32_t n = ev.n_prims;
     const float leaf_cost = out_.model().leaf_cost(n);
@@ -200,11 +203,9 @@ class SweepBuilder {
     SahCandidate best;
     if (!find_plane(node, box, ev, &best)) return make_leaf(node, ev, leaf_cost, LeafReason::no_candidate);
     if (!(best.cost < leaf_cost)) return make_leaf(node, ev, leaf_cost, LeafReason::no_cheaper_split);
-    size_t straddlers = size_t(best.n_below) + best.n_above - n;
-    if (!out_.budget_allows(straddlers)) return make_leaf(node, ev, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, best.n_below, best.n_above)) return make_leaf(node, ev, leaf_cost, LeafReason::budget);
 
     // 4. Split the events, then build below, then above (depth-first preorder).
-    out_.spend_budget(straddlers);
     out_.set_split_cost(node, best.cost);
     rec_.split(node, out_.info(node), n, best.axis, best.position, best.cost, leaf_cost);
     Bounds3 below_box = box, above_box = box;
@@ -212,9 +213,10 @@ class SweepBuilder {
     above_box.lo[best.axis] = best.position;
     NodeEvents below, above;
     split_events(ev, best, below_box, above_box, &below, &above);
-    build_node(below_box, int32_t(node), depth + 1, below);
+    const BudgetShare share = share_budget(budget, best.n_below, best.n_above);
+    build_node(below_box, int32_t(node), depth + 1, share.below, below);
     uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, above);
+    build_node(above_box, int32_t(node), depth + 1, share.above, above);
     out_.set_inner(node, best.axis, best.position, above_child);
   }
 

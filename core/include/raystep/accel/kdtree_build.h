@@ -17,7 +17,10 @@ namespace raystep {
 enum class KdBuilder : uint8_t {
   sah,            // Wald-Havran event sweep, O(N log N)
   sah_reference,  // every candidate counted against every primitive: O(N^2) per node; tests only
-  median,         // split the longest axis of the node at its middle
+  median,         // split the longest axis of the node at its middle; leaves by leaf_size, the depth limit, a
+                  // plane that every primitive straddles (no_candidate) or the budget, never by cost. Same
+                  // defaults as the SAH builders, so the lesson compares like with like (its node info and its
+                  // one candidate per node carry the median plane's SAH cost)
 };
 
 struct KdOptions {
@@ -28,7 +31,8 @@ struct KdOptions {
   int max_depth = 0;         // 0: 8 + 1.3 log2(N) (pbrt), at most kKdMaxDepth
   int leaf_size = 1;         // a node with at most this many primitives is a leaf without a search
   // Bounded memory on pathological input: the leaves hold at most reference_budget * N primitive references
-  // (never fewer than N). A split that would exceed it is not made (LeafReason::budget). At least 1.
+  // (never fewer than N). The root has this budget; a node splits only if its children's primitive counts fit
+  // in its budget (else LeafReason::budget) and shares it out to them in proportion to their counts. >= 1.
   float reference_budget = 8.f;
 };
 constexpr int kKdMaxDepth = 64;
@@ -103,9 +107,14 @@ struct BuildListenerRecorder {
 // lower axis (x, y, z), then the lower position, then planar primitives below. A split is made only if its
 // cost is strictly below the leaf cost N * t_i. Leaf rules, in the order tested: N <= leaf_size
 // (few_primitives), depth = kd_max_depth (max_depth), no candidate plane strictly inside the node or a node
-// box of zero surface area (no_candidate), best cost >= N * t_i (no_cheaper_split), the split's straddling
-// primitives would exceed kd_reference_budget (budget). Nodes are made depth first, below child first, so the
-// budget is spent in the same order by every builder. Empty geometry: one empty leaf whose box is empty.
+// box of zero surface area (no_candidate), best cost >= N * t_i (no_cheaper_split), n_below + n_above more
+// than the node's share of the reference budget (budget). Empty geometry: one empty leaf whose box is empty.
+//
+// Classification (what the traversal may rely on): a primitive is in every child whose open interior its
+// conservatively clipped bounds (geometry/triangle_clip.h; spheres by their box) reach. One that only touches
+// the split plane from one side is in that side alone, and planar primitives lying in the plane are in the side
+// the SAH chose. A ray crossing the plane visits both children anyway; a ray lying in the plane (t_split NaN)
+// must visit both too, or it misses the planar primitives of the side it skips.
 KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options);
 KdTreeData build_kdtree(const Geometry& geometry, const KdOptions& options, BuildListener& listener);
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <glm/vec3.hpp>
 
 #include "raystep/geometry/bounds.h"
@@ -20,11 +21,27 @@ inline Bounds3 intersection_of(const Bounds3& a, const Bounds3& b) {
   return r;
 }
 
+// Error-free transformations: the exact rounding error of a double sum (Knuth's TwoSum) and of a double
+// product (Dekker's TwoProduct with Veltkamp's split). They tell when an interpolated coordinate came out exact.
+inline double two_sum_error(double a, double b, double sum) {
+  double bb = sum - a;
+  return (a - (sum - bb)) + (b - bb);
+}
+inline double two_product_error(double a, double b, double product) {
+  const double split = 134217729.0;  // 2^27 + 1
+  double ca = split * a, cb = split * b;
+  double a_hi = ca - (ca - a), a_lo = a - a_hi;
+  double b_hi = cb - (cb - b), b_lo = b - b_hi;
+  return ((a_hi * b_hi - product) + a_hi * b_lo + a_lo * b_hi) + a_lo * b_lo;
+}
+
 // Bounds of triangle (p0, p1, p2) intersected with box. Conservative: they contain every point of the exact
 // intersection (up to a few double ulps near the box's faces, far below float resolution), and they lie
 // within the triangle's own bounds intersected with the box. Empty when the triangle misses the box.
-// Coordinates that are inputs (a vertex inside the box, a box plane) come out exactly; interpolated ones are
-// widened by 2^-40 of the coordinates' magnitude and rounded outward, about one float ulp at most.
+// Coordinates that are inputs (a vertex inside the box, a box plane) come out exactly, and so do interpolated
+// ones whose arithmetic was exact (checked by error-free transformations: the common case of axis-aligned
+// geometry on a lattice); other interpolated ones are widened by 2^-40 of the coordinates' magnitude and
+// rounded outward, about one float ulp at most.
 inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
                                     const Bounds3& box) {
   Bounds3 tri(p0, p1);
@@ -37,7 +54,9 @@ inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, co
     glm::dvec3 p;
     uint32_t exact;
   };
-  Vertex poly[10], next[10];  // a triangle clipped by six planes has at most 9 vertices
+  Vertex buffer[2][10];  // a triangle clipped by six planes has at most 9 vertices
+  Vertex* poly = buffer[0];
+  Vertex* next = buffer[1];
   int n = 3;
   poly[0] = {glm::dvec3(p0), 7u};
   poly[1] = {glm::dvec3(p1), 7u};
@@ -51,27 +70,36 @@ inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, co
       double plane = keep_above ? box.lo[a] : box.hi[a];
       auto inside = [&](const Vertex& v) { return keep_above ? v.p[a] >= plane : v.p[a] <= plane; };
       int m = 0;
-      for (int i = 0; i < n; ++i) {
-        const Vertex& s = poly[i];
-        const Vertex& e = poly[(i + 1) % n];
+      for (int i = 0, j = n - 1; i < n; j = i++) {  // the edge from s = poly[j] to e = poly[i]
+        const Vertex& s = poly[j];
+        const Vertex& e = poly[i];
         bool s_in = inside(s), e_in = inside(e);
-        if (s_in) next[m++] = s;
         if (s_in != e_in) {
           // The edge crosses the plane: the crossing point, exact on this axis by construction.
           double t = (plane - s.p[a]) / (e.p[a] - s.p[a]);
-          t = std::fmin(1.0, std::fmax(0.0, t));
-          Vertex x;
+          t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+          Vertex& x = next[m++];
           x.p = s.p + t * (e.p - s.p);
           x.p[a] = plane;
           x.exact = 1u << a;
-          for (int b = 0; b < 3; ++b)
-            if (b != a && (s.exact & e.exact & (1u << b)) && s.p[b] == e.p[b]) x.exact |= 1u << b;
-          next[m++] = x;
+          // The other coordinates are exact when the inputs were and no operation rounded.
+          double num = plane - s.p[a], den = e.p[a] - s.p[a];
+          bool t_exact = ((s.exact & e.exact) >> a & 1u) && t > 0.0 && t < 1.0 && t * den == num &&
+                         two_product_error(t, den, t * den) == 0.0 && two_sum_error(plane, -s.p[a], num) == 0.0 &&
+                         two_sum_error(e.p[a], -s.p[a], den) == 0.0;
+          for (int b = 0; b < 3; ++b) {
+            if (b == a || !(s.exact & e.exact & (1u << b))) continue;
+            double d = e.p[b] - s.p[b], r = t * d;
+            if (d == 0.0 || (t_exact && two_sum_error(e.p[b], -s.p[b], d) == 0.0 &&
+                             two_product_error(t, d, r) == 0.0 && two_sum_error(s.p[b], r, x.p[b]) == 0.0))
+              x.exact |= 1u << b;
+          }
         }
+        if (e_in) next[m++] = e;
       }
       n = m;
       if (n == 0) return Bounds3();
-      for (int i = 0; i < n; ++i) poly[i] = next[i];
+      std::swap(poly, next);
     }
   }
 
@@ -82,8 +110,9 @@ inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, co
   for (int i = 0; i < n; ++i)
     for (int b = 0; b < 3; ++b) {
       double w = (poly[i].exact >> b) & 1u ? 0.0 : widen[b];
-      lo[b] = std::fmin(lo[b], poly[i].p[b] - w);
-      hi[b] = std::fmax(hi[b], poly[i].p[b] + w);
+      double l = poly[i].p[b] - w, h = poly[i].p[b] + w;
+      lo[b] = l < lo[b] ? l : lo[b];
+      hi[b] = h > hi[b] ? h : hi[b];
     }
   Bounds3 r;
   for (int b = 0; b < 3; ++b) {

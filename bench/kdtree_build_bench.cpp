@@ -1,0 +1,114 @@
+// raystep_bench_kdtree_build: kd-tree build time (median of several builds, one thread) of the SAH sweep and
+// the spatial-median builder on a mesh at 1x, 4x and 16x its triangles (each triangle split into four at its
+// edge midpoints, repeatedly), to show the O(N log N) growth; with each tree's nodes, leaves, depth,
+// references per primitive and SAH cost.
+// Usage: raystep_bench_kdtree_build [MESH.obj|SCENE.json] [--reps N] [--levels L] [--builders sah,median,...]
+// Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
+// (exit 0, with a message) when that file is absent.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "raystep/accel/kdtree_build.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/util/error.h"
+
+using namespace raystep;
+
+namespace {
+
+// Each triangle into four at its edge midpoints (the same surface, 4x the triangles).
+Geometry subdivide(const Geometry& g) {
+  Geometry out;
+  out.begin_object("subdivided", 0);
+  for (uint32_t id = 0; id < g.size(); ++id) {
+    if (g.type(id) != PrimType::triangle) {
+      out.add_sphere(g.sphere(id));
+      continue;
+    }
+    glm::vec3 a = g.vertex(id, 0), b = g.vertex(id, 1), c = g.vertex(id, 2);
+    glm::vec3 ab = 0.5f * (a + b), bc = 0.5f * (b + c), ca = 0.5f * (c + a);
+    out.add_triangle(a, ab, ca);
+    out.add_triangle(ab, b, bc);
+    out.add_triangle(ca, bc, c);
+    out.add_triangle(ab, bc, ca);
+  }
+  return out;
+}
+
+double median_ms(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
+  int reps = 5, levels = 2;
+  std::string builders = "sah,median";
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "error: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--reps") reps = std::max(1, std::stoi(next()));
+    else if (a == "--levels") levels = std::max(0, std::stoi(next()));
+    else if (a == "--builders") builders = next();
+    else mesh = a;
+  }
+  if (!std::filesystem::exists(mesh)) {
+    std::printf("skipped: %s not found (the shared meshes are not part of the repository)\n", mesh.c_str());
+    return 0;
+  }
+  try {
+    Scene scene = load_scene(mesh);
+    std::vector<Geometry> scaled;
+    scaled.push_back(std::move(scene.geometry));
+    for (int l = 0; l < levels; ++l) scaled.push_back(subdivide(scaled.back()));
+
+    std::printf("%s\n", mesh.c_str());
+    std::printf("%-8s %6s %9s %10s %9s %9s %8s %6s %9s %10s\n", "builder", "scale", "prims", "build_ms", "nodes",
+                "leaves", "empty", "depth", "refs/prim", "sah_cost");
+    std::stringstream list(builders);
+    std::string name;
+    while (std::getline(list, name, ',')) {
+      KdOptions o;
+      if (name == "sah") o.builder = KdBuilder::sah;
+      else if (name == "median") o.builder = KdBuilder::median;
+      else if (name == "reference") o.builder = KdBuilder::sah_reference;
+      else {
+        std::fprintf(stderr, "error: unknown builder %s\n", name.c_str());
+        return 2;
+      }
+      for (size_t l = 0; l < scaled.size(); ++l) {
+        const Geometry& g = scaled[l];
+        std::vector<double> ms;
+        KdTreeData tree;
+        for (int r = 0; r < reps; ++r) {
+          auto t0 = std::chrono::steady_clock::now();
+          tree = build_kdtree(g, o);
+          auto t1 = std::chrono::steady_clock::now();
+          ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        }
+        KdTreeStats s = kd_tree_stats(tree, o);
+        std::printf("%-8s %5zux %9zu %10.1f %9zu %9zu %8zu %6d %9.2f %10.1f\n", name.c_str(), size_t(1) << (2 * l),
+                    g.size(), median_ms(ms), s.nodes, s.leaves, s.empty_leaves, s.max_depth,
+                    double(s.references) / double(std::max<size_t>(g.size(), 1)), s.sah_cost);
+        std::fflush(stdout);
+      }
+    }
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
