@@ -45,16 +45,6 @@ class KdTree final : public Accelerator {
   Mailboxes mailboxes_;
 };
 
-namespace detail {
-// b lies clearly beyond a: by more than a relative 2^-12 of the smaller magnitude (an infinity is beyond every
-// finite value). Computed t values stray a few ulps from the exact plane distances (slivers: ~1e-5 relative), so
-// decisions that skip a node are taken only with that margin: a node within it is visited, which costs a little
-// time and never a hit.
-inline bool clearly_beyond(float a, float b) {
-  return b - a > std::min(std::fabs(a), std::fabs(b)) * (1.f / 4096.f);
-}
-}  // namespace detail
-
 template <class Recorder>
 bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
   *hit = Hit{};
@@ -66,6 +56,10 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     rec.ray_end(*hit);
     return false;
   }
+  // Computed t values stray a few ulps from the exact plane distances, so a decision that skips a node is taken
+  // only beyond a margin of 2^-12 of the largest t in the root's box: a node within it is visited, which costs a
+  // little time and never a hit.
+  const float margin = std::max(std::fabs(t_min), std::fabs(t_max)) * (1.f / 4096.f);
 
   // The stack of far children still to visit, with the part of the ray inside each.
   struct Entry {
@@ -95,27 +89,26 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       int axis = node.axis();
       float o = component(ray.origin, axis), d = component(ray.direction, axis);
       // A multiplication by the reciprocal, not a division: t* is on the path from one node to the next.
-      float t_split = (node.split - o) * component(slab.inv_dir, axis);  // NaN when the ray lies in the plane
-      if (d == 0.f && !std::isnan(t_split)) t_split = kInfinity;  // parallel beside the plane: never crosses
+      float t_split = (node.split - o) * component(slab.inv_dir, axis);
 
-      // The near child is the side the ray is on before it crosses the plane (for an origin in front of the
-      // plane, the origin's side; for an origin on it, the side the ray goes away from); a ray parallel to
-      // the plane stays on its origin's side.
-      bool below_first = d > 0.f || (d == 0.f && o <= node.split);
+      // The near child is the side the ray is on before it crosses the plane: below it for a direction that
+      // points up the axis. By the sign bit, so that a ray parallel to the plane (direction +0 or -0, t* = +-inf)
+      // stays on its origin's side, and an origin on the plane goes to the side the ray moves into.
+      bool below_first = !std::signbit(d);
       uint32_t below = node_id + 1, above = node.above_child();
       uint32_t near_child = below_first ? below : above, far_child = below_first ? above : below;
 
       // Advance to the next child node, possibly push the other one.
-      if (std::isnan(t_split)) {
-        // The ray lies in the split plane: it touches both children over the whole interval.
+      if (t_split > t_max + margin) {
+        node_id = near_child;  // the ray leaves the node before it reaches the plane
+      } else if (t_split < t_min - margin) {
+        node_id = far_child;  // the ray crossed the plane before it entered the node
+      } else if (std::isnan(t_split)) {
+        // The ray lies in the split plane (0 * inf): it touches both children over the whole interval.
         rec.push(TreeStep{int32_t(far_child), depth + 1, t_min, t_max});
         stack[stack_size++] = Entry{far_child, depth + 1, t_min, t_max, true};
         ++in_plane_entries;
         node_id = near_child;
-      } else if (detail::clearly_beyond(t_max, t_split)) {
-        node_id = near_child;  // the ray leaves the node before it reaches the plane
-      } else if (detail::clearly_beyond(t_split, t_min)) {
-        node_id = far_child;  // the ray crossed the plane before it entered the node
       } else {
         // Both: Intersect(near, t_min, t*) now, push (far, t*, t_max) for later.
         float t_star = std::min(std::max(t_split, t_min), t_max);
@@ -164,7 +157,7 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       const Entry& e = stack[--stack_size];
       in_plane_entries -= e.in_plane;
       rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
-      if (nearest.found() && detail::clearly_beyond(t_nearest, e.t_min)) {
+      if (nearest.found() && t_nearest < e.t_min - margin) {
         reason = AcceptReason::next_node_beyond;
         if (in_plane_entries == 0) break;
         continue;
