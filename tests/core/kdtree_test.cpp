@@ -199,17 +199,17 @@ TEST(KdTree, HardRaysOnBoxesWhoseFacesAreCandidatePlanes) {
     ASSERT_GT(rays.size(), 30u);
     // Neighbouring boxes share faces: coincident triangles are hit at the same t, either may be reported.
     EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << int(builder);
-    std::vector<Ray> random = random_rays(g.bounds(), 50000, 13);
+    std::vector<Ray> random = random_rays(g.bounds(), 100000, 13);
     EXPECT_EQ(count_disagreements(*tree, brute, random), 0) << int(builder);
   }
 }
 
 TEST(KdTree, CoplanarAndIdenticalTriangles) {
   for (int scene = 0; scene < 2; ++scene) {
-    Geometry g = scene == 0 ? make_coplanar(1000) : make_identical(1000);
+    Geometry g = scene == 0 ? make_coplanar(400) : make_identical(400);
     BruteForce brute;
     brute.build(g);
-    std::vector<Ray> random = random_rays(g.bounds(), 10000, 14);
+    std::vector<Ray> random = random_rays(g.bounds(), 100000, 14);
     for (KdBuilder builder : kBuilders) {
       auto tree = make_tree(g, builder);
       std::vector<Ray> rays = random, hard = plane_rays(*tree, 5);
