@@ -53,6 +53,7 @@ class MainWindow : public QMainWindow {
 
  private:
   void showError(const QString& message);
+  QString took(const QString& what, double ms) const;
   // Runs work off the GUI thread (in place when scripted) and then done on the GUI thread; an InputError
   // thrown by work is shown (or rethrown when scripted).
   void runTask(const QString& what, std::function<std::function<void()>()> work);

@@ -1,5 +1,6 @@
 #include "script.h"
 
+#include <chrono>
 #include <cstdio>
 #include <regex>
 
@@ -224,10 +225,16 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       bool ok = false;
       int n = p.value(name).toInt(&ok);
       if (!ok || n < 0) fail(std::string("--") + name + " expects a count >= 0");
+      double total = 0, worst = 0;
       for (int i = 0; i < n; ++i) {
+        auto t0 = std::chrono::steady_clock::now();
         s->stepBy(delta);
         QApplication::processEvents();
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        total += ms;
+        worst = std::max(worst, ms);
       }
+      if (n > 0) std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
     }
     if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
     settle(window);
