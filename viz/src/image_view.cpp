@@ -221,7 +221,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   opacity_ = new QSlider(Qt::Horizontal);
   opacity_->setRange(0, 100);
   opacity_->setValue(75);
-  opacity_->setMaximumWidth(80);
+  opacity_->setFixedWidth(70);
   opacity_->setToolTip(tr("Heat map opacity"));
   row2->addWidget(opacity_);
   secondary_ = new QCheckBox(tr("Secondary rays"));
@@ -267,6 +267,7 @@ void ImageView::setHeatQuantity(const QString& q) {
   if (i >= 0) heat_->setCurrentIndex(i);
 }
 bool ImageView::secondaryRays() const { return secondary_->isChecked(); }
+void ImageView::setSecondaryRays(bool on) { secondary_->setChecked(on); }
 void ImageView::setStatus(const QString& text) { status_->setText(text); }
 
 }  // namespace raystep::viz

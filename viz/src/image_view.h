@@ -66,6 +66,7 @@ class ImageView : public QWidget {
   QString heatQuantity() const;
   void setHeatQuantity(const QString& q);
   bool secondaryRays() const;
+  void setSecondaryRays(bool on);
   void setStatus(const QString& text);
   ImageCanvas* canvas() const { return canvas_; }
 

@@ -56,14 +56,15 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   left->addWidget(imageView_);
   left->setStretchFactor(0, 0);
   left->setStretchFactor(1, 1);
+  left->setSizes({200, 500});
   auto* stateScroll = new QScrollArea;
   stateScroll->setWidget(statePanel_);
   stateScroll->setWidgetResizable(true);
   auto* right = new QSplitter(Qt::Vertical);
   right->addWidget(stateScroll);
+  right->addWidget(statePanel_->mailboxWidget());
   right->addWidget(eventList_);
-  right->setStretchFactor(0, 3);
-  right->setStretchFactor(1, 2);
+  right->setSizes({400, 130, 200});
   auto* columns = new QSplitter(Qt::Horizontal);
   columns->addWidget(left);
   columns->addWidget(sceneView_);

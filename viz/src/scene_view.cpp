@@ -398,7 +398,8 @@ void SceneView::updateStep() {
   d.primData->SetPolys(ptris);
   d.primData->GetCellData()->SetScalars(pcolors);
   d.primData->Modified();
-  d.primActor->GetProperty()->SetOpacity(d.translucent ? 0.7 : 1.0);
+  // Translucent, so that a big hit triangle does not hide the cells and the ray behind it.
+  d.primActor->GetProperty()->SetOpacity(0.6);
 
   // The ray, from its origin to where the walk ends (the final hit, or the grid's exit), and its interval now.
   vtkNew<vtkPoints> rpts, spts;
@@ -439,7 +440,7 @@ void SceneView::updateStep() {
   if (ray && s.nearestPrim >= 0) {
     glm::vec3 p = ray->ray.at(s.nearestT);
     d.hitSphere->SetCenter(p.x, p.y, p.z);
-    d.hitSphere->SetRadius(0.018 * d.sceneRadius);
+    d.hitSphere->SetRadius(0.03 * d.sceneRadius);
     setColor(d.hitActor, s.accepted ? palette::hitFinal : palette::hitCandidate);
     d.hitActor->SetVisibility(true);
   } else {

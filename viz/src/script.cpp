@@ -171,6 +171,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       parseSize("size", p.value("size"), &w, &h);
       window.setImageSize(w, h);
     }
+    if (p.isSet("secondary")) window.imageView()->setSecondaryRays(true);
     if (p.isSet("translucent")) window.sceneView()->setTranslucent(true);
     if (p.isSet("follow")) window.sceneView()->setFollowCell(true);
 

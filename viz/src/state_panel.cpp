@@ -100,7 +100,9 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   layout->addWidget(counterBox);
 
   auto* mailBox = new QGroupBox(tr("Mailbox: primitives tested for this ray"));
+  mailboxBox_ = mailBox;
   auto* mailLayout = new QVBoxLayout(mailBox);
+  mailLayout->setContentsMargins(2, 2, 2, 2);
   mailbox_ = new MailboxModel(this);
   mailboxView_ = new QTableView;
   mailboxView_->setObjectName("mailboxTable");
@@ -110,7 +112,7 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   mailboxView_->verticalHeader()->setDefaultSectionSize(18);
   mailboxView_->setFocusPolicy(Qt::NoFocus);
   mailLayout->addWidget(mailboxView_);
-  layout->addWidget(mailBox, 1);
+  layout->addStretch();
 
   connect(session_, &Session::stepChanged, this, &StatePanel::refresh);
   connect(session_, &Session::traceChanged, this, &StatePanel::refresh);

@@ -22,6 +22,8 @@ class StatePanel : public QWidget {
   explicit StatePanel(Session* session, QWidget* parent = nullptr);
   // Every text shown, and the mailbox table, for the scripted mode's --dump-state.
   QJsonObject dumpState() const;
+  // The mailbox table, which the window places on its own (it wants height).
+  QWidget* mailboxWidget() const { return mailboxBox_; }
 
  private:
   void refresh();
@@ -35,6 +37,7 @@ class StatePanel : public QWidget {
   QLabel* nearest_;
   QLabel* rule_;
   QLabel* counters_;
+  QWidget* mailboxBox_;
   QTableView* mailboxView_;
   MailboxModel* mailbox_;
 };
