@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unordered_map>
 
 namespace raystep::viz {
 
@@ -44,6 +45,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
   s.event = &ev[size_t(step)];
 
   // Walk the log up to the current event, as the kernel did.
+  std::unordered_map<int32_t, size_t> tested;  // prim -> its mailbox entry
   for (int i = 0; i <= step; ++i) {
     const Event& e = ev[size_t(i)];
     switch (e.type) {
@@ -75,6 +77,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         if (s.cellEvent >= 0) std::copy(ev[size_t(s.cellEvent)].cell, ev[size_t(s.cellEvent)].cell + 3, m.cell);
         m.hit = e.hit;
         m.t = e.t;
+        tested.emplace(e.prim, s.mailbox.size());
         s.mailbox.push_back(m);
         if (e.hit) {
           ++s.counters.prim_hits;
@@ -86,8 +89,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
       }
       case EventType::mailbox_hit:
         ++s.counters.mailbox_hits;
-        for (MailboxEntry& m : s.mailbox)
-          if (m.prim == e.prim) ++m.skips;
+        if (auto it = tested.find(e.prim); it != tested.end()) ++s.mailbox[it->second].skips;
         break;
       case EventType::hit_deferred: s.deferred = true; break;
       case EventType::hit_accepted:
@@ -104,6 +106,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
 
   // The primitives of the current cell (or leaf): the tests and mailbox hits between it and the next one.
   int blockStart = std::max(s.cellEvent, s.nodeEvent);
+  s.blockEvent = blockStart;
   if (blockStart >= 0) {
     for (size_t i = size_t(blockStart) + 1; i < ev.size(); ++i) {
       const Event& e = ev[i];

@@ -39,7 +39,9 @@ struct ReplayState {
   std::vector<int> visitedCellEvents;
   // The current tree node (kd-tree: node/push/pop/leaf), -1: none.
   int nodeEvent = -1;
-  // The primitives of the current cell: every one it references, in the order the walk meets them.
+  // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
+  // every one it references, in the order the walk meets them.
+  int blockEvent = -1;
   std::vector<PrimMark> prims;
   std::vector<MailboxEntry> mailbox;  // in test order
   RayCounters counters;

@@ -122,6 +122,10 @@ struct SceneView::Impl {
   glm::vec3 gridLo{0.f}, gridHi{1.f};
   int res[3] = {1, 1, 1};
   std::map<int32_t, PrimShape> prims;
+  // The current block's primitive shapes: which ray and block they were made for, cells per primitive.
+  const void* primBlockRay = nullptr;
+  int primBlock = -2;
+  std::vector<int> primCells;
   float sceneRadius = 1.f;
   bool translucent = false, follow = false;
   double lastMs = 0.0;
@@ -256,6 +260,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     updateStep();
   });
   connect(session_, &Session::traceChanged, this, [this] {
+    d_->primBlockRay = nullptr;  // a new trace may live where the old one did
     // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
     if (!session_->scene()) {
       rebuildGeometry();
@@ -280,6 +285,8 @@ void SceneView::rebuildGeometry() {
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetNumberOfComponents(3);
   d.prims.clear();
+  d.primBlockRay = nullptr;
+  d.primBlock = -2;
   d.haveGrid = false;
   Bounds3 bounds;
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
@@ -376,27 +383,43 @@ void SceneView::updateStep() {
   d.cellData->SetLines(clines);
   d.cellData->Modified();
 
-  // The current cell's primitives by state.
-  vtkNew<vtkPoints> ppts;
-  vtkNew<vtkCellArray> ptris;
-  vtkNew<vtkUnsignedCharArray> pcolors;
-  pcolors->SetNumberOfComponents(3);
-  for (const PrimMark& m : s.prims) {
-    auto it = d.prims.find(m.prim);
-    if (it == d.prims.end()) continue;
-    vtkIdType before = ptris->GetNumberOfCells();
-    addPrim(ppts, ptris, it->second);
-    QColor c = m.state == PrimState::pending   ? palette::primPending
-               : m.state == PrimState::testing ? palette::primTesting
-               : m.state == PrimState::hit     ? palette::primHit
-               : m.state == PrimState::missed  ? palette::primMissed
-                                               : palette::primSkipped;
-    unsigned char rgb[3] = {(unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue()};
-    for (vtkIdType i = before; i < ptris->GetNumberOfCells(); ++i) pcolors->InsertNextTypedTuple(rgb);
+  // The current cell's primitives by state. Their shapes change only when the walk enters another cell;
+  // within a cell a step changes only their colours.
+  const void* blockKey = ray;
+  if (blockKey != d.primBlockRay || s.blockEvent != d.primBlock) {
+    d.primBlockRay = blockKey;
+    d.primBlock = s.blockEvent;
+    vtkNew<vtkPoints> ppts;
+    vtkNew<vtkCellArray> ptris;
+    d.primCells.clear();
+    for (const PrimMark& m : s.prims) {
+      auto it = d.prims.find(m.prim);
+      vtkIdType before = ptris->GetNumberOfCells();
+      if (it != d.prims.end()) addPrim(ppts, ptris, it->second);
+      d.primCells.push_back(int(ptris->GetNumberOfCells() - before));
+    }
+    d.primData->SetPoints(ppts);
+    d.primData->SetPolys(ptris);
+    vtkNew<vtkUnsignedCharArray> pcolors;
+    pcolors->SetNumberOfComponents(3);
+    pcolors->SetNumberOfTuples(ptris->GetNumberOfCells());
+    d.primData->GetCellData()->SetScalars(pcolors);
   }
-  d.primData->SetPoints(ppts);
-  d.primData->SetPolys(ptris);
-  d.primData->GetCellData()->SetScalars(pcolors);
+  {
+    auto* pcolors = vtkUnsignedCharArray::SafeDownCast(d.primData->GetCellData()->GetScalars());
+    vtkIdType cell = 0;
+    for (size_t i = 0; i < s.prims.size() && i < d.primCells.size(); ++i) {
+      const PrimMark& m = s.prims[i];
+      QColor c = m.state == PrimState::pending   ? palette::primPending
+                 : m.state == PrimState::testing ? palette::primTesting
+                 : m.state == PrimState::hit     ? palette::primHit
+                 : m.state == PrimState::missed  ? palette::primMissed
+                                                 : palette::primSkipped;
+      unsigned char rgb[3] = {(unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue()};
+      for (int k = 0; k < d.primCells[i]; ++k) pcolors->SetTypedTuple(cell++, rgb);
+    }
+    pcolors->Modified();
+  }
   d.primData->Modified();
   // Translucent, so that a big hit triangle does not hide the cells and the ray behind it.
   d.primActor->GetProperty()->SetOpacity(0.6);
@@ -458,8 +481,12 @@ void SceneView::updateStep() {
     cam->SetPosition(pos[0] + c.x - fp[0], pos[1] + c.y - fp[1], pos[2] + c.z - fp[2]);
     d.base->ResetCameraClippingRange();
   }
+  auto t1 = std::chrono::steady_clock::now();
   renderNow();
   d.lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (getenv("RAYSTEP_GUI_PROFILE"))
+    fprintf(stderr, "update %.1f ms render %.1f ms\n", std::chrono::duration<double, std::milli>(t1 - t0).count(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
 }
 
 void SceneView::setTranslucent(bool on) {
@@ -504,8 +531,7 @@ void SceneView::fitCamera() {
 
 void SceneView::renderNow() {
   d_->base->ResetCameraClippingRange();
-  d_->window->Render();
-  d_->widget->update();
+  d_->window->Render();  // draws, and has the widget show the new frame
 }
 
 QImage SceneView::grabView() { return d_->widget->grabFramebuffer(); }

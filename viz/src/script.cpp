@@ -230,7 +230,12 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       for (int i = 0; i < n; ++i) {
         auto t0 = std::chrono::steady_clock::now();
         s->stepBy(delta);
+        auto t1 = std::chrono::steady_clock::now();
         QApplication::processEvents();
+        if (getenv("RAYSTEP_GUI_PROFILE"))
+          std::fprintf(stderr, "step handlers %.1f ms, paint %.1f ms\n",
+                       std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
         double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         total += ms;
         worst = std::max(worst, ms);
