@@ -10,6 +10,7 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPushButton>
+#include <QToolButton>
 #include <QSlider>
 #include <QVBoxLayout>
 #include <QWheelEvent>
@@ -198,7 +199,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   auto* row1 = new QHBoxLayout;
   row1->addWidget(new QLabel(tr("<b>Image</b>")));
   row1->addStretch();
-  row1->addWidget(new QLabel(tr("Anti-aliasing")));
+  row1->addWidget(new QLabel(tr("AA")));
   aa_ = new QComboBox;
   aa_->setObjectName("aaCombo");
   aa_->setEditable(true);
@@ -221,16 +222,16 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   opacity_ = new QSlider(Qt::Horizontal);
   opacity_->setRange(0, 100);
   opacity_->setValue(75);
-  opacity_->setFixedWidth(70);
+  opacity_->setFixedWidth(50);
   opacity_->setToolTip(tr("Heat map opacity"));
   row2->addWidget(opacity_);
-  secondary_ = new QCheckBox(tr("Secondary rays"));
+  secondary_ = new QCheckBox(tr("2nd rays"));
   secondary_->setToolTip(tr("A click traces the pixel's shadow, reflected and refracted rays too"));
   row2->addWidget(secondary_);
   row2->addStretch();
   for (auto [text, z] : {std::pair{"Fit", 0.0}, std::pair{"1:1", 1.0}, std::pair{"8x", 8.0}}) {
-    auto* b = new QPushButton(tr(text));
-    b->setMaximumWidth(40);
+    auto* b = new QToolButton;
+    b->setText(tr(text));
     connect(b, &QPushButton::clicked, this, [this, z = z] { canvas_->setZoom(z); });
     row2->addWidget(b);
   }

@@ -64,7 +64,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   right->addWidget(stateScroll);
   right->addWidget(statePanel_->mailboxWidget());
   right->addWidget(eventList_);
-  right->setSizes({400, 130, 200});
+  right->setSizes({440, 110, 180});
   auto* columns = new QSplitter(Qt::Horizontal);
   columns->addWidget(left);
   columns->addWidget(sceneView_);

@@ -199,6 +199,29 @@ std::string explainRule(const TracedRay& ray, const ReplayState& s) {
                ": the walk ends in this cell.";
       return "Step along " + std::string(axisName(e.next_axis)) + ": t_max." + axisName(e.next_axis) + " = " +
              num(e.t_max[e.next_axis]) + " is the smallest t_max.";
+    case EventType::ray_begin: {
+      int first = findEvent(ray, 0, EventType::cell, true);
+      if (first < 0) return "The ray misses the grid's box (slab test): no cell to visit.";
+      return "Slab test: the ray enters the grid's box at t = " + num(ray.events[size_t(first)].t_enter) +
+             "; the walk starts in the cell that contains that point.";
+    }
+    case EventType::prim_test: {
+      std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," + std::to_string(cell->cell[1]) +
+                                     "," + std::to_string(cell->cell[2]) + ")"
+                               : "";
+      if (e.hit)
+        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
+               ", nearer than any hit so far. It becomes the nearest hit.";
+      return "Primitive " + std::to_string(e.prim) + where + ": no hit nearer than the nearest so far.";
+    }
+    case EventType::mailbox_hit: {
+      for (const MailboxEntry& m : s.mailbox)
+        if (m.prim == e.prim)
+          return "Primitive " + std::to_string(e.prim) + " was already tested in cell (" + std::to_string(m.cell[0]) +
+                 "," + std::to_string(m.cell[1]) + "," + std::to_string(m.cell[2]) +
+                 ") for this ray (it spans several cells): the mailbox skips the test.";
+      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
+    }
     default: return "";
   }
 }

@@ -8,7 +8,7 @@
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
-#include <QPushButton>
+#include <QToolButton>
 #include <QSurfaceFormat>
 #include <QVBoxLayout>
 
@@ -84,6 +84,8 @@ void addSphere(vtkPoints* pts, vtkCellArray* tris, const glm::vec3& c, float r, 
       tris->InsertNextCell(3, t2);
     }
 }
+
+constexpr size_t kMaxVisitedDrawn = 2000;
 
 struct PrimShape {
   bool sphere = false;
@@ -161,9 +163,10 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   layout->setSpacing(2);
 
   auto* bar = new QHBoxLayout;
-  auto* translucent = new QCheckBox(tr("Translucent scene"));
-  auto* follow = new QCheckBox(tr("Follow current cell"));
-  auto* fit = new QPushButton(tr("Fit view"));
+  auto* translucent = new QCheckBox(tr("Translucent"));
+  auto* follow = new QCheckBox(tr("Follow cell"));
+  auto* fit = new QToolButton;
+  fit->setText(tr("Fit view"));
   translucent->setObjectName("translucentCheck");
   follow->setObjectName("followCheck");
   bar->addWidget(new QLabel(tr("<b>3D view</b>")));
@@ -174,7 +177,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   layout->addLayout(bar);
   connect(translucent, &QCheckBox::toggled, this, &SceneView::setTranslucent);
   connect(follow, &QCheckBox::toggled, this, &SceneView::setFollowCell);
-  connect(fit, &QPushButton::clicked, this, [this] {
+  connect(fit, &QToolButton::clicked, this, [this] {
     fitCamera();
     renderNow();
   });
@@ -367,7 +370,11 @@ void SceneView::updateStep() {
   vtkNew<vtkPoints> vpts, cpts;
   vtkNew<vtkCellArray> vlines, clines;
   if (ray && d.haveGrid) {
-    for (int i : s.visitedCellEvents) {
+    // The most recent visited cells only: a walk through tens of thousands of cells would bury the view
+    // (and the software renderer) in lines; the ray itself shows where the walk came from.
+    size_t first = s.visitedCellEvents.size() > kMaxVisitedDrawn ? s.visitedCellEvents.size() - kMaxVisitedDrawn : 0;
+    for (size_t v = first; v < s.visitedCellEvents.size(); ++v) {
+      int i = s.visitedCellEvents[v];
       const Event& e = ray->events[size_t(i)];
       addBoxEdges(vpts, vlines, d.cellLo(e.cell), d.cellHi(e.cell));
     }

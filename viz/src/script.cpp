@@ -244,6 +244,11 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     }
     if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
     settle(window);
+    if (getenv("RAYSTEP_GUI_PROFILE"))
+      for (QWidget* w : window.findChildren<QWidget*>())
+        if (w->minimumSizeHint().width() > 250)
+          std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(), w->metaObject()->className(),
+                       w->objectName().toLocal8Bit().constData());
     if (p.isSet("export-trace")) {
       if (!s->trace()) fail("--export-trace: no trace (give --pixel)");
       window.exportTrace(p.value("export-trace"));

@@ -73,6 +73,7 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   auto spin = [](double v) {
     auto* s = new QDoubleSpinBox;
     s->setValue(v);
+    s->setMaximumWidth(70);
     return s;
   };
   k->addWidget(new QLabel(tr("t_i")), 0, 0);

@@ -3,7 +3,7 @@
 #include <QComboBox>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QPushButton>
+#include <QToolButton>
 #include <QShortcut>
 #include <QSlider>
 #include <QSpinBox>
@@ -31,18 +31,20 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   layout->setContentsMargins(4, 2, 4, 2);
   auto* row = new QHBoxLayout;
   auto button = [&](const QString& text, const QString& tip) {
-    auto* b = new QPushButton(text);
+    auto* b = new QToolButton;
+    b->setText(text);
+    b->setToolButtonStyle(Qt::ToolButtonTextOnly);
     b->setToolTip(tip);
     b->setFocusPolicy(Qt::NoFocus);
     row->addWidget(b);
     return b;
   };
-  QPushButton* first = button(tr("|<"), tr("First event (Home)"));
-  QPushButton* back = button(tr("< Step"), tr("Step back (Left)"));
+  QToolButton* first = button(tr("|<"), tr("First event (Home)"));
+  QToolButton* back = button(tr("< Step"), tr("Step back (Left)"));
   play_ = button(tr("Play"), tr("Play / pause (Space)"));
   play_->setObjectName("playButton");
-  QPushButton* fwd = button(tr("Step >"), tr("Step forward (Right)"));
-  QPushButton* last = button(tr(">|"), tr("Last event (End)"));
+  QToolButton* fwd = button(tr("Step >"), tr("Step forward (Right)"));
+  QToolButton* last = button(tr(">|"), tr("Last event (End)"));
   row->addWidget(new QLabel(tr("Speed")));
   speed_ = new QSpinBox;
   speed_->setRange(1, 200);
@@ -51,7 +53,7 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   row->addWidget(speed_);
   row->addSpacing(16);
   row->addWidget(new QLabel(tr("Jump to")));
-  QPushButton* prevKind = button(tr("< prev"), tr("Previous event of this kind"));
+  QToolButton* prevKind = button(tr("< prev"), tr("Previous event of this kind"));
   kind_ = new QComboBox;
   kind_->setObjectName("jumpKind");
   kind_->addItem(tr("cell"), "cell");
@@ -61,22 +63,27 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   kind_->addItem(tr("the hit"), "hit");
   kind_->setFocusPolicy(Qt::NoFocus);
   row->addWidget(kind_);
-  QPushButton* nextKind = button(tr("next >"), tr("Next event of this kind"));
+  QToolButton* nextKind = button(tr("next >"), tr("Next event of this kind"));
   row->addSpacing(16);
   row->addWidget(new QLabel(tr("Ray")));
   ray_ = new QComboBox;
   ray_->setObjectName("rayCombo");
   ray_->setFocusPolicy(Qt::NoFocus);
+  ray_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  ray_->setMinimumContentsLength(14);
   row->addWidget(ray_);
   row->addStretch();
+  layout->addLayout(row);
+  auto* row2 = new QHBoxLayout;
   position_ = new QLabel;
   position_->setObjectName("timelinePosition");
-  row->addWidget(position_);
-  layout->addLayout(row);
+  position_->setMinimumWidth(230);
   slider_ = new QSlider(Qt::Horizontal);
   slider_->setObjectName("timelineSlider");
   slider_->setFocusPolicy(Qt::NoFocus);
-  layout->addWidget(slider_);
+  row2->addWidget(slider_, 1);
+  row2->addWidget(position_);
+  layout->addLayout(row2);
 
   timer_ = new QTimer(this);
   connect(timer_, &QTimer::timeout, this, [this] {
@@ -86,13 +93,13 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   connect(speed_, QOverload<int>::of(&QSpinBox::valueChanged), this, [this](int v) { timer_->setInterval(1000 / v); });
   timer_->setInterval(1000 / speed_->value());
 
-  connect(first, &QPushButton::clicked, this, [this] { session_->setStep(0); });
-  connect(last, &QPushButton::clicked, this, [this] { session_->setStep(session_->eventCount() - 1); });
-  connect(back, &QPushButton::clicked, this, [this] { session_->stepBy(-1); });
-  connect(fwd, &QPushButton::clicked, this, [this] { session_->stepBy(1); });
-  connect(play_, &QPushButton::clicked, this, [this] { setPlaying(!playing()); });
-  connect(prevKind, &QPushButton::clicked, this, [this] { jump(kind_->currentData().toString(), false); });
-  connect(nextKind, &QPushButton::clicked, this, [this] { jump(kind_->currentData().toString(), true); });
+  connect(first, &QToolButton::clicked, this, [this] { session_->setStep(0); });
+  connect(last, &QToolButton::clicked, this, [this] { session_->setStep(session_->eventCount() - 1); });
+  connect(back, &QToolButton::clicked, this, [this] { session_->stepBy(-1); });
+  connect(fwd, &QToolButton::clicked, this, [this] { session_->stepBy(1); });
+  connect(play_, &QToolButton::clicked, this, [this] { setPlaying(!playing()); });
+  connect(prevKind, &QToolButton::clicked, this, [this] { jump(kind_->currentData().toString(), false); });
+  connect(nextKind, &QToolButton::clicked, this, [this] { jump(kind_->currentData().toString(), true); });
   connect(slider_, &QSlider::valueChanged, this, [this](int v) { session_->setStep(v); });
   connect(ray_, QOverload<int>::of(&QComboBox::activated), this, [this](int i) { session_->setRay(i); });
 

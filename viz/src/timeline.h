@@ -11,7 +11,7 @@
 
 class QComboBox;
 class QLabel;
-class QPushButton;
+class QToolButton;
 class QSlider;
 class QSpinBox;
 class QTimer;
@@ -38,7 +38,7 @@ class Timeline : public QWidget {
   QLabel* position_;
   QComboBox* kind_;
   QComboBox* ray_;
-  QPushButton* play_;
+  QToolButton* play_;
   QSpinBox* speed_;
   QTimer* timer_;
 };
