@@ -91,6 +91,12 @@ QRectF ImageCanvas::imageRect() const {
   return QRectF(topLeft + pan_, QSizeF(s.width() * z, s.height() * z));
 }
 
+QPoint ImageCanvas::widgetPosOf(int x, int y) const {
+  QRectF r = imageRect();
+  double z = zoom();
+  return QPoint(int(std::floor(r.left() + (x + 0.5) * z)), int(std::floor(r.top() + (y + 0.5) * z)));
+}
+
 QRect ImageCanvas::barRect() const { return QRect(width() - 62, 16, 14, std::max(40, height() - 32)); }
 
 void ImageCanvas::paintEvent(QPaintEvent*) {

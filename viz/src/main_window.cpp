@@ -135,21 +135,22 @@ void MainWindow::showError(const QString& message) {
   if (scripted_) QTimer::singleShot(0, box, &QMessageBox::accept);
 }
 
-void MainWindow::runTask(const QString& what, std::function<std::function<void()>()> work) {
+void MainWindow::runTask(const QString& kind, const QString& what,
+                         std::function<std::function<void()>()> work) {
   if (scripted_) {
     work()();  // errors propagate to the script
     return;
   }
-  int gen = ++generation_;
-  structure_->setBusy(true, what);
+  int gen = ++generation_[kind];
+  ++running_;
+  structure_->setBusy(true);
   statusBar()->showMessage(what);
   auto* watcher = new QFutureWatcher<std::function<void()>>(this);
-  connect(watcher, &QFutureWatcher<std::function<void()>>::finished, this, [this, watcher, gen] {
+  connect(watcher, &QFutureWatcher<std::function<void()>>::finished, this, [this, watcher, gen, kind] {
     watcher->deleteLater();
     std::function<void()> done = watcher->result();
-    if (gen == generation_) structure_->setBusy(false, QString());
-    if (gen != generation_ && done) return;  // superseded
-    done();
+    if (--running_ == 0) structure_->setBusy(false);
+    if (gen == generation_[kind]) done();  // else a later request of the same kind superseded this one
   });
   watcher->setFuture(QtConcurrent::run([work, this]() -> std::function<void()> {
     try {
@@ -200,7 +201,7 @@ void MainWindow::openTrace(const QString& path) {
 
 void MainWindow::openScene(const QString& path) {
   std::string p = path.toStdString();
-  runTask(tr("Loading %1...").arg(path), [this, p, path] {
+  runTask("open", tr("Loading %1...").arg(path), [this, p, path] {
     auto scene = loadSceneData(p);
     return std::function<void()>([this, scene, path] {
       session_->setScene(scene);
@@ -221,9 +222,10 @@ void MainWindow::buildStructure() {
   auto scene = session_->sceneShared();
   if (!scene) return showError(tr("Open a scene first: a trace replays the structure it recorded."));
   GridOptions o = structure_->gridOptions();
-  runTask(tr("Building the grid..."), [this, scene, o] {
+  runTask("build", tr("Building the grid..."), [this, scene, o] {
     auto grid = buildGridData(scene, o);
-    return std::function<void()>([this, grid] {
+    return std::function<void()>([this, grid, scene] {
+      if (scene != session_->sceneShared()) return;  // built for a scene since replaced
       session_->setGrid(grid);
       auto r = grid->grid.resolution();
       structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
@@ -250,10 +252,11 @@ void MainWindow::renderPicture() {
   std::string aa = imageView_->antiAliasing().toStdString();
   int w = session_->imageWidth(), h = session_->imageHeight();
   imageView_->setStatus(tr("Rendering %1x%2 (%3)...").arg(w).arg(h).arg(QString::fromStdString(aa)));
-  runTask(tr("Rendering..."), [this, grid, aa, w, h] {
+  runTask("render", tr("Rendering..."), [this, grid, aa, w, h] {
     double ms = 0;
     QImage img = viz::renderPicture(*grid, aa, w, h, &ms);
-    return std::function<void()>([this, img, ms, w, h, aa] {
+    return std::function<void()>([this, grid, img, ms, w, h, aa] {
+      if (grid != session_->gridShared()) return;  // made for a grid since replaced
       session_->setPicture(img);
       imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
                             took(tr(", rendered"), ms) + tr(". Click a pixel to trace its ray."));
@@ -271,10 +274,11 @@ void MainWindow::computeHeat() {
   }
   HeatQuantity quantity = parse_heat_quantity(q.toStdString());
   int w = session_->imageWidth(), h = session_->imageHeight();
-  runTask(tr("Computing the heat map..."), [this, grid, quantity, w, h] {
+  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, w, h] {
     double ms = 0;
     auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, w, h, &ms));
-    return std::function<void()>([this, heat, ms] {
+    return std::function<void()>([this, grid, heat, ms] {
+      if (grid != session_->gridShared()) return;
       session_->setHeat(heat);
       statusBar()->showMessage(tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
                                tr(" (max %1, mean %2)")

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 
 #include <QMainWindow>
@@ -56,7 +57,8 @@ class MainWindow : public QMainWindow {
   QString took(const QString& what, double ms) const;
   // Runs work off the GUI thread (in place when scripted) and then done on the GUI thread; an InputError
   // thrown by work is shown (or rethrown when scripted).
-  void runTask(const QString& what, std::function<std::function<void()>()> work);
+  // A newer task of the same kind ("open", "build", "render", "heat") supersedes an older one.
+  void runTask(const QString& kind, const QString& what, std::function<std::function<void()>()> work);
   void openScene(const QString& path);
   void openTrace(const QString& path);
   void buildMenus();
@@ -69,7 +71,8 @@ class MainWindow : public QMainWindow {
   StatePanel* statePanel_;
   EventList* eventList_;
   bool scripted_ = false;
-  int generation_ = 0;  // results of superseded work are dropped
+  std::map<QString, int> generation_;  // per kind: results of superseded work are dropped
+  int running_ = 0;
   int sizeW_ = 0, sizeH_ = 0;
   QString lastError_;
 };

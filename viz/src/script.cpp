@@ -10,6 +10,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QMouseEvent>
 #include <QThread>
 
 #include "event_list.h"
@@ -190,7 +191,27 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     if (p.isSet("pixel")) {
       std::vector<int> px = parseInts("pixel", p.value("pixel"), 2, 0);
       if (!s->scene()) fail("--pixel needs a scene (a trace file already holds its rays)");
-      window.tracePixel(px[0], px[1]);
+      if (px[0] >= s->imageWidth() || px[1] >= s->imageHeight())
+        fail("--pixel " + p.value("pixel").toStdString() + ": outside the " + std::to_string(s->imageWidth()) + "x" +
+             std::to_string(s->imageHeight()) + " image");
+      // A click on the picture, as a user makes it (when the pixel is big enough on screen to hit it).
+      settle(window);
+      ImageCanvas* canvas = window.imageView()->canvas();
+      QPoint at = canvas->widgetPosOf(px[0], px[1]);
+      if (canvas->zoom() >= 1.0 && canvas->rect().contains(at)) {
+        QMouseEvent press(QEvent::MouseButtonPress, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::LeftButton,
+                          Qt::NoModifier);
+        QMouseEvent release(QEvent::MouseButtonRelease, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::NoButton,
+                            Qt::NoModifier);
+        QApplication::sendEvent(canvas, &press);
+        QApplication::sendEvent(canvas, &release);
+      }
+      const Trace* t = s->trace();
+      if (!t || t->rays.empty() || !t->rays[0].has_pixel || t->rays[0].pixel[0] != px[0] || t->rays[0].pixel[1] != px[1])
+      {
+        std::fprintf(stderr, "note: pixel traced without a click (the picture is shown smaller than 1:1)\n");
+        window.tracePixel(px[0], px[1]);
+      }
     }
     if (p.isSet("ray")) {
       bool ok = false;

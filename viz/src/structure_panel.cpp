@@ -123,11 +123,9 @@ void StructurePanel::setGridOptions(const GridOptions& o) {
   insert_->setCurrentIndex(o.exact_insert ? 0 : 1);
 }
 
-void StructurePanel::setBusy(bool busy, const QString& what) {
+void StructurePanel::setBusy(bool busy) {
   progress_->setRange(0, busy ? 0 : 1);  // 0..0: Qt's busy indicator
-  progress_->setValue(busy ? 0 : 1);
-  build_->setEnabled(!busy);
-  if (busy) info_->setText(what);
+  progress_->setValue(0);  // idle: empty
 }
 
 void StructurePanel::setInfo(const QString& text) { info_->setText(text); }

@@ -25,7 +25,7 @@ class StructurePanel : public QWidget {
   explicit StructurePanel(QWidget* parent = nullptr);
   GridOptions gridOptions() const;
   void setGridOptions(const GridOptions& o);
-  void setBusy(bool busy, const QString& what);
+  void setBusy(bool busy);  // a moving bar while work runs in the background
   void setInfo(const QString& text);
 
  Q_SIGNALS:
