@@ -156,6 +156,18 @@ TEST(Viz, StepBackAndForthGivesTheSameState) {
   EXPECT_NE(a.first.dump(1), d.first.dump(1));
 }
 
+#ifdef RAYSTEP_CLI_EXE
+TEST(Viz, ExportedTraceIsTheCommandLinesTrace) {
+  std::string gt = kOut + "/export_gui.trace.json", ct = kOut + "/export_cli.trace.json";
+  GuiRun r = gui(kPixel + " --secondary --export-trace '" + gt + "' --quit", "export");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' trace '" + kScene + "' --pixel 160,200 --secondary -o '" + ct +
+                    "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(gt), slurp(ct)) << "the GUI's export and `raystep trace` differ";
+}
+#endif
+
 TEST(Viz, TraceFileReplaysLikeTheScene) {
   std::string tr = kOut + "/replay.trace.json", st1 = kOut + "/replay_scene.json", st2 = kOut + "/replay_trace.json";
   std::string png = kOut + "/replay_trace.png";

@@ -185,14 +185,17 @@ void MainWindow::openTrace(const QString& path) {
   double totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   size_t events = 0;
   for (const TracedRay& r : trace->rays) events += r.events.size();
-  structure_->setInfo(tr("Replaying %1 (%2 rays, %3 events; structure %4, %5x%6x%7) without the scene.")
+  QString structure = QString::fromStdString(trace->structure.kind);
+  if (trace->structure.kind == "grid")
+    structure += QString(" %1x%2x%3")
+                     .arg(trace->structure.resolution[0])
+                     .arg(trace->structure.resolution[1])
+                     .arg(trace->structure.resolution[2]);
+  structure_->setInfo(tr("Replaying %1 (%2 rays, %3 events; structure %4) without the scene.")
                           .arg(QFileInfo(path).fileName())
                           .arg(trace->rays.size())
                           .arg(events)
-                          .arg(QString::fromStdString(trace->structure.kind))
-                          .arg(trace->structure.resolution[0])
-                          .arg(trace->structure.resolution[1])
-                          .arg(trace->structure.resolution[2]));
+                          .arg(structure));
   imageView_->setStatus(tr("Trace replay: no picture (open the scene to render it)."));
   statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) + took(tr(", shown"), totalMs));
   std::fprintf(stderr, "timing: trace %zu events read %.1f ms, opened %.1f ms\n", events, readMs, totalMs);

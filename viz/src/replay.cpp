@@ -66,8 +66,14 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         s.tMin = e.t_min_node;
         s.tMax = e.t_max_node;
         if (e.type == EventType::node) ++s.counters.nodes;
-        if (e.type == EventType::push) ++s.counters.pushes;
-        if (e.type == EventType::pop) ++s.counters.pops;
+        if (e.type == EventType::push) {
+          ++s.counters.pushes;
+          s.stack.push_back(StackEntry{e.node, e.depth, e.t_min_node, e.t_max_node});
+        }
+        if (e.type == EventType::pop) {
+          ++s.counters.pops;
+          if (!s.stack.empty()) s.stack.pop_back();
+        }
         break;
       case EventType::prim_test: {
         ++s.counters.prim_tests;

@@ -31,14 +31,22 @@ struct MailboxEntry {
   int skips = 0;  // mailbox hits so far
 };
 
+// Trees: an entry of the traversal stack (the far child pushed, with its interval).
+struct StackEntry {
+  int32_t node = -1;
+  int32_t depth = 0;
+  float tMin = 0.f, tMax = 0.f;
+};
+
 struct ReplayState {
   int step = -1;  // index of the current event
   const Event* event = nullptr;
   // Grid: the current cell event (index into events, -1: none yet) and the cells visited before it.
   int cellEvent = -1;
   std::vector<int> visitedCellEvents;
-  // The current tree node (kd-tree: node/push/pop/leaf), -1: none.
+  // The current tree node (kd-tree: node/push/pop/leaf), -1: none, and the stack: pushes not yet popped.
   int nodeEvent = -1;
+  std::vector<StackEntry> stack;
   // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
   // every one it references, in the order the walk meets them.
   int blockEvent = -1;

@@ -86,6 +86,7 @@ void addSphere(vtkPoints* pts, vtkCellArray* tris, const glm::vec3& c, float r, 
 }
 
 constexpr size_t kMaxVisitedDrawn = 2000;
+constexpr int kMaxLatticeCells = 16;  // per axis
 
 struct PrimShape {
   bool sphere = false;
@@ -114,8 +115,8 @@ struct SceneView::Impl {
   vtkNew<vtkRenderer> base;     // scene and grid outline, depth-tested together
   vtkNew<vtkRenderer> overlay;  // the walk, drawn over the scene so that it is never hidden
 
-  vtkNew<vtkPolyData> sceneData, outlineData, visitedData, cellData, primData, rayData, segmentData;
-  vtkSmartPointer<vtkActor> sceneActor, outlineActor, visitedActor, cellActor, primActor, rayActor, segmentActor;
+  vtkNew<vtkPolyData> sceneData, outlineData, latticeData, visitedData, cellData, primData, rayData, segmentData;
+  vtkSmartPointer<vtkActor> sceneActor, outlineActor, latticeActor, visitedActor, cellActor, primActor, rayActor, segmentActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
 
@@ -215,6 +216,9 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   }
   d.outlineActor = unlitActor(d.outlineData, palette::gridOutline, 1.f);
   d.base->AddActor(d.outlineActor);
+  d.latticeActor = unlitActor(d.latticeData, palette::gridOutline, 1.f);
+  d.latticeActor->GetProperty()->SetOpacity(0.13);
+  d.base->AddActor(d.latticeActor);
   d.visitedActor = unlitActor(d.visitedData, palette::visitedCell, 2.f);
   d.visitedActor->GetProperty()->SetOpacity(0.55);
   {
@@ -357,6 +361,30 @@ void SceneView::rebuildGeometry() {
   d.outlineData->SetPoints(opts);
   d.outlineData->SetLines(olines);
   d.outlineData->Modified();
+
+  // The cell lattice, faint, when it is coarse enough to read (a fine grid would be a grey fog).
+  vtkNew<vtkPoints> lpts;
+  vtkNew<vtkCellArray> llines;
+  const int* n = d.res;
+  if (d.haveGrid && n[0] <= kMaxLatticeCells && n[1] <= kMaxLatticeCells && n[2] <= kMaxLatticeCells) {
+    glm::vec3 size = (d.gridHi - d.gridLo) / glm::vec3(n[0], n[1], n[2]);
+    for (int a = 0; a < 3; ++a) {
+      int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int i = 0; i <= n[b]; ++i)
+        for (int j = 0; j <= n[c]; ++j) {
+          glm::vec3 p0, p1;
+          p0[a] = d.gridLo[a];
+          p1[a] = d.gridHi[a];
+          p0[b] = p1[b] = d.gridLo[b] + float(i) * size[b];
+          p0[c] = p1[c] = d.gridLo[c] + float(j) * size[c];
+          vtkIdType ids[2] = {lpts->InsertNextPoint(p0.x, p0.y, p0.z), lpts->InsertNextPoint(p1.x, p1.y, p1.z)};
+          llines->InsertNextCell(2, ids);
+        }
+    }
+  }
+  d.latticeData->SetPoints(lpts);
+  d.latticeData->SetLines(llines);
+  d.latticeData->Modified();
   d.sceneRadius = bounds.empty() ? 1.f : 0.5f * glm::length(bounds.extent());
 }
 

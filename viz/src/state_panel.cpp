@@ -61,7 +61,8 @@ class MailboxModel : public QAbstractTableModel {
     const MailboxEntry& m = (*entries_)[size_t(row)];
     switch (col) {
       case 0: return QString::number(m.prim);
-      case 1: return QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
+      case 1:
+        return m.testedInCellEvent < 0 ? QString("-") : QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
       case 2: return m.hit ? QString("hit t=%1").arg(num(m.t)) : QString("miss");
       default: return QString::number(m.skips);
     }
@@ -99,6 +100,16 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   form->addRow(dda_);
   form->addRow(tr("nearest hit"), nearest_);
   layout->addWidget(gridBox_);
+
+  // Trees (kd-tree): the current node and the stack, shown when the trace has tree events.
+  treeBox_ = new QGroupBox(tr("Tree: stack traversal"));
+  auto* treeForm = new QFormLayout(treeBox_);
+  node_ = label("nodeLabel");
+  stack_ = label("stackLabel");
+  treeForm->addRow(tr("node"), node_);
+  treeForm->addRow(tr("stack (top first)"), stack_);
+  treeBox_->hide();
+  layout->addWidget(treeBox_);
 
   auto* ruleBox = new QGroupBox(tr("Why"));
   auto* ruleLayout = new QVBoxLayout(ruleBox);
@@ -139,8 +150,32 @@ void StatePanel::refresh() {
   mailbox_->setEntries(r ? &s.mailbox : nullptr);
   if (!r || !s.event) {
     ray_->setText(tr("<i>No ray yet. Click a pixel in the image, or open a trace.</i>"));
-    for (QLabel* l : {event_, cell_, interval_, dda_, nearest_, rule_, counters_}) l->clear();
+    for (QLabel* l : {event_, cell_, interval_, dda_, nearest_, rule_, counters_, node_, stack_}) l->clear();
     return;
+  }
+  bool tree = false;
+  for (const Event& e : r->events)
+    if (e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop || e.type == EventType::leaf) {
+      tree = true;
+      break;
+    }
+  treeBox_->setVisible(tree);
+  gridBox_->setVisible(!tree || s.cellEvent >= 0);
+  if (tree) {
+    if (s.nodeEvent >= 0) {
+      const Event& n = r->events[size_t(s.nodeEvent)];
+      node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]")
+                         .arg(n.node)
+                         .arg(event_type_name(n.type))
+                         .arg(n.depth)
+                         .arg(num(n.t_min_node), num(n.t_max_node)));
+    } else {
+      node_->setText(tr("<i>not in the tree yet</i>"));
+    }
+    QString st;
+    for (auto it = s.stack.rbegin(); it != s.stack.rend(); ++it)
+      st += tr("node %1 (depth %2) [%3, %4]<br>").arg(it->node).arg(it->depth).arg(num(it->tMin), num(it->tMax));
+    stack_->setText(st.isEmpty() ? tr("<i>empty</i>") : st);
   }
   ray_->setText(tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
                     .arg(ray_kind_name(r->kind))
@@ -192,6 +227,8 @@ void StatePanel::refresh() {
 QJsonObject StatePanel::dumpState() const {
   QJsonObject o;
   for (QLabel* l : {ray_, event_, cell_, interval_, dda_, nearest_, rule_, counters_}) o[l->objectName()] = l->text();
+  if (treeBox_->isVisibleTo(const_cast<StatePanel*>(this)))
+    for (QLabel* l : {node_, stack_}) o[l->objectName()] = l->text();
   QJsonArray rows;
   for (int r = 0; r < mailbox_->rowCount(); ++r) {
     QJsonArray row;

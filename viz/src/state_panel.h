@@ -35,6 +35,9 @@ class StatePanel : public QWidget {
   QLabel* interval_;
   QLabel* dda_;  // tMax / tDelta table, next axis marked
   QLabel* nearest_;
+  QGroupBox* treeBox_;
+  QLabel* node_;
+  QLabel* stack_;
   QLabel* rule_;
   QLabel* counters_;
   QWidget* mailboxBox_;
