@@ -91,6 +91,14 @@ QRectF ImageCanvas::imageRect() const {
   return QRectF(topLeft + pan_, QSizeF(s.width() * z, s.height() * z));
 }
 
+void ImageCanvas::centreOn(int x, int y) {
+  pan_ = QPointF(0, 0);
+  QPointF at = QPointF(widgetPosOf(x, y));
+  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 50);
+  pan_ = QPointF(avail / 2.0, height() / 2.0) - at;
+  update();
+}
+
 QPoint ImageCanvas::widgetPosOf(int x, int y) const {
   QRectF r = imageRect();
   double z = zoom();

@@ -111,6 +111,8 @@ QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.
 struct SceneView::Impl {
   QVTKOpenGLNativeWidget* widget = nullptr;
   QLabel* legend = nullptr;
+  QCheckBox* translucentCheck = nullptr;
+  QCheckBox* followCheck = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkRenderer> base;     // scene and grid outline, depth-tested together
   vtkNew<vtkRenderer> overlay;  // the walk, drawn over the scene so that it is never hidden
@@ -130,7 +132,7 @@ struct SceneView::Impl {
   int primBlock = -2;
   std::vector<int> primCells;
   float sceneRadius = 1.f;
-  bool translucent = false, follow = false;
+  bool translucent = false, follow = false, followZoom = false;
   double lastMs = 0.0;
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
@@ -164,8 +166,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   layout->setSpacing(2);
 
   auto* bar = new QHBoxLayout;
-  auto* translucent = new QCheckBox(tr("Translucent"));
-  auto* follow = new QCheckBox(tr("Follow cell"));
+  auto* translucent = d_->translucentCheck = new QCheckBox(tr("Translucent"));
+  auto* follow = d_->followCheck = new QCheckBox(tr("Follow cell"));
   auto* fit = new QToolButton;
   fit->setText(tr("Fit view"));
   translucent->setObjectName("translucentCheck");
@@ -512,8 +514,15 @@ void SceneView::updateStep() {
     double fp[3], pos[3];
     cam->GetFocalPoint(fp);
     cam->GetPosition(pos);
+    glm::dvec3 offset(pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2]);
+    if (d.followZoom) {  // on switching follow on: come close enough that about a dozen cells fill the view
+      d.followZoom = false;
+      double span = 12.0 * glm::length(glm::dvec3(d.cellHi(e.cell) - d.cellLo(e.cell)));
+      double dist = 0.5 * span / std::tan(0.5 * cam->GetViewAngle() * M_PI / 180.0);
+      if (dist < glm::length(offset)) offset = glm::normalize(offset) * dist;
+    }
     cam->SetFocalPoint(c.x, c.y, c.z);
-    cam->SetPosition(pos[0] + c.x - fp[0], pos[1] + c.y - fp[1], pos[2] + c.z - fp[2]);
+    cam->SetPosition(c.x + offset.x, c.y + offset.y, c.z + offset.z);
     d.base->ResetCameraClippingRange();
   }
   auto t1 = std::chrono::steady_clock::now();
@@ -525,13 +534,16 @@ void SceneView::updateStep() {
 }
 
 void SceneView::setTranslucent(bool on) {
+  d_->translucentCheck->setChecked(on);  // when set from elsewhere (scripted mode)
   d_->translucent = on;
   d_->sceneActor->GetProperty()->SetOpacity(on ? 0.35 : 1.0);
   updateStep();
 }
 
 void SceneView::setFollowCell(bool on) {
+  d_->followCheck->setChecked(on);
   d_->follow = on;
+  d_->followZoom = on;
   updateStep();
 }
 

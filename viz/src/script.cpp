@@ -112,6 +112,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
                  "ray_end, node, push, pop, leaf).", "KIND:K");
   opt("forward", "Then step forward N times.", "N");
   opt("back", "Then step back N times.", "N");
+  opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
@@ -262,6 +263,15 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
         worst = std::max(worst, ms);
       }
       if (n > 0) std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
+    }
+    if (p.isSet("zoom")) {
+      bool ok = false;
+      double z = p.value("zoom").toDouble(&ok);
+      if (!ok || z < 0 || z > 64) fail("--zoom must be 0 (fit) .. 64");
+      ImageCanvas* canvas = window.imageView()->canvas();
+      canvas->setZoom(z);
+      const Trace* t = s->trace();
+      if (t && !t->rays.empty() && t->rays[0].has_pixel) canvas->centreOn(t->rays[0].pixel[0], t->rays[0].pixel[1]);
     }
     if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
     settle(window);
