@@ -73,8 +73,8 @@ int countColor(const raystep::Rgb8Image& img, const json& rgb, double x0, double
 // The standard session: the Cornell box, pixel (160, 200) of its 320x320 picture.
 const std::string kPixel = "'" + kScene + "' --pixel 160,200 --window 1280x800";
 
-// What the 3D view should show: the current cell's colour inside its projected box, the ray's colour (or the
-// current interval's) near most of its projected samples.
+// What the 3D view should show: the current cell's colour inside its projected box, the ray's colours (walked,
+// ahead, or the current interval's) near most of its projected samples.
 void checkScreenshot(const std::string& png, const json& state) {
   raystep::Rgb8Image img = raystep::read_png_rgb8(png);
   ASSERT_EQ(img.width, state["window"][0].get<int>());
@@ -101,9 +101,10 @@ void checkScreenshot(const std::string& png, const json& state) {
     double x = s[0], y = s[1];
     if (x < vx0 + 3 || y < vy0 + 3 || x > vx1 - 3 || y > vy1 - 3) continue;
     ++samples;
-    seen += countColor(img, view["colors"]["ray"], x - 2, y - 2, x + 2, y + 2, 12) +
-                countColor(img, view["colors"]["segment"], x - 2, y - 2, x + 2, y + 2, 12) >
-            0;
+    int found = 0;
+    for (const char* c : {"ray", "ray_ahead", "segment"})
+      found += countColor(img, view["colors"][c], x - 2, y - 2, x + 2, y + 2, 12);
+    seen += found > 0;
   }
   ASSERT_GE(samples, 5) << "the ray should cross the 3D view";
   EXPECT_GE(seen * 10, samples * 8) << seen << " of " << samples << " ray samples show the ray's colour";

@@ -10,7 +10,8 @@ namespace raystep::viz::palette {
 inline const QColor currentCell{255, 214, 0};    // the cell the 3D-DDA is in: yellow
 inline const QColor visitedCell{90, 140, 255};   // cells already walked: faded blue
 inline const QColor gridOutline{150, 150, 150};  // the grid's bounding box
-inline const QColor ray{0, 230, 255};            // the ray: cyan
+inline const QColor ray{0, 230, 255};            // the ray up to where the walk is: cyan
+inline const QColor rayAhead{0, 105, 125};       // the rest of the ray, not walked yet: dark cyan
 inline const QColor segment{255, 255, 255};      // the current [tmin, tmax] interval: white, thick
 inline const QColor hitFinal{255, 40, 200};      // the accepted hit point: magenta
 inline const QColor hitCandidate{255, 150, 40};  // the nearest hit so far, not yet accepted: orange

@@ -117,8 +117,10 @@ struct SceneView::Impl {
   vtkNew<vtkRenderer> base;     // scene and grid outline, depth-tested together
   vtkNew<vtkRenderer> overlay;  // the walk, drawn over the scene so that it is never hidden
 
-  vtkNew<vtkPolyData> sceneData, outlineData, latticeData, visitedData, cellData, primData, rayData, segmentData;
-  vtkSmartPointer<vtkActor> sceneActor, outlineActor, latticeActor, visitedActor, cellActor, primActor, rayActor, segmentActor;
+  vtkNew<vtkPolyData> sceneData, outlineData, latticeData, visitedData, cellData, primData, rayData, aheadData,
+      segmentData;
+  vtkSmartPointer<vtkActor> sceneActor, outlineActor, latticeActor, visitedActor, cellActor, primActor, rayActor, aheadActor,
+      segmentActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
 
@@ -232,7 +234,9 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.primActor->GetProperty()->SetLighting(false);
   }
   d.rayActor = unlitActor(d.rayData, palette::ray, 2.f);
-  d.segmentActor = unlitActor(d.segmentData, palette::segment, 5.f);
+  d.aheadActor = unlitActor(d.aheadData, palette::rayAhead, 2.f);
+  d.segmentActor = unlitActor(d.segmentData, palette::segment, 6.f);
+  d.segmentActor->GetProperty()->SetRenderLinesAsTubes(true);  // wide lines where the driver has none
   d.cellActor = unlitActor(d.cellData, palette::currentCell, 3.f);
   d.hitSphere->SetThetaResolution(16);
   d.hitSphere->SetPhiResolution(12);
@@ -243,7 +247,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.hitActor->SetMapper(mapper);
     d.hitActor->GetProperty()->SetLighting(false);
   }
-  for (vtkActor* a : {d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.segmentActor.Get(),
+  for (vtkActor* a : {d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
 
@@ -255,7 +259,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.legend = new QLabel;
   d.legend->setObjectName("legend");
   d.legend->setWordWrap(true);
-  d.legend->setText(swatch(palette::ray, tr("ray")) + swatch(palette::segment, tr("current [tmin, tmax]")) +
+  d.legend->setText(swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) + swatch(palette::segment, tr("current [tmin, tmax]")) +
                     swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
                     swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit")) +
                     "<br>" + tr("Primitives of the current cell: ") + swatch(palette::primPending, tr("not reached")) +
@@ -462,8 +466,8 @@ void SceneView::updateStep() {
   d.primActor->GetProperty()->SetOpacity(0.6);
 
   // The ray, from its origin to where the walk ends (the final hit, or the grid's exit), and its interval now.
-  vtkNew<vtkPoints> rpts, spts;
-  vtkNew<vtkCellArray> rlines, slines;
+  vtkNew<vtkPoints> rpts, apts, spts;
+  vtkNew<vtkCellArray> rlines, alines, slines;
   d.rayDrawn = false;
   if (ray && !ray->events.empty()) {
     const Event& last = ray->events.back();
@@ -479,9 +483,22 @@ void SceneView::updateStep() {
     d.rayFrom = ray->ray.at(tStart);
     d.rayTo = ray->ray.at(tEnd);
     d.rayDrawn = true;
-    vtkIdType ids[2] = {rpts->InsertNextPoint(d.rayFrom.x, d.rayFrom.y, d.rayFrom.z),
-                        rpts->InsertNextPoint(d.rayTo.x, d.rayTo.y, d.rayTo.z)};
-    rlines->InsertNextCell(2, ids);
+    // Bright up to the end of the current interval (where the walk has got to), dark beyond it.
+    // The current interval is drawn on its own (thick), so the bright part stops where it starts.
+    float tNow = s.hasInterval ? std::clamp(s.tMax, tStart, tEnd) : tStart;
+    if (s.ended) tNow = tEnd;
+    float tWalked = s.hasInterval && !s.ended ? std::clamp(s.tMin, tStart, tEnd) : tNow;
+    glm::vec3 now = ray->ray.at(tNow), walked = ray->ray.at(tWalked);
+    if (tWalked > tStart) {
+      vtkIdType ids[2] = {rpts->InsertNextPoint(d.rayFrom.x, d.rayFrom.y, d.rayFrom.z),
+                          rpts->InsertNextPoint(walked.x, walked.y, walked.z)};
+      rlines->InsertNextCell(2, ids);
+    }
+    if (tNow < tEnd) {
+      vtkIdType ids[2] = {apts->InsertNextPoint(now.x, now.y, now.z),
+                          apts->InsertNextPoint(d.rayTo.x, d.rayTo.y, d.rayTo.z)};
+      alines->InsertNextCell(2, ids);
+    }
     if (s.hasInterval) {
       float a = std::max(s.tMin, tStart), b = std::min(s.tMax, std::isfinite(s.tMax) ? s.tMax : tEnd);
       glm::vec3 pa = ray->ray.at(a), pb = ray->ray.at(b);
@@ -492,6 +509,9 @@ void SceneView::updateStep() {
   d.rayData->SetPoints(rpts);
   d.rayData->SetLines(rlines);
   d.rayData->Modified();
+  d.aheadData->SetPoints(apts);
+  d.aheadData->SetLines(alines);
+  d.aheadData->Modified();
   d.segmentData->SetPoints(spts);
   d.segmentData->SetLines(slines);
   d.segmentData->Modified();
@@ -603,6 +623,7 @@ QJsonObject SceneView::dumpState() const {
   o["colors"] = QJsonObject{{"current_cell", jsonColor(palette::currentCell)},
                             {"visited_cell", jsonColor(palette::visitedCell)},
                             {"ray", jsonColor(palette::ray)},
+                            {"ray_ahead", jsonColor(palette::rayAhead)},
                             {"segment", jsonColor(palette::segment)},
                             {"hit_final", jsonColor(palette::hitFinal)},
                             {"hit_candidate", jsonColor(palette::hitCandidate)}};
