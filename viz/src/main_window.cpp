@@ -176,13 +176,22 @@ void MainWindow::openFileReportingErrors(const QString& path) {
 }
 
 void MainWindow::openTrace(const QString& path) {
+  // Read and validate on a worker (a big trace takes a second): on error nothing changes.
+  std::string p = path.toStdString();
+  runTask("open", tr("Reading %1...").arg(path), [this, p, path] {
+    auto t0 = std::chrono::steady_clock::now();
+    auto trace = std::make_shared<const Trace>(read_trace_json(p));
+    double readMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return std::function<void()>([this, trace, readMs, path] { showTrace(trace, path, readMs); });
+  });
+}
+
+void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs) {
   auto t0 = std::chrono::steady_clock::now();
-  // Read (and validate) first: on error nothing changes.
-  auto trace = std::make_shared<const Trace>(read_trace_json(path.toStdString()));
-  double readMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++generation_["build"];  // a grid still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
   session_->setTrace(trace, path);
-  double totalMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  double showMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   size_t events = 0;
   for (const TracedRay& r : trace->rays) events += r.events.size();
   QString structure = QString::fromStdString(trace->structure.kind);
@@ -197,8 +206,8 @@ void MainWindow::openTrace(const QString& path) {
                           .arg(events)
                           .arg(structure));
   imageView_->setStatus(tr("Trace replay: no picture (open the scene to render it)."));
-  statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) + took(tr(", shown"), totalMs));
-  std::fprintf(stderr, "timing: trace %zu events read %.1f ms, opened %.1f ms\n", events, readMs, totalMs);
+  statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) + took(tr(", shown"), showMs));
+  std::fprintf(stderr, "timing: trace %zu events read %.1f ms, shown %.1f ms\n", events, readMs, showMs);
   setWindowTitle(tr("raystep step-debugger - %1 (trace)").arg(QFileInfo(path).fileName()));
 }
 

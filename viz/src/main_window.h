@@ -12,6 +12,10 @@
 
 #include "raystep/accel/grid.h"
 
+namespace raystep {
+struct Trace;
+}
+
 namespace raystep::viz {
 
 class Session;
@@ -61,6 +65,7 @@ class MainWindow : public QMainWindow {
   void runTask(const QString& kind, const QString& what, std::function<std::function<void()>()> work);
   void openScene(const QString& path);
   void openTrace(const QString& path);
+  void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
   void buildMenus();
 
   Session* session_;
