@@ -86,7 +86,13 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(structure_, &StructurePanel::buildRequested, this, &MainWindow::buildStructure);
   connect(imageView_, &ImageView::renderRequested, this, &MainWindow::renderPicture);
   connect(imageView_, &ImageView::heatRequested, this, &MainWindow::computeHeat);
-  connect(imageView_, &ImageView::pixelClicked, this, &MainWindow::tracePixel);
+  connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
+    try {
+      tracePixel(x, y);
+    } catch (const std::exception& e) {
+      showError(QString::fromStdString(e.what()));
+    }
+  });
   connect(session_, &Session::stepChanged, this, [this] {
     if (session_->eventCount())
       statusBar()->showMessage(tr("step %1 of %2").arg(session_->step()).arg(session_->eventCount() - 1) +
@@ -150,7 +156,12 @@ void MainWindow::runTask(const QString& kind, const QString& what,
     watcher->deleteLater();
     std::function<void()> done = watcher->result();
     if (--running_ == 0) structure_->setBusy(false);
-    if (gen == generation_[kind]) done();  // else a later request of the same kind superseded this one
+    if (gen != generation_[kind]) return;  // a later request of the same kind superseded this one
+    try {
+      done();
+    } catch (const std::exception& e) {  // never let an exception out of a Qt slot
+      showError(QString::fromStdString(e.what()));
+    }
   });
   watcher->setFuture(QtConcurrent::run([work, this]() -> std::function<void()> {
     try {
@@ -238,6 +249,10 @@ void MainWindow::buildStructure() {
     auto grid = buildGridData(scene, o);
     return std::function<void()>([this, grid, scene] {
       if (scene != session_->sceneShared()) return;  // built for a scene since replaced
+      // Rebuilt with other settings: the same pixel is traced again through the new grid.
+      const Trace* old = session_->trace();
+      bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
+      int px = retrace ? old->rays[0].pixel[0] : 0, py = retrace ? old->rays[0].pixel[1] : 0;
       session_->setGrid(grid);
       auto r = grid->grid.resolution();
       structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
@@ -252,6 +267,7 @@ void MainWindow::buildStructure() {
       if (scripted_) std::fprintf(stderr, "timing: grid build %.1f ms\n", grid->buildMs);
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
                              sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);
+      if (retrace && px < session_->imageWidth() && py < session_->imageHeight()) tracePixel(px, py);
       renderPicture();
       if (imageView_->heatQuantity() != "off") computeHeat();
     });

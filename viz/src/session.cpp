@@ -85,8 +85,17 @@ void Session::setScene(std::shared_ptr<const SceneData> scene) {
 }
 
 void Session::setGrid(std::shared_ptr<const GridData> grid) {
+  // A trace's cells are indices into the grid it was recorded in: it goes with the old grid.
+  bool hadTrace = trace_ != nullptr;
   grid_ = std::move(grid);
+  trace_.reset();
+  ray_ = step_ = 0;
+  state_ = ReplayState{};
   Q_EMIT gridChanged();
+  if (hadTrace) {
+    Q_EMIT traceChanged();
+    Q_EMIT stepChanged();
+  }
 }
 
 void Session::setPicture(const QImage& image) {

@@ -45,7 +45,7 @@ class Session : public QObject {
   explicit Session(QObject* parent = nullptr) : QObject(parent) {}
 
   void setScene(std::shared_ptr<const SceneData> scene);  // clears grid, picture, heat map and trace
-  void setGrid(std::shared_ptr<const GridData> grid);     // clears picture, heat map and trace
+  void setGrid(std::shared_ptr<const GridData> grid);     // clears the trace (recorded in the old grid)
   void setPicture(const QImage& image);
   void setHeat(std::shared_ptr<const HeatMap> heat);      // null: no overlay
   void setTrace(std::shared_ptr<const Trace> trace, const QString& source);
