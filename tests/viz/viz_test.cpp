@@ -147,6 +147,13 @@ TEST(Viz, StepBackAndForthGivesTheSameState) {
   auto b = snap("step_k_fwd_back", "--step " + std::to_string(k) + " --forward " + std::to_string(n) + " --back " +
                                        std::to_string(n));
   auto c = snap("step_kn_back", "--step " + std::to_string(k + n) + " --back " + std::to_string(n));
+  // The same with the keyboard: End, Home, then Right k+2 times and Left twice.
+  std::string keys = "End,Home";
+  for (int i = 0; i < k + 2; ++i) keys += ",Right";
+  keys += ",Left,Left";
+  auto e = snap("step_k_keys", "--keys " + keys);
+  EXPECT_EQ(a.first.dump(1), e.first.dump(1));
+  EXPECT_TRUE(a.second.rgb == e.second.rgb) << "screenshots differ after the same steps by keyboard";
   EXPECT_EQ(a.first["step"], k);
   EXPECT_EQ(a.first.dump(1), b.first.dump(1));
   EXPECT_EQ(a.first.dump(1), c.first.dump(1));

@@ -11,7 +11,9 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QMouseEvent>
+#include <QTest>
 #include <QThread>
+#include <map>
 
 #include "event_list.h"
 #include "main_window.h"
@@ -112,6 +114,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
                  "ray_end, node, push, pop, leaf).", "KIND:K");
   opt("forward", "Then step forward N times.", "N");
   opt("back", "Then step back N times.", "N");
+  opt("keys", "Then press these keys, comma-separated: Right, Left, Space, Home, End.", "LIST");
   opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
@@ -263,6 +266,22 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
         worst = std::max(worst, ms);
       }
       if (n > 0) std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
+    }
+    if (p.isSet("keys")) {  // through Qt's key handling, shortcuts included, as from the keyboard
+      static const std::map<QString, Qt::Key> keys = {
+          {"Right", Qt::Key_Right}, {"Left", Qt::Key_Left}, {"Space", Qt::Key_Space}, {"Home", Qt::Key_Home},
+          {"End", Qt::Key_End}};
+      // Window shortcuts fire only in the active window; without a window manager nobody activates it.
+      QApplication::setActiveWindow(&window);
+      window.activateWindow();
+      QApplication::processEvents();
+      for (const QString& k : p.value("keys").split(',')) {
+        auto it = keys.find(k.trimmed());
+        if (it == keys.end()) fail("--keys: unknown key '" + k.toStdString() + "' (Right, Left, Space, Home, End)");
+        QTest::keyClick(&window, it->second);
+        QApplication::processEvents();
+      }
+      window.timeline()->setPlaying(false);  // a Space may have started playback: stop where it is
     }
     if (p.isSet("zoom")) {
       bool ok = false;
