@@ -167,7 +167,7 @@ std::string describeEvent(const Event& e) {
     case EventType::prim_test:
       s += "  prim " + std::to_string(e.prim) + (e.hit ? ": hit at t " + num(e.t) : ": miss");
       break;
-    case EventType::mailbox_hit: s += "  prim " + std::to_string(e.prim) + " already tested: skipped"; break;
+    case EventType::mailbox_hit: s += "  prim " + std::to_string(e.prim) + " skipped (tested before)"; break;
     case EventType::hit_deferred:
       s += "  prim " + std::to_string(e.prim) + " t " + num(e.t) + " > cell exit " + num(e.t_exit);
       break;
