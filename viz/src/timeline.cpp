@@ -139,7 +139,11 @@ bool Timeline::jump(const QString& kind, bool forward) {
     int i = findEvent(*r, session_->step(), t, forward);
     if (i >= 0 && (best < 0 || (forward ? i < best : i > best))) best = i;
   }
-  if (best < 0) return false;
+  if (best < 0) {  // say so, rather than doing nothing
+    position_->setText(forward ? tr("no further <b>%1</b> event").arg(kind_->currentText())
+                               : tr("no earlier <b>%1</b> event").arg(kind_->currentText()));
+    return false;
+  }
   session_->setStep(best);
   return true;
 }
