@@ -73,7 +73,7 @@ double ImageCanvas::zoom() const {
   if (zoom_ > 0.0) return zoom_;
   QSize s = image_.isNull() ? heatImage_.size() : image_.size();
   if (s.isEmpty()) return 1.0;
-  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 50);
+  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 72);
   return std::max(0.05, std::min(double(avail) / s.width(), double(height()) / s.height()));
 }
 
@@ -86,7 +86,7 @@ void ImageCanvas::setZoom(double zoom) {
 QRectF ImageCanvas::imageRect() const {
   QSize s = image_.isNull() ? heatImage_.size() : image_.size();
   double z = zoom();
-  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 50);
+  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 72);
   QPointF topLeft((avail - s.width() * z) / 2.0, (height() - s.height() * z) / 2.0);
   return QRectF(topLeft + pan_, QSizeF(s.width() * z, s.height() * z));
 }
@@ -94,7 +94,7 @@ QRectF ImageCanvas::imageRect() const {
 void ImageCanvas::centreOn(int x, int y) {
   pan_ = QPointF(0, 0);
   QPointF at = QPointF(widgetPosOf(x, y));
-  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 50);
+  int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 72);
   pan_ = QPointF(avail / 2.0, height() / 2.0) - at;
   update();
 }
