@@ -11,7 +11,7 @@ bash scripts/build.sh
 
 echo "== sanitizer pass (ASan + UBSan): core tests =="
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYSTEP_SANITIZE=ON \
-  -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF > /dev/null
+  -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF -DRAYSTEP_BUILD_GUI=OFF > /dev/null
 cmake --build build-asan -j "$jobs" --target raystep_core_tests
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure -j "$jobs" -L core)

@@ -1,0 +1,129 @@
+// The debugger's replay model (viz/src/replay.h) on the mailbox trap of grid_test.cpp: a long triangle (0)
+// found in cell 0 but lying in cell 2 (deferred), skipped by the mailbox in cell 1, where the small triangle
+// (1) wins. Checks what the panels show at every step, and that the state depends on the step alone.
+#include <gtest/gtest.h>
+
+#include "raystep/trace/grid_trace.h"
+#include "replay.h"
+
+namespace raystep::viz {
+namespace {
+
+Trace trapTrace() {
+  Geometry g;
+  g.begin_object("trap", 0);
+  g.add_triangle(glm::vec3(0.f, -1.f, 0.f), glm::vec3(0.f, 2.f, 0.f), glm::vec3(3.f, 0.5f, 0.6f));
+  g.add_triangle(glm::vec3(1.5f, 0.f, 0.f), glm::vec3(1.5f, 1.f, 0.f), glm::vec3(1.5f, 0.f, 1.f));
+  GridOptions o;
+  o.resolution = std::array<int, 3>{3, 1, 1};
+  UniformGrid grid(o);
+  grid.build(g);
+  RayRequest r;
+  r.ray.origin = glm::vec3(-1.f, 0.5f, 0.5f);
+  r.ray.direction = glm::vec3(1.f, 0.f, 0.f);
+  return record_grid_trace(g, grid, {r}, "trap.json", "fnv1a64:0123456789abcdef");
+}
+
+TEST(Replay, MailboxTrapStepByStep) {
+  Trace t = trapTrace();
+  const TracedRay& ray = t.rays[0];
+  ASSERT_EQ(ray.events.size(), 9u);  // begin, cell, test, deferred, cell, mailbox, test, accepted, end
+
+  ReplayState s0 = replayAt(ray, 0);
+  EXPECT_EQ(s0.cellEvent, -1);
+  EXPECT_FALSE(s0.hasInterval);
+
+  // In cell 0 the long triangle is being tested, then found (and deferred: t = 3.5 > t_exit = 2).
+  ReplayState s2 = replayAt(ray, 2);
+  EXPECT_EQ(s2.cellEvent, 1);
+  EXPECT_FLOAT_EQ(s2.tMin, 1.f);
+  EXPECT_FLOAT_EQ(s2.tMax, 2.f);
+  ASSERT_EQ(s2.prims.size(), 1u);
+  EXPECT_EQ(s2.prims[0].state, PrimState::testing);
+  ReplayState s3 = replayAt(ray, 3);
+  EXPECT_EQ(s3.prims[0].state, PrimState::hit);
+  EXPECT_TRUE(s3.deferred);
+  EXPECT_FALSE(s3.accepted);
+  EXPECT_EQ(s3.nearestPrim, 0);
+  EXPECT_FLOAT_EQ(s3.nearestT, 3.5f);
+  EXPECT_NE(explainRule(ray, s3).find("t_exit(cell) = 2"), std::string::npos) << explainRule(ray, s3);
+
+  // Cell 1: the mailbox skips triangle 0; triangle 1 is not reached yet.
+  ReplayState s4 = replayAt(ray, 4);
+  EXPECT_EQ(s4.visitedCellEvents, std::vector<int>{1});
+  ASSERT_EQ(s4.prims.size(), 2u);
+  EXPECT_EQ(s4.prims[0].state, PrimState::pending);
+  EXPECT_EQ(s4.prims[1].state, PrimState::pending);
+  ReplayState s5 = replayAt(ray, 5);
+  EXPECT_EQ(s5.prims[0].state, PrimState::skipped);
+  ASSERT_EQ(s5.mailbox.size(), 1u);
+  EXPECT_EQ(s5.mailbox[0].prim, 0);
+  EXPECT_EQ(s5.mailbox[0].cell[0], 0);
+  EXPECT_EQ(s5.mailbox[0].skips, 1);
+  EXPECT_EQ(s5.counters.mailbox_hits, 1u);
+
+  // The small triangle wins inside cell 1: tmin(next cell) = 3 > tmax(ray) = 2.5.
+  ReplayState s7 = replayAt(ray, 7);
+  EXPECT_TRUE(s7.accepted);
+  EXPECT_EQ(s7.nearestPrim, 1);
+  EXPECT_FLOAT_EQ(s7.nearestT, 2.5f);
+  std::string rule = explainRule(ray, s7);
+  EXPECT_NE(rule.find("tmin(next cell) = t_exit = 3"), std::string::npos) << rule;
+  EXPECT_NE(rule.find("t(hit) = 2.5"), std::string::npos) << rule;
+  EXPECT_EQ(s7.counters.prim_tests, 2u);
+  EXPECT_EQ(s7.counters.cells, 2u);
+}
+
+TEST(Replay, StateDependsOnTheStepAlone) {
+  Trace t = trapTrace();
+  const TracedRay& ray = t.rays[0];
+  for (int k = 0; k < int(ray.events.size()); ++k) {
+    ReplayState a = replayAt(ray, k), b = replayAt(ray, k);
+    EXPECT_EQ(a.step, k);
+    EXPECT_EQ(a.cellEvent, b.cellEvent);
+    EXPECT_EQ(a.prims.size(), b.prims.size());
+    EXPECT_EQ(describeEvent(*a.event), describeEvent(ray.events[size_t(k)]));
+  }
+  EXPECT_EQ(replayAt(ray, 100).step, int(ray.events.size()) - 1);  // clamped
+}
+
+TEST(Replay, FindsEventsByKind) {
+  Trace t = trapTrace();
+  const TracedRay& ray = t.rays[0];
+  EXPECT_EQ(findEvent(ray, 0, EventType::cell, true), 1);
+  EXPECT_EQ(findEvent(ray, 1, EventType::cell, true), 4);
+  EXPECT_EQ(findEvent(ray, 4, EventType::cell, false), 1);
+  EXPECT_EQ(findEvent(ray, 4, EventType::cell, true), -1);
+  EXPECT_EQ(nthEvent(ray, EventType::prim_test, 2), 6);
+  EXPECT_EQ(nthEvent(ray, EventType::prim_test, 3), -1);
+}
+
+// Trees: the stack is the pushes not yet popped.
+TEST(Replay, TreeStackFromPushAndPop) {
+  TracedRay ray;
+  auto add = [&](EventType type, int node, float a, float b) {
+    Event e;
+    e.seq = uint32_t(ray.events.size());
+    e.type = type;
+    e.node = node;
+    e.t_min_node = a;
+    e.t_max_node = b;
+    ray.events.push_back(e);
+  };
+  add(EventType::ray_begin, -1, 0, 0);
+  add(EventType::node, 0, 1, 5);
+  add(EventType::push, 2, 3, 5);
+  add(EventType::leaf, 1, 1, 3);
+  add(EventType::pop, 2, 3, 5);
+  add(EventType::leaf, 2, 3, 5);
+  add(EventType::ray_end, -1, 0, 0);
+  EXPECT_EQ(replayAt(ray, 3).stack.size(), 1u);
+  EXPECT_EQ(replayAt(ray, 3).stack[0].node, 2);
+  EXPECT_FLOAT_EQ(replayAt(ray, 3).tMin, 1.f);
+  EXPECT_TRUE(replayAt(ray, 4).stack.empty());
+  EXPECT_FLOAT_EQ(replayAt(ray, 5).tMin, 3.f);
+  EXPECT_EQ(replayAt(ray, 5).counters.pushes, 1u);
+}
+
+}  // namespace
+}  // namespace raystep::viz

@@ -1,0 +1,27 @@
+// The event list: every event of the current ray, one line each, the current one selected and kept in view.
+// A model over the trace (lines made on demand), so 100,000 events open at once. Clicking a row goes there.
+#pragma once
+
+#include <QWidget>
+
+class QListView;
+
+namespace raystep::viz {
+
+class Session;
+class EventModel;
+
+class EventList : public QWidget {
+  Q_OBJECT
+ public:
+  explicit EventList(Session* session, QWidget* parent = nullptr);
+  int currentRow() const;
+
+ private:
+  void sync();
+  Session* session_;
+  QListView* view_;
+  EventModel* model_;
+};
+
+}  // namespace raystep::viz

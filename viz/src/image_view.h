@@ -1,0 +1,92 @@
+// The image view: the rendered picture, zoomable down to visible pixels (a pixel grid appears when a pixel
+// is 8 screen pixels or more), with an optional heat-map overlay (cells visited, primitive tests or mailbox
+// hits per pixel) and its colour bar. A click on a pixel asks for its rays to be traced.
+#pragma once
+
+#include <QImage>
+#include <QWidget>
+
+#include "raystep/trace/heatmap.h"
+
+class QComboBox;
+class QCheckBox;
+class QLabel;
+class QSlider;
+
+namespace raystep::viz {
+
+class Session;
+
+// The picture itself: pan (drag), zoom (wheel, keys + and -), click.
+class ImageCanvas : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ImageCanvas(QWidget* parent = nullptr);
+  void setImage(const QImage& image);
+  void setHeat(const HeatMap* heat, double opacity);
+  void setSelected(int x, int y);  // -1: none
+  void setZoom(double zoom);       // screen pixels per image pixel; 0: fit
+  double zoom() const;
+  void centreOn(int x, int y);  // pan so that pixel (x, y) is in the middle
+  // Where the centre of image pixel (x, y) is on the widget (for scripted clicks).
+  QPoint widgetPosOf(int x, int y) const;
+  QSize sizeHint() const override { return {360, 300}; }
+
+ Q_SIGNALS:
+  void pixelClicked(int x, int y);
+
+ protected:
+  void paintEvent(QPaintEvent*) override;
+  void wheelEvent(QWheelEvent*) override;
+  void mousePressEvent(QMouseEvent*) override;
+  void mouseMoveEvent(QMouseEvent*) override;
+  void mouseReleaseEvent(QMouseEvent*) override;
+  void resizeEvent(QResizeEvent*) override;
+
+ private:
+  QRectF imageRect() const;  // where the image is drawn, in widget coordinates
+  QRect barRect() const;
+  QImage image_, heatImage_;
+  uint32_t heatMax_ = 0;
+  QString heatLabel_;
+  double heatOpacity_ = 0.7;
+  int selX_ = -1, selY_ = -1;
+  double zoom_ = 0.0;  // 0: fit to the widget
+  QPointF pan_{0, 0};
+  QPoint pressPos_;
+  QPointF pressPan_;
+  bool dragging_ = false, pressed_ = false;
+};
+
+// The panel: anti-aliasing mode, heat map quantity and opacity, zoom, secondary rays, and the canvas.
+class ImageView : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ImageView(Session* session, QWidget* parent = nullptr);
+  QString antiAliasing() const;
+  void setAntiAliasing(const QString& spec);
+  // "off", "cells", "tests" or "mailbox".
+  QString heatQuantity() const;
+  void setHeatQuantity(const QString& q);
+  bool secondaryRays() const;
+  void setSecondaryRays(bool on);
+  void setStatus(const QString& text);
+  ImageCanvas* canvas() const { return canvas_; }
+
+ Q_SIGNALS:
+  void renderRequested();
+  void heatRequested();
+  void pixelClicked(int x, int y);
+
+ private:
+  void refreshHeat();
+  Session* session_;
+  ImageCanvas* canvas_;
+  QComboBox* aa_;
+  QComboBox* heat_;
+  QSlider* opacity_;
+  QCheckBox* secondary_;
+  QLabel* status_;
+};
+
+}  // namespace raystep::viz

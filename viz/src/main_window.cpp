@@ -1,0 +1,341 @@
+#include "main_window.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include <QAction>
+#include <QApplication>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QFutureWatcher>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QScrollArea>
+#include <QSplitter>
+#include <QStatusBar>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <QtConcurrent>
+
+#include "event_list.h"
+#include "image_view.h"
+#include "raystep/trace/trace_file.h"
+#include "raystep/util/error.h"
+#include "scene_view.h"
+#include "session.h"
+#include "state_panel.h"
+#include "structure_panel.h"
+#include "timeline.h"
+
+namespace raystep::viz {
+namespace {
+
+// A trace names its format in its first key; anything else is a scene or a mesh.
+bool looksLikeTrace(const QString& path) {
+  std::ifstream in(path.toStdString(), std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(&head[0], long(head.size()));
+  head.resize(size_t(in.gcount()));
+  return head.find("\"raystep-trace\"") != std::string::npos;
+}
+
+}  // namespace
+
+MainWindow::MainWindow() : session_(new Session(this)) {
+  setWindowTitle("raystep step-debugger");
+  structure_ = new StructurePanel;
+  imageView_ = new ImageView(session_);
+  sceneView_ = new SceneView(session_);
+  timeline_ = new Timeline(session_, this);
+  statePanel_ = new StatePanel(session_);
+  eventList_ = new EventList(session_);
+
+  auto* left = new QSplitter(Qt::Vertical);
+  left->addWidget(structure_);
+  left->addWidget(imageView_);
+  left->setStretchFactor(0, 0);
+  left->setStretchFactor(1, 1);
+  left->setSizes({200, 500});
+  auto* stateScroll = new QScrollArea;
+  stateScroll->setWidget(statePanel_);
+  stateScroll->setWidgetResizable(true);
+  auto* right = new QSplitter(Qt::Vertical);
+  right->addWidget(stateScroll);
+  right->addWidget(statePanel_->mailboxWidget());
+  right->addWidget(eventList_);
+  right->setSizes({440, 110, 180});
+  auto* columns = new QSplitter(Qt::Horizontal);
+  columns->addWidget(left);
+  columns->addWidget(sceneView_);
+  columns->addWidget(right);
+  columns->setStretchFactor(0, 0);
+  columns->setStretchFactor(1, 1);
+  columns->setStretchFactor(2, 0);
+  columns->setSizes({340, 560, 360});
+
+  auto* central = new QWidget;
+  auto* layout = new QVBoxLayout(central);
+  layout->setContentsMargins(4, 4, 4, 0);
+  layout->addWidget(columns, 1);
+  layout->addWidget(timeline_);
+  setCentralWidget(central);
+  buildMenus();
+  statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
+
+  connect(structure_, &StructurePanel::buildRequested, this, &MainWindow::buildStructure);
+  connect(imageView_, &ImageView::renderRequested, this, &MainWindow::renderPicture);
+  connect(imageView_, &ImageView::heatRequested, this, &MainWindow::computeHeat);
+  connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
+    try {
+      tracePixel(x, y);
+    } catch (const std::exception& e) {
+      showError(QString::fromStdString(e.what()));
+    }
+  });
+  connect(session_, &Session::stepChanged, this, [this] {
+    if (session_->eventCount())
+      statusBar()->showMessage(tr("step %1 of %2").arg(session_->step()).arg(session_->eventCount() - 1) +
+                               took(tr(" drawn"), sceneView_->lastUpdateMs()));
+  });
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::buildMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(tr("&Open scene or trace..."), this, [this] {
+    QString path = QFileDialog::getOpenFileName(this, tr("Open a scene, a mesh or a trace"), QString(),
+                                                tr("Scenes and traces (*.json *.obj);;All files (*)"));
+    if (!path.isEmpty()) openFileReportingErrors(path);
+  }, QKeySequence::Open);
+  file->addAction(tr("Export &trace..."), this, [this] {
+    if (!session_->trace()) return showError(tr("No trace to export: click a pixel first."));
+    QString path = QFileDialog::getSaveFileName(this, tr("Export trace"), "trace.json", tr("Traces (*.json)"));
+    if (!path.isEmpty()) exportTrace(path);
+  });
+  file->addAction(tr("Screenshot of the &window..."), this, [this] {
+    QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep.png", tr("PNG (*.png)"));
+    if (!path.isEmpty() && !grab().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
+  });
+  file->addAction(tr("Screenshot of the &3D view..."), this, [this] {
+    QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-3d.png", tr("PNG (*.png)"));
+    if (!path.isEmpty() && !sceneView_->grabView().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
+  });
+  file->addSeparator();
+  file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
+}
+
+QString MainWindow::took(const QString& what, double ms) const {
+  // Scripted runs leave times out of the window, so that screenshots of the same state are identical.
+  return scripted_ ? QString() : tr("%1 in %2 ms").arg(what).arg(ms, 0, 'f', ms < 10 ? 1 : 0);
+}
+
+void MainWindow::showError(const QString& message) {
+  lastError_ = message;
+  std::fprintf(stderr, "error: %s\n", message.toLocal8Bit().constData());
+  auto* box = new QMessageBox(QMessageBox::Critical, tr("raystep"), message, QMessageBox::Ok, this);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setObjectName("errorDialog");
+  box->open();  // window-modal, does not block: the window stays alive behind it
+  if (scripted_) QTimer::singleShot(0, box, &QMessageBox::accept);
+}
+
+void MainWindow::runTask(const QString& kind, const QString& what,
+                         std::function<std::function<void()>()> work) {
+  if (scripted_) {
+    work()();  // errors propagate to the script
+    return;
+  }
+  int gen = ++generation_[kind];
+  ++running_;
+  structure_->setBusy(true);
+  statusBar()->showMessage(what);
+  auto* watcher = new QFutureWatcher<std::function<void()>>(this);
+  connect(watcher, &QFutureWatcher<std::function<void()>>::finished, this, [this, watcher, gen, kind] {
+    watcher->deleteLater();
+    std::function<void()> done = watcher->result();
+    if (--running_ == 0) structure_->setBusy(false);
+    if (gen != generation_[kind]) return;  // a later request of the same kind superseded this one
+    try {
+      done();
+    } catch (const std::exception& e) {  // never let an exception out of a Qt slot
+      showError(QString::fromStdString(e.what()));
+    }
+  });
+  watcher->setFuture(QtConcurrent::run([work, this]() -> std::function<void()> {
+    try {
+      return work();
+    } catch (const std::exception& e) {
+      QString msg = QString::fromStdString(e.what());
+      return [this, msg] { showError(msg); };
+    }
+  }));
+}
+
+void MainWindow::openFile(const QString& path) {
+  if (looksLikeTrace(path)) openTrace(path);
+  else openScene(path);
+}
+
+void MainWindow::openFileReportingErrors(const QString& path) {
+  try {
+    openFile(path);
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+  }
+}
+
+void MainWindow::openTrace(const QString& path) {
+  // Read and validate on a worker (a big trace takes a second): on error nothing changes.
+  std::string p = path.toStdString();
+  runTask("open", tr("Reading %1...").arg(path), [this, p, path] {
+    auto t0 = std::chrono::steady_clock::now();
+    auto trace = std::make_shared<const Trace>(read_trace_json(p));
+    double readMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return std::function<void()>([this, trace, readMs, path] { showTrace(trace, path, readMs); });
+  });
+}
+
+void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs) {
+  auto t0 = std::chrono::steady_clock::now();
+  ++generation_["build"];  // a grid still being built for the previous scene is of no use now
+  if (session_->scene()) session_->setScene(nullptr);
+  session_->setTrace(trace, path);
+  double showMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  size_t events = 0;
+  for (const TracedRay& r : trace->rays) events += r.events.size();
+  QString structure = QString::fromStdString(trace->structure.kind);
+  if (trace->structure.kind == "grid")
+    structure += QString(" %1x%2x%3")
+                     .arg(trace->structure.resolution[0])
+                     .arg(trace->structure.resolution[1])
+                     .arg(trace->structure.resolution[2]);
+  structure_->setInfo(tr("Replaying %1 (%2 rays, %3 events; structure %4) without the scene.")
+                          .arg(QFileInfo(path).fileName())
+                          .arg(trace->rays.size())
+                          .arg(events)
+                          .arg(structure));
+  imageView_->setStatus(tr("Trace replay: no picture (open the scene to render it)."));
+  statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) + took(tr(", shown"), showMs));
+  std::fprintf(stderr, "timing: trace %zu events read %.1f ms, shown %.1f ms\n", events, readMs, showMs);
+  setWindowTitle(tr("raystep step-debugger - %1 (trace)").arg(QFileInfo(path).fileName()));
+}
+
+void MainWindow::openScene(const QString& path) {
+  std::string p = path.toStdString();
+  runTask("open", tr("Loading %1...").arg(path), [this, p, path] {
+    auto scene = loadSceneData(p);
+    return std::function<void()>([this, scene, path] {
+      session_->setScene(scene);
+      setWindowTitle(tr("raystep step-debugger - %1").arg(QFileInfo(path).fileName()));
+      buildStructure();
+    });
+  });
+}
+
+void MainWindow::setGridOptions(const GridOptions& o) { structure_->setGridOptions(o); }
+
+void MainWindow::setImageSize(int w, int h) {
+  sizeW_ = w;
+  sizeH_ = h;
+}
+
+void MainWindow::buildStructure() {
+  auto scene = session_->sceneShared();
+  if (!scene) return showError(tr("Open a scene first: a trace replays the structure it recorded."));
+  GridOptions o = structure_->gridOptions();
+  runTask("build", tr("Building the grid..."), [this, scene, o] {
+    auto grid = buildGridData(scene, o);
+    return std::function<void()>([this, grid, scene] {
+      if (scene != session_->sceneShared()) return;  // built for a scene since replaced
+      // Rebuilt with other settings: the same pixel is traced again through the new grid.
+      const Trace* old = session_->trace();
+      bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
+      int px = retrace ? old->rays[0].pixel[0] : 0, py = retrace ? old->rays[0].pixel[1] : 0;
+      session_->setGrid(grid);
+      auto r = grid->grid.resolution();
+      structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
+                              .arg(r[0])
+                              .arg(r[1])
+                              .arg(r[2])
+                              .arg(grid->grid.reference_count())
+                              .arg(double(grid->grid.reference_count()) /
+                                       std::max<size_t>(1, grid->scene->scene.geometry.size()),
+                                   0, 'f', 2) +
+                          took(tr(", built"), grid->buildMs));
+      if (scripted_) std::fprintf(stderr, "timing: grid build %.1f ms\n", grid->buildMs);
+      session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
+                             sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);
+      if (retrace && px < session_->imageWidth() && py < session_->imageHeight()) tracePixel(px, py);
+      renderPicture();
+      if (imageView_->heatQuantity() != "off") computeHeat();
+    });
+  });
+}
+
+void MainWindow::renderPicture() {
+  auto grid = session_->gridShared();
+  if (!grid) return;
+  std::string aa = imageView_->antiAliasing().toStdString();
+  int w = session_->imageWidth(), h = session_->imageHeight();
+  imageView_->setStatus(tr("Rendering %1x%2 (%3)...").arg(w).arg(h).arg(QString::fromStdString(aa)));
+  runTask("render", tr("Rendering..."), [this, grid, aa, w, h] {
+    double ms = 0;
+    QImage img = viz::renderPicture(*grid, aa, w, h, &ms);
+    return std::function<void()>([this, grid, img, ms, w, h, aa] {
+      if (grid != session_->gridShared()) return;  // made for a grid since replaced
+      session_->setPicture(img);
+      imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
+                            took(tr(", rendered"), ms) + tr(". Click a pixel to trace its ray."));
+      if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
+    });
+  });
+}
+
+void MainWindow::computeHeat() {
+  auto grid = session_->gridShared();
+  QString q = imageView_->heatQuantity();
+  if (!grid || q == "off") {
+    session_->setHeat(nullptr);
+    return;
+  }
+  HeatQuantity quantity = parse_heat_quantity(q.toStdString());
+  int w = session_->imageWidth(), h = session_->imageHeight();
+  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, w, h] {
+    double ms = 0;
+    auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, w, h, &ms));
+    return std::function<void()>([this, grid, heat, ms] {
+      if (grid != session_->gridShared()) return;
+      session_->setHeat(heat);
+      statusBar()->showMessage(tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
+                               tr(" (max %1, mean %2)")
+                                   .arg(heat->max_value)
+                                   .arg(heat->mean_value, 0, 'f', 2));
+      std::fprintf(stderr, "timing: heat map %dx%d %.1f ms\n", heat->width, heat->height, ms);
+    });
+  });
+}
+
+void MainWindow::tracePixel(int x, int y) {
+  const GridData* grid = session_->grid();
+  if (!grid) return showError(tr("The grid is not built yet."));
+  int w = session_->imageWidth(), h = session_->imageHeight();
+  if (x < 0 || y < 0 || x >= w || y >= h)
+    throw InputError("", 0, "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +
+                                std::to_string(w) + "x" + std::to_string(h) + " image");
+  auto trace = std::make_shared<const Trace>(viz::tracePixel(*grid, w, h, x, y, imageView_->secondaryRays()));
+  session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y));
+}
+
+void MainWindow::exportTrace(const QString& path) {
+  try {
+    write_trace_json(path.toStdString(), *session_->trace());
+    statusBar()->showMessage(tr("wrote %1").arg(path));
+  } catch (const std::exception& e) {
+    if (scripted_) throw;
+    showError(QString::fromStdString(e.what()));
+  }
+}
+
+}  // namespace raystep::viz

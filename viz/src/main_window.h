@@ -1,0 +1,85 @@
+// The debugger's window: structure panel and image on the left, the 3D view in the middle, state panels and
+// the event list on the right, the timeline along the bottom. It owns the session and runs the heavy work
+// (loading, grid build, render, heat map) on worker threads, so the window never freezes; in scripted mode
+// the same work runs in place, one step after the other.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+
+#include <QMainWindow>
+
+#include "raystep/accel/grid.h"
+
+namespace raystep {
+struct Trace;
+}
+
+namespace raystep::viz {
+
+class Session;
+class StructurePanel;
+class ImageView;
+class SceneView;
+class Timeline;
+class StatePanel;
+class EventList;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  MainWindow();
+  ~MainWindow() override;
+
+  // Scripted mode: work runs on the calling thread, and errors are thrown instead of shown.
+  void setScripted(bool on) { scripted_ = on; }
+
+  // Open a scene (.json scene or .obj mesh) or a trace written by `raystep trace`. Throws InputError in
+  // scripted mode; shows the error in a dialog otherwise (the window keeps what it had).
+  void openFile(const QString& path);
+  // The GUI path of opening, in every mode: an error goes to a dialog (auto-closed in scripted mode).
+  void openFileReportingErrors(const QString& path);
+  void setGridOptions(const GridOptions& o);
+  void setImageSize(int w, int h);  // the picture's size (default: the scene's)
+  void buildStructure();
+  void renderPicture();
+  void computeHeat();
+  void tracePixel(int x, int y);
+  void exportTrace(const QString& path);
+
+  Session* session() const { return session_; }
+  SceneView* sceneView() const { return sceneView_; }
+  ImageView* imageView() const { return imageView_; }
+  Timeline* timeline() const { return timeline_; }
+  StatePanel* statePanel() const { return statePanel_; }
+  EventList* eventList() const { return eventList_; }
+  QString lastError() const { return lastError_; }
+
+ private:
+  void showError(const QString& message);
+  QString took(const QString& what, double ms) const;
+  // Runs work off the GUI thread (in place when scripted) and then done on the GUI thread; an InputError
+  // thrown by work is shown (or rethrown when scripted).
+  // A newer task of the same kind ("open", "build", "render", "heat") supersedes an older one.
+  void runTask(const QString& kind, const QString& what, std::function<std::function<void()>()> work);
+  void openScene(const QString& path);
+  void openTrace(const QString& path);
+  void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
+  void buildMenus();
+
+  Session* session_;
+  StructurePanel* structure_;
+  ImageView* imageView_;
+  SceneView* sceneView_;
+  Timeline* timeline_;
+  StatePanel* statePanel_;
+  EventList* eventList_;
+  bool scripted_ = false;
+  std::map<QString, int> generation_;  // per kind: results of superseded work are dropped
+  int running_ = 0;
+  int sizeW_ = 0, sizeH_ = 0;
+  QString lastError_;
+};
+
+}  // namespace raystep::viz

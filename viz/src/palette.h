@@ -1,0 +1,25 @@
+// The debugger's colours, one meaning each, shared by the 3D view, its legend, the image view and the
+// scripted mode's state dump (the GUI tests look for these exact colours in screenshots). Boxes, lines and
+// primitive states are drawn unlit, so they appear on screen in exactly these colours.
+#pragma once
+
+#include <QColor>
+
+namespace raystep::viz::palette {
+
+inline const QColor currentCell{255, 214, 0};    // the cell the 3D-DDA is in: yellow
+inline const QColor visitedCell{90, 140, 255};   // cells already walked: faded blue
+inline const QColor gridOutline{150, 150, 150};  // the grid's bounding box
+inline const QColor ray{0, 230, 255};            // the ray up to where the walk is: cyan
+inline const QColor rayAhead{0, 105, 125};       // the rest of the ray, not walked yet: dark cyan
+inline const QColor segment{255, 255, 255};      // the current [tmin, tmax] interval: white, thick
+inline const QColor hitFinal{255, 40, 200};      // the accepted hit point: magenta
+inline const QColor hitCandidate{255, 150, 40};  // the nearest hit so far, not yet accepted: orange
+inline const QColor primPending{200, 200, 200};  // referenced by the current cell, not reached yet
+inline const QColor primTesting{255, 120, 0};    // being tested now
+inline const QColor primHit{40, 220, 60};        // tested: hit
+inline const QColor primMissed{230, 40, 40};     // tested: missed
+inline const QColor primSkipped{170, 90, 255};   // skipped: already tested (mailbox)
+inline const QColor background{28, 30, 36};
+
+}  // namespace raystep::viz::palette

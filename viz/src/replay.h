@@ -1,0 +1,80 @@
+// The replay model: what the debugger shows after the first `step + 1` events of one traced ray. Computed
+// from the events alone (no scene, no structure), and from scratch for every step, so stepping back and
+// forth always gives the same state. Plain C++ (no Qt, no VTK), like the trace it reads.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raystep/trace/trace_file.h"
+
+namespace raystep::viz {
+
+// The state of a primitive referenced by the current cell (or, later, leaf).
+enum class PrimState { pending, testing, hit, missed, skipped };
+const char* primStateName(PrimState s);
+
+struct PrimMark {
+  int32_t prim = -1;
+  PrimState state = PrimState::pending;
+  float t = 0.f;  // for hit
+};
+
+// One mailbox entry: a primitive tested for this ray, where and with what result.
+struct MailboxEntry {
+  int32_t prim = -1;
+  int testedInCellEvent = -1;  // index of the cell event during which it was tested
+  int cell[3] = {0, 0, 0};
+  bool hit = false;
+  float t = 0.f;
+  int skips = 0;  // mailbox hits so far
+};
+
+// Trees: an entry of the traversal stack (the far child pushed, with its interval).
+struct StackEntry {
+  int32_t node = -1;
+  int32_t depth = 0;
+  float tMin = 0.f, tMax = 0.f;
+};
+
+struct ReplayState {
+  int step = -1;  // index of the current event
+  const Event* event = nullptr;
+  // Grid: the current cell event (index into events, -1: none yet) and the cells visited before it.
+  int cellEvent = -1;
+  std::vector<int> visitedCellEvents;
+  // The current tree node (kd-tree: node/push/pop/leaf), -1: none, and the stack: pushes not yet popped.
+  int nodeEvent = -1;
+  std::vector<StackEntry> stack;
+  // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
+  // every one it references, in the order the walk meets them.
+  int blockEvent = -1;
+  std::vector<PrimMark> prims;
+  std::vector<MailboxEntry> mailbox;  // in test order
+  RayCounters counters;
+  // The nearest hit so far and whether it is final.
+  int32_t nearestPrim = -1;
+  float nearestT = 0.f;
+  bool deferred = false, accepted = false, ended = false;
+  AcceptReason reason = AcceptReason::inside_cell;
+  // The ray's current interval [tMin, tMax]: the cell's (grid) or the node's (tree); valid when hasInterval.
+  bool hasInterval = false;
+  float tMin = 0.f, tMax = 0.f;
+};
+
+ReplayState replayAt(const TracedRay& ray, int step);
+
+// Index of the next (forward) or previous event of `type` after/before `from`; -1 when there is none.
+int findEvent(const TracedRay& ray, int from, EventType type, bool forward);
+// Index of the k-th (1-based) event of `type`; -1 when there are fewer.
+int nthEvent(const TracedRay& ray, EventType type, int k);
+
+// One line describing an event, for the event list: "12  prim_test  prim 7: miss".
+std::string describeEvent(const Event& e);
+// The stopping rule explained with its numbers, when the current event is a hit_accepted or the walk's end.
+std::string explainRule(const TracedRay& ray, const ReplayState& s);
+
+const char* axisName(int axis);  // "x", "y", "z", or "none" for -1
+
+}  // namespace raystep::viz

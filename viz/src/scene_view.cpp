@@ -1,0 +1,670 @@
+#include "scene_view.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include <QCheckBox>
+#include <QHBoxLayout>
+#include <QJsonArray>
+#include <QLabel>
+#include <QToolButton>
+#include <QSurfaceFormat>
+#include <QVBoxLayout>
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkMath.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkSphereSource.h>
+#include <vtkUnsignedCharArray.h>
+
+#include "palette.h"
+#include "session.h"
+
+namespace raystep::viz {
+namespace {
+
+void setColor(vtkActor* a, const QColor& c) { a->GetProperty()->SetColor(c.redF(), c.greenF(), c.blueF()); }
+
+// An actor drawn in exactly its colours: no lighting.
+vtkSmartPointer<vtkActor> unlitActor(vtkPolyData* data, const QColor& c, float lineWidth) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetLighting(false);
+  actor->GetProperty()->SetLineWidth(lineWidth);
+  setColor(actor, c);
+  return actor;
+}
+
+// The 12 edges of a box as lines appended to pts/lines.
+void addBoxEdges(vtkPoints* pts, vtkCellArray* lines, const glm::vec3& lo, const glm::vec3& hi) {
+  vtkIdType base = pts->GetNumberOfPoints();
+  for (int c = 0; c < 8; ++c)
+    pts->InsertNextPoint(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+  static const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                   {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (auto& e : edges) {
+    vtkIdType ids[2] = {base + e[0], base + e[1]};
+    lines->InsertNextCell(2, ids);
+  }
+}
+
+// A sphere as a UV-tessellated triangle list.
+void addSphere(vtkPoints* pts, vtkCellArray* tris, const glm::vec3& c, float r, int slices = 24, int stacks = 14) {
+  vtkIdType base = pts->GetNumberOfPoints();
+  for (int i = 0; i <= stacks; ++i) {
+    double th = M_PI * i / stacks;
+    for (int j = 0; j < slices; ++j) {
+      double ph = 2 * M_PI * j / slices;
+      pts->InsertNextPoint(c.x + r * std::sin(th) * std::cos(ph), c.y + r * std::cos(th),
+                           c.z + r * std::sin(th) * std::sin(ph));
+    }
+  }
+  for (int i = 0; i < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      vtkIdType a = base + i * slices + j, b = base + i * slices + (j + 1) % slices;
+      vtkIdType c2 = a + slices, d = b + slices;
+      vtkIdType t1[3] = {a, c2, b}, t2[3] = {b, c2, d};
+      tris->InsertNextCell(3, t1);
+      tris->InsertNextCell(3, t2);
+    }
+}
+
+constexpr size_t kMaxVisitedDrawn = 2000;
+constexpr int kMaxLatticeCells = 16;  // per axis
+
+struct PrimShape {
+  bool sphere = false;
+  glm::vec3 v[3];
+  float radius = 0.f;
+};
+
+void addPrim(vtkPoints* pts, vtkCellArray* tris, const PrimShape& p) {
+  if (p.sphere) {
+    addSphere(pts, tris, p.v[0], p.radius);
+    return;
+  }
+  vtkIdType ids[3];
+  for (int k = 0; k < 3; ++k) ids[k] = pts->InsertNextPoint(p.v[k].x, p.v[k].y, p.v[k].z);
+  tris->InsertNextCell(3, ids);
+}
+
+QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.blue()}; }
+
+}  // namespace
+
+struct SceneView::Impl {
+  QVTKOpenGLNativeWidget* widget = nullptr;
+  QLabel* legend = nullptr;
+  QCheckBox* translucentCheck = nullptr;
+  QCheckBox* followCheck = nullptr;
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  vtkNew<vtkRenderer> base;     // scene and grid outline, depth-tested together
+  vtkNew<vtkRenderer> overlay;  // the walk, drawn over the scene so that it is never hidden
+
+  vtkNew<vtkPolyData> sceneData, outlineData, latticeData, visitedData, cellData, primData, rayData, aheadData,
+      segmentData;
+  vtkSmartPointer<vtkActor> sceneActor, outlineActor, latticeActor, visitedActor, cellActor, primActor, rayActor, aheadActor,
+      segmentActor;
+  vtkNew<vtkSphereSource> hitSphere;
+  vtkSmartPointer<vtkActor> hitActor;
+
+  // What the walk refers to: grid geometry and the primitives by id.
+  bool haveGrid = false;
+  glm::vec3 gridLo{0.f}, gridHi{1.f};
+  int res[3] = {1, 1, 1};
+  std::map<int32_t, PrimShape> prims;
+  // The current block's primitive shapes: which ray and block they were made for, cells per primitive.
+  const void* primBlockRay = nullptr;
+  int primBlock = -2;
+  std::vector<int> primCells;
+  float sceneRadius = 1.f;
+  bool translucent = false, follow = false, followZoom = false;
+  double lastMs = 0.0;
+  // Drawn this step, for the dump.
+  glm::vec3 rayFrom{0.f}, rayTo{0.f};
+  bool rayDrawn = false;
+
+  glm::vec3 cellLo(const int c[3]) const {
+    glm::vec3 size = (gridHi - gridLo) / glm::vec3(res[0], res[1], res[2]);
+    return gridLo + glm::vec3(c[0], c[1], c[2]) * size;
+  }
+  glm::vec3 cellHi(const int c[3]) const {
+    glm::vec3 size = (gridHi - gridLo) / glm::vec3(res[0], res[1], res[2]);
+    return gridLo + glm::vec3(c[0] + 1, c[1] + 1, c[2] + 1) * size;
+  }
+  // Window coordinates (top-left origin) of a world point; false when behind the camera.
+  bool project(const glm::vec3& p, QWidget* win, QPointF* out) const {
+    base->SetWorldPoint(p.x, p.y, p.z, 1.0);
+    base->WorldToDisplay();
+    double d[3];
+    base->GetDisplayPoint(d);
+    if (d[2] < 0.0 || d[2] > 1.0) return false;
+    double ratio = widget->devicePixelRatioF();
+    QPointF local(d[0] / ratio, widget->height() - d[1] / ratio);
+    *out = QPointF(widget->mapTo(win, QPoint(0, 0))) + local;
+    return true;
+  }
+};
+
+SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(new Impl), session_(session) {
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->setSpacing(2);
+
+  auto* bar = new QHBoxLayout;
+  auto* translucent = d_->translucentCheck = new QCheckBox(tr("Translucent"));
+  auto* follow = d_->followCheck = new QCheckBox(tr("Follow cell"));
+  auto* fit = new QToolButton;
+  fit->setText(tr("Fit view"));
+  translucent->setObjectName("translucentCheck");
+  follow->setObjectName("followCheck");
+  bar->addWidget(new QLabel(tr("<b>3D view</b>")));
+  bar->addStretch();
+  bar->addWidget(translucent);
+  bar->addWidget(follow);
+  bar->addWidget(fit);
+  layout->addLayout(bar);
+  connect(translucent, &QCheckBox::toggled, this, &SceneView::setTranslucent);
+  connect(follow, &QCheckBox::toggled, this, &SceneView::setFollowCell);
+  connect(fit, &QToolButton::clicked, this, [this] {
+    fitCamera();
+    renderNow();
+  });
+
+  Impl& d = *d_;
+  d.widget = new QVTKOpenGLNativeWidget(this);
+  d.widget->setMinimumSize(320, 240);
+  d.window->SetMultiSamples(0);  // exact colours on lines (the tests look for them)
+  d.widget->setRenderWindow(d.window);
+  d.window->SetNumberOfLayers(2);
+  d.base->SetLayer(0);
+  d.overlay->SetLayer(1);
+  d.overlay->SetActiveCamera(d.base->GetActiveCamera());
+  d.overlay->InteractiveOff();
+  d.window->AddRenderer(d.base);
+  d.window->AddRenderer(d.overlay);
+  const QColor& bg = palette::background;
+  d.base->SetBackground(bg.redF(), bg.greenF(), bg.blueF());
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  d.window->GetInteractor()->SetInteractorStyle(style);
+  layout->addWidget(d.widget, 1);
+
+  // Actors, made once; each step only changes their data.
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(d.sceneData);
+    mapper->SetScalarModeToUseCellData();
+    d.sceneActor = vtkSmartPointer<vtkActor>::New();
+    d.sceneActor->SetMapper(mapper);
+    d.sceneActor->GetProperty()->SetInterpolationToFlat();
+    d.sceneActor->GetProperty()->SetAmbient(0.35);
+    d.sceneActor->GetProperty()->SetDiffuse(0.65);
+    d.sceneActor->GetProperty()->BackfaceCullingOn();  // look into closed rooms (Cornell box) from outside
+    d.base->AddActor(d.sceneActor);
+  }
+  d.outlineActor = unlitActor(d.outlineData, palette::gridOutline, 1.f);
+  d.base->AddActor(d.outlineActor);
+  d.latticeActor = unlitActor(d.latticeData, palette::gridOutline, 1.f);
+  d.latticeActor->GetProperty()->SetOpacity(0.13);
+  d.base->AddActor(d.latticeActor);
+  d.visitedActor = unlitActor(d.visitedData, palette::visitedCell, 2.f);
+  d.visitedActor->GetProperty()->SetOpacity(0.55);
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(d.primData);
+    mapper->SetScalarModeToUseCellData();
+    d.primActor = vtkSmartPointer<vtkActor>::New();
+    d.primActor->SetMapper(mapper);
+    d.primActor->GetProperty()->SetLighting(false);
+  }
+  d.rayActor = unlitActor(d.rayData, palette::ray, 2.f);
+  d.aheadActor = unlitActor(d.aheadData, palette::rayAhead, 2.f);
+  d.segmentActor = unlitActor(d.segmentData, palette::segment, 6.f);
+  d.segmentActor->GetProperty()->SetRenderLinesAsTubes(true);  // wide lines where the driver has none
+  d.cellActor = unlitActor(d.cellData, palette::currentCell, 3.f);
+  d.hitSphere->SetThetaResolution(16);
+  d.hitSphere->SetPhiResolution(12);
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(d.hitSphere->GetOutputPort());
+    d.hitActor = vtkSmartPointer<vtkActor>::New();
+    d.hitActor->SetMapper(mapper);
+    d.hitActor->GetProperty()->SetLighting(false);
+  }
+  for (vtkActor* a : {d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
+                      d.cellActor.Get(), d.hitActor.Get()})
+    d.overlay->AddActor(a);
+
+  // The legend: every colour of the view and what it means.
+  auto swatch = [](const QColor& c, const QString& text) {
+    return QString("<span style='background:%1'>&nbsp;&nbsp;&nbsp;&nbsp;</span>&nbsp;%2&nbsp;&nbsp; ")
+        .arg(c.name(), text);
+  };
+  d.legend = new QLabel;
+  d.legend->setObjectName("legend");
+  d.legend->setWordWrap(true);
+  d.legend->setText(swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) + swatch(palette::segment, tr("current [tmin, tmax]")) +
+                    swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
+                    swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit")) +
+                    "<br>" + tr("Primitives of the current cell: ") + swatch(palette::primPending, tr("not reached")) +
+                    swatch(palette::primTesting, tr("being tested")) + swatch(palette::primHit, tr("hit")) +
+                    swatch(palette::primMissed, tr("missed")) + swatch(palette::primSkipped, tr("skipped (mailbox)")));
+  layout->addWidget(d.legend);
+
+  connect(session_, &Session::sceneChanged, this, [this] {
+    rebuildGeometry();
+    fitCamera();
+    updateStep();
+  });
+  connect(session_, &Session::traceChanged, this, [this] {
+    d_->primBlockRay = nullptr;  // a new trace may live where the old one did
+    // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
+    if (!session_->scene()) {
+      rebuildGeometry();
+      fitCamera();
+    }
+  });
+  connect(session_, &Session::gridChanged, this, [this] {
+    rebuildGeometry();
+    updateStep();
+  });
+  connect(session_, &Session::stepChanged, this, &SceneView::updateStep);
+}
+
+SceneView::~SceneView() = default;
+
+void SceneView::prepareSurfaceFormat() { QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat()); }
+
+void SceneView::rebuildGeometry() {
+  Impl& d = *d_;
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> tris;
+  vtkNew<vtkUnsignedCharArray> colors;
+  colors->SetNumberOfComponents(3);
+  d.prims.clear();
+  d.primBlockRay = nullptr;
+  d.primBlock = -2;
+  d.haveGrid = false;
+  Bounds3 bounds;
+  auto addColor = [&](vtkIdType count, const glm::vec3& c) {
+    unsigned char rgb[3];
+    for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
+    for (vtkIdType i = 0; i < count; ++i) colors->InsertNextTypedTuple(rgb);
+  };
+
+  if (const SceneData* sd = session_->scene()) {
+    const Geometry& g = sd->scene.geometry;
+    for (uint32_t id = 0; id < g.size(); ++id) {
+      PrimShape p;
+      if (g.type(id) == PrimType::sphere) {
+        p.sphere = true;
+        p.v[0] = g.sphere(id).center;
+        p.radius = g.sphere(id).radius;
+      } else {
+        for (int k = 0; k < 3; ++k) p.v[k] = g.vertex(id, k);
+      }
+      vtkIdType before = tris->GetNumberOfCells();
+      addPrim(pts, tris, p);
+      glm::vec3 diffuse = sd->scene.materials[g.material(id)].diffuse;
+      if (sd->scene.materials[g.material(id)].mirror > 0.f) diffuse = glm::vec3(0.55f, 0.6f, 0.7f);  // a mirror reads as metal
+      addColor(tris->GetNumberOfCells() - before, glm::max(diffuse, glm::vec3(0.12f)));
+      d.prims[int32_t(id)] = p;
+    }
+    bounds = g.bounds();
+  } else if (const Trace* t = session_->trace()) {
+    for (const TracePrimitive& tp : t->primitives) {
+      PrimShape p;
+      p.sphere = tp.type == PrimType::sphere;
+      for (int k = 0; k < 3; ++k) p.v[k] = tp.v[k];
+      p.radius = tp.radius;
+      vtkIdType before = tris->GetNumberOfCells();
+      addPrim(pts, tris, p);
+      addColor(tris->GetNumberOfCells() - before, glm::vec3(0.6f));
+      d.prims[tp.id] = p;
+    }
+    bounds = t->structure.bounds;
+  }
+  d.sceneData->SetPoints(pts);
+  d.sceneData->SetPolys(tris);
+  d.sceneData->GetCellData()->SetScalars(colors);
+  d.sceneData->Modified();
+
+  // The structure: the scene's grid, or the one named by a trace opened on its own.
+  if (const GridData* gd = session_->grid()) {
+    d.haveGrid = !gd->grid.empty();
+    d.gridLo = gd->grid.bounds().lo;
+    d.gridHi = gd->grid.bounds().hi;
+    auto r = gd->grid.resolution();
+    for (int a = 0; a < 3; ++a) d.res[a] = r[a];
+  } else if (const Trace* t = session_->trace(); t && !session_->scene() && t->structure.kind == "grid") {
+    d.haveGrid = true;
+    d.gridLo = t->structure.bounds.lo;
+    d.gridHi = t->structure.bounds.hi;
+    for (int a = 0; a < 3; ++a) d.res[a] = t->structure.resolution[size_t(a)];
+  }
+  vtkNew<vtkPoints> opts;
+  vtkNew<vtkCellArray> olines;
+  if (d.haveGrid) {
+    addBoxEdges(opts, olines, d.gridLo, d.gridHi);
+    bounds.extend(Bounds3(d.gridLo, d.gridHi));
+  }
+  d.outlineData->SetPoints(opts);
+  d.outlineData->SetLines(olines);
+  d.outlineData->Modified();
+
+  // The cell lattice, faint, when it is coarse enough to read (a fine grid would be a grey fog).
+  vtkNew<vtkPoints> lpts;
+  vtkNew<vtkCellArray> llines;
+  const int* n = d.res;
+  if (d.haveGrid && n[0] <= kMaxLatticeCells && n[1] <= kMaxLatticeCells && n[2] <= kMaxLatticeCells) {
+    glm::vec3 size = (d.gridHi - d.gridLo) / glm::vec3(n[0], n[1], n[2]);
+    for (int a = 0; a < 3; ++a) {
+      int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int i = 0; i <= n[b]; ++i)
+        for (int j = 0; j <= n[c]; ++j) {
+          glm::vec3 p0, p1;
+          p0[a] = d.gridLo[a];
+          p1[a] = d.gridHi[a];
+          p0[b] = p1[b] = d.gridLo[b] + float(i) * size[b];
+          p0[c] = p1[c] = d.gridLo[c] + float(j) * size[c];
+          vtkIdType ids[2] = {lpts->InsertNextPoint(p0.x, p0.y, p0.z), lpts->InsertNextPoint(p1.x, p1.y, p1.z)};
+          llines->InsertNextCell(2, ids);
+        }
+    }
+  }
+  d.latticeData->SetPoints(lpts);
+  d.latticeData->SetLines(llines);
+  d.latticeData->Modified();
+  d.sceneRadius = bounds.empty() ? 1.f : 0.5f * glm::length(bounds.extent());
+}
+
+void SceneView::updateStep() {
+  auto t0 = std::chrono::steady_clock::now();
+  Impl& d = *d_;
+  const TracedRay* ray = session_->ray();
+  const ReplayState& s = session_->state();
+
+  // Cells: the current one highlighted, the visited ones faded.
+  vtkNew<vtkPoints> vpts, cpts;
+  vtkNew<vtkCellArray> vlines, clines;
+  if (ray && d.haveGrid) {
+    // The most recent visited cells only: a walk through tens of thousands of cells would bury the view
+    // (and the software renderer) in lines; the ray itself shows where the walk came from.
+    size_t first = s.visitedCellEvents.size() > kMaxVisitedDrawn ? s.visitedCellEvents.size() - kMaxVisitedDrawn : 0;
+    for (size_t v = first; v < s.visitedCellEvents.size(); ++v) {
+      int i = s.visitedCellEvents[v];
+      const Event& e = ray->events[size_t(i)];
+      addBoxEdges(vpts, vlines, d.cellLo(e.cell), d.cellHi(e.cell));
+    }
+    if (s.cellEvent >= 0) {
+      const Event& e = ray->events[size_t(s.cellEvent)];
+      addBoxEdges(cpts, clines, d.cellLo(e.cell), d.cellHi(e.cell));
+    }
+  }
+  d.visitedData->SetPoints(vpts);
+  d.visitedData->SetLines(vlines);
+  d.visitedData->Modified();
+  d.cellData->SetPoints(cpts);
+  d.cellData->SetLines(clines);
+  d.cellData->Modified();
+
+  // The current cell's primitives by state. Their shapes change only when the walk enters another cell;
+  // within a cell a step changes only their colours.
+  const void* blockKey = ray;
+  if (blockKey != d.primBlockRay || s.blockEvent != d.primBlock) {
+    d.primBlockRay = blockKey;
+    d.primBlock = s.blockEvent;
+    vtkNew<vtkPoints> ppts;
+    vtkNew<vtkCellArray> ptris;
+    d.primCells.clear();
+    for (const PrimMark& m : s.prims) {
+      auto it = d.prims.find(m.prim);
+      vtkIdType before = ptris->GetNumberOfCells();
+      if (it != d.prims.end()) addPrim(ppts, ptris, it->second);
+      d.primCells.push_back(int(ptris->GetNumberOfCells() - before));
+    }
+    d.primData->SetPoints(ppts);
+    d.primData->SetPolys(ptris);
+    vtkNew<vtkUnsignedCharArray> pcolors;
+    pcolors->SetNumberOfComponents(3);
+    pcolors->SetNumberOfTuples(ptris->GetNumberOfCells());
+    d.primData->GetCellData()->SetScalars(pcolors);
+  }
+  {
+    auto* pcolors = vtkUnsignedCharArray::SafeDownCast(d.primData->GetCellData()->GetScalars());
+    vtkIdType cell = 0;
+    for (size_t i = 0; i < s.prims.size() && i < d.primCells.size(); ++i) {
+      const PrimMark& m = s.prims[i];
+      QColor c = m.state == PrimState::pending   ? palette::primPending
+                 : m.state == PrimState::testing ? palette::primTesting
+                 : m.state == PrimState::hit     ? palette::primHit
+                 : m.state == PrimState::missed  ? palette::primMissed
+                                                 : palette::primSkipped;
+      unsigned char rgb[3] = {(unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue()};
+      for (int k = 0; k < d.primCells[i]; ++k) pcolors->SetTypedTuple(cell++, rgb);
+    }
+    pcolors->Modified();
+  }
+  d.primData->Modified();
+  // Translucent, so that a big hit triangle does not hide the cells and the ray behind it.
+  d.primActor->GetProperty()->SetOpacity(0.6);
+
+  // The ray, from its origin to where the walk ends (the final hit, or the grid's exit), and its interval now.
+  vtkNew<vtkPoints> rpts, apts, spts;
+  vtkNew<vtkCellArray> rlines, alines, slines;
+  d.rayDrawn = false;
+  if (ray && !ray->events.empty()) {
+    const Event& last = ray->events.back();
+    float tEnd = last.prim >= 0 ? last.t : 0.f;
+    if (last.prim < 0) {
+      float t0r, t1r;
+      SlabRay slab(ray->ray);
+      if (d.haveGrid && intersect_slabs(Bounds3(d.gridLo, d.gridHi), slab, &t0r, &t1r)) tEnd = t1r;
+      else tEnd = 2.f * d.sceneRadius / std::max(1e-12f, glm::length(ray->ray.direction));
+    }
+    float tStart = std::max(ray->ray.tmin, 0.f);
+    tEnd = std::min(tEnd, ray->ray.tmax);
+    d.rayFrom = ray->ray.at(tStart);
+    d.rayTo = ray->ray.at(tEnd);
+    d.rayDrawn = true;
+    // Bright up to the end of the current interval (where the walk has got to), dark beyond it.
+    // The current interval is drawn on its own (thick), so the bright part stops where it starts.
+    float tNow = s.hasInterval ? std::clamp(s.tMax, tStart, tEnd) : tStart;
+    if (s.ended) tNow = tEnd;
+    float tWalked = s.hasInterval && !s.ended ? std::clamp(s.tMin, tStart, tEnd) : tNow;
+    glm::vec3 now = ray->ray.at(tNow), walked = ray->ray.at(tWalked);
+    if (tWalked > tStart) {
+      vtkIdType ids[2] = {rpts->InsertNextPoint(d.rayFrom.x, d.rayFrom.y, d.rayFrom.z),
+                          rpts->InsertNextPoint(walked.x, walked.y, walked.z)};
+      rlines->InsertNextCell(2, ids);
+    }
+    if (tNow < tEnd) {
+      vtkIdType ids[2] = {apts->InsertNextPoint(now.x, now.y, now.z),
+                          apts->InsertNextPoint(d.rayTo.x, d.rayTo.y, d.rayTo.z)};
+      alines->InsertNextCell(2, ids);
+    }
+    if (s.hasInterval) {
+      float a = std::max(s.tMin, tStart), b = std::min(s.tMax, std::isfinite(s.tMax) ? s.tMax : tEnd);
+      glm::vec3 pa = ray->ray.at(a), pb = ray->ray.at(b);
+      vtkIdType sids[2] = {spts->InsertNextPoint(pa.x, pa.y, pa.z), spts->InsertNextPoint(pb.x, pb.y, pb.z)};
+      slines->InsertNextCell(2, sids);
+    }
+  }
+  d.rayData->SetPoints(rpts);
+  d.rayData->SetLines(rlines);
+  d.rayData->Modified();
+  d.aheadData->SetPoints(apts);
+  d.aheadData->SetLines(alines);
+  d.aheadData->Modified();
+  d.segmentData->SetPoints(spts);
+  d.segmentData->SetLines(slines);
+  d.segmentData->Modified();
+
+  // The nearest hit so far: orange while it may still be beaten, magenta once accepted.
+  if (ray && s.nearestPrim >= 0) {
+    glm::vec3 p = ray->ray.at(s.nearestT);
+    d.hitSphere->SetCenter(p.x, p.y, p.z);
+    d.hitSphere->SetRadius(0.03 * d.sceneRadius);
+    setColor(d.hitActor, s.accepted ? palette::hitFinal : palette::hitCandidate);
+    d.hitActor->SetVisibility(true);
+  } else {
+    d.hitActor->SetVisibility(false);
+  }
+
+  if (d.follow && ray && s.cellEvent >= 0 && d.haveGrid) {
+    const Event& e = ray->events[size_t(s.cellEvent)];
+    glm::vec3 c = 0.5f * (d.cellLo(e.cell) + d.cellHi(e.cell));
+    vtkCamera* cam = d.base->GetActiveCamera();
+    double fp[3], pos[3];
+    cam->GetFocalPoint(fp);
+    cam->GetPosition(pos);
+    glm::dvec3 offset(pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2]);
+    if (d.followZoom) {  // on switching follow on: come close enough that about a dozen cells fill the view
+      d.followZoom = false;
+      double span = 12.0 * glm::length(glm::dvec3(d.cellHi(e.cell) - d.cellLo(e.cell)));
+      double dist = 0.5 * span / std::tan(0.5 * cam->GetViewAngle() * M_PI / 180.0);
+      if (dist < glm::length(offset)) offset = glm::normalize(offset) * dist;
+    }
+    cam->SetFocalPoint(c.x, c.y, c.z);
+    cam->SetPosition(c.x + offset.x, c.y + offset.y, c.z + offset.z);
+    d.base->ResetCameraClippingRange();
+  }
+  auto t1 = std::chrono::steady_clock::now();
+  renderNow();
+  d.lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (getenv("RAYSTEP_GUI_PROFILE"))
+    fprintf(stderr, "update %.1f ms render %.1f ms\n", std::chrono::duration<double, std::milli>(t1 - t0).count(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+}
+
+void SceneView::setTranslucent(bool on) {
+  d_->translucentCheck->setChecked(on);  // when set from elsewhere (scripted mode)
+  d_->translucent = on;
+  d_->sceneActor->GetProperty()->SetOpacity(on ? 0.35 : 1.0);
+  updateStep();
+}
+
+void SceneView::setFollowCell(bool on) {
+  d_->followCheck->setChecked(on);
+  d_->follow = on;
+  d_->followZoom = on;
+  updateStep();
+}
+
+void SceneView::fitCamera() {
+  Impl& d = *d_;
+  vtkCamera* cam = d.base->GetActiveCamera();
+  double b[6];
+  d.base->ComputeVisiblePropBounds(b);
+  if (!vtkMath::AreBoundsInitialized(b)) return;
+  glm::vec3 c(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
+  // Look from the front, a little from the right and above, as the scene camera does (+z towards the viewer).
+  glm::vec3 dir = glm::normalize(glm::vec3(0.55f, 0.45f, 1.f));
+  if (const SceneData* sd = session_->scene()) {
+    glm::vec3 v = sd->scene.camera.eye - sd->scene.camera.look_at;
+    if (glm::length(v) > 0.f) {
+      v = glm::normalize(v);
+      glm::vec3 up = glm::normalize(sd->scene.camera.up);
+      glm::vec3 right = glm::normalize(glm::cross(up, v));
+      dir = glm::normalize(v + 0.5f * right + 0.35f * up);
+      cam->SetViewUp(up.x, up.y, up.z);
+    }
+  } else {
+    cam->SetViewUp(0, 1, 0);
+  }
+  cam->SetFocalPoint(c.x, c.y, c.z);
+  cam->SetPosition(c.x + dir.x, c.y + dir.y, c.z + dir.z);
+  cam->SetViewAngle(30);
+  d.base->ResetCamera(b);
+  cam->Zoom(1.15);
+  d.base->ResetCameraClippingRange();
+}
+
+void SceneView::renderNow() {
+  d_->base->ResetCameraClippingRange();
+  d_->window->Render();  // draws, and has the widget show the new frame
+}
+
+QImage SceneView::grabView() { return d_->widget->grabFramebuffer(); }
+
+double SceneView::lastUpdateMs() const { return d_->lastMs; }
+
+QJsonObject SceneView::dumpState() const {
+  const Impl& d = *d_;
+  QJsonObject o;
+  vtkCamera* cam = d.base->GetActiveCamera();
+  double pos[3], fp[3], up[3];
+  cam->GetPosition(pos);
+  cam->GetFocalPoint(fp);
+  cam->GetViewUp(up);
+  o["camera"] = QJsonObject{{"position", QJsonArray{pos[0], pos[1], pos[2]}},
+                            {"focal_point", QJsonArray{fp[0], fp[1], fp[2]}},
+                            {"view_up", QJsonArray{up[0], up[1], up[2]}},
+                            {"view_angle", cam->GetViewAngle()}};
+  QWidget* win = window();
+  QPoint off = d.widget->mapTo(win, QPoint(0, 0));
+  o["viewport"] = QJsonArray{off.x(), off.y(), d.widget->width(), d.widget->height()};
+  o["colors"] = QJsonObject{{"current_cell", jsonColor(palette::currentCell)},
+                            {"visited_cell", jsonColor(palette::visitedCell)},
+                            {"ray", jsonColor(palette::ray)},
+                            {"ray_ahead", jsonColor(palette::rayAhead)},
+                            {"segment", jsonColor(palette::segment)},
+                            {"hit_final", jsonColor(palette::hitFinal)},
+                            {"hit_candidate", jsonColor(palette::hitCandidate)}};
+  const TracedRay* ray = session_->ray();
+  const ReplayState& s = session_->state();
+  if (ray && s.cellEvent >= 0 && d.haveGrid) {
+    const Event& e = ray->events[size_t(s.cellEvent)];
+    glm::vec3 lo = d.cellLo(e.cell), hi = d.cellHi(e.cell);
+    QJsonArray corners;
+    for (int c = 0; c < 8; ++c) {
+      QPointF p;
+      glm::vec3 w(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+      if (d.project(w, win, &p)) corners.append(QJsonArray{p.x(), p.y()});
+    }
+    o["current_cell"] = QJsonObject{{"cell", QJsonArray{e.cell[0], e.cell[1], e.cell[2]}},
+                                    {"min", QJsonArray{lo.x, lo.y, lo.z}},
+                                    {"max", QJsonArray{hi.x, hi.y, hi.z}},
+                                    {"projected_corners", corners}};
+  }
+  QJsonArray visited;
+  for (int i : s.visitedCellEvents) {
+    const Event& e = ray->events[size_t(i)];
+    visited.append(QJsonArray{e.cell[0], e.cell[1], e.cell[2]});
+  }
+  o["visited_cells"] = visited;
+  QJsonArray prims;
+  for (const PrimMark& m : s.prims) prims.append(QJsonObject{{"prim", m.prim}, {"state", primStateName(m.state)}});
+  o["prims"] = prims;
+  if (d.rayDrawn) {
+    QJsonArray samples;
+    for (int i = 1; i < 24; ++i) {
+      glm::vec3 w = d.rayFrom + (d.rayTo - d.rayFrom) * (float(i) / 24.f);
+      QPointF p;
+      if (d.project(w, win, &p)) samples.append(QJsonArray{p.x(), p.y()});
+    }
+    o["ray"] = QJsonObject{{"from", QJsonArray{d.rayFrom.x, d.rayFrom.y, d.rayFrom.z}},
+                           {"to", QJsonArray{d.rayTo.x, d.rayTo.y, d.rayTo.z}},
+                           {"projected_samples", samples}};
+  }
+  o["hit_marker"] = d.hitActor->GetVisibility() ? (s.accepted ? "accepted" : "candidate") : "none";
+  return o;
+}
+
+}  // namespace raystep::viz

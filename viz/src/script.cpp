@@ -1,0 +1,319 @@
+#include "script.h"
+
+#include <chrono>
+#include <cstdio>
+#include <regex>
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QMouseEvent>
+#include <QTest>
+#include <QThread>
+#include <map>
+
+#include "event_list.h"
+#include "main_window.h"
+#include "replay.h"
+#include "scene_view.h"
+#include "session.h"
+#include "state_panel.h"
+#include "image_view.h"
+#include "timeline.h"
+#include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/heatmap.h"
+#include "raystep/util/error.h"
+
+namespace raystep::viz {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw InputError("", 0, what); }
+
+std::vector<int> parseInts(const QString& option, const QString& spec, int n, int lo) {
+  QStringList parts = spec.split(',');
+  std::vector<int> out;
+  for (const QString& p : parts) {
+    bool ok = false;
+    int v = p.toInt(&ok);
+    if (!ok || v < lo) break;
+    out.push_back(v);
+  }
+  if (int(out.size()) != n || parts.size() != n)
+    fail("--" + option.toStdString() + " '" + spec.toStdString() + "': expected " + std::to_string(n) +
+         " comma-separated whole numbers >= " + std::to_string(lo));
+  return out;
+}
+
+void parseSize(const QString& option, const QString& spec, int* w, int* h) {
+  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
+  std::smatch m;
+  std::string s = spec.toStdString();
+  if (std::regex_match(s, m, re)) {
+    *w = std::stoi(m[1]);
+    *h = std::stoi(m[2]);
+    if (*w >= 1 && *h >= 1 && *w <= 16384 && *h <= 16384) return;
+  }
+  fail("--" + option.toStdString() + " '" + s + "': expected WxH with 1 <= W, H <= 16384");
+}
+
+void settle(MainWindow& w) {
+  for (int i = 0; i < 5; ++i) {
+    QApplication::processEvents();
+    QThread::msleep(5);
+  }
+  w.sceneView()->renderNow();
+  QApplication::processEvents();
+}
+
+void writeJson(const QString& path, const QJsonObject& o) {
+  QFile f(path);
+  if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) fail("cannot write " + path.toStdString());
+  f.write(QJsonDocument(o).toJson(QJsonDocument::Indented));
+}
+
+QJsonObject dumpState(MainWindow& w) {
+  Session* s = w.session();
+  QJsonObject o;
+  o["ray"] = s->rayIndex();
+  o["step"] = s->step();
+  o["events"] = s->eventCount();
+  o["event_type"] = s->state().event ? event_type_name(s->state().event->type) : "";
+  o["event_list_row"] = w.eventList()->currentRow();
+  o["panels"] = w.statePanel()->dumpState();
+  o["view"] = w.sceneView()->dumpState();
+  o["window"] = QJsonArray{w.width(), w.height()};
+  o["last_error"] = w.lastError();
+  return o;
+}
+
+}  // namespace
+
+int runCommandLine(MainWindow& window, const QStringList& arguments) {
+  QCommandLineParser p;
+  p.setApplicationDescription("raystep-gui: step through one ray's walk through an acceleration structure.");
+  p.addHelpOption();
+  p.addPositionalArgument("file", "A scene (.json), a mesh (.obj) or a trace written by `raystep trace`.");
+  auto opt = [&](const QString& name, const QString& help, const QString& value = QString()) {
+    p.addOption(QCommandLineOption(name, help, value));
+  };
+  opt("accel", "Acceleration structure: grid.", "NAME");
+  opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");
+  opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
+  opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
+  opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
+  opt("heat", "Heat map overlay: cells, tests or mailbox.", "Q");
+  opt("size", "Picture size (default: the scene's); --pixel refers to it.", "WxH");
+  opt("pixel", "Trace this pixel's rays.", "X,Y");
+  opt("secondary", "Trace the pixel's secondary rays too.");
+  opt("ray", "Show this ray of the trace (0: the primary).", "I");
+  opt("step", "Go to event N.", "N");
+  opt("step-to", "Go to the K-th event of a kind (cell, prim_test, mailbox_hit, hit_deferred, hit_accepted or hit, "
+                 "ray_end, node, push, pop, leaf).", "KIND:K");
+  opt("forward", "Then step forward N times.", "N");
+  opt("back", "Then step back N times.", "N");
+  opt("keys", "Then press these keys, comma-separated: Right, Left, Space, Home, End.", "LIST");
+  opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
+  opt("translucent", "Draw the scene translucent.");
+  opt("follow", "Let the 3D camera follow the current cell.");
+  opt("window", "Window size (default 1280x800).", "WxH");
+  opt("open-bad", "After the set-up, open FILE through the GUI path (errors go to a dialog).", "FILE");
+  opt("export-trace", "Write the current trace (the JSON of `raystep trace`).", "FILE");
+  opt("screenshot", "Write a PNG of the window.", "FILE");
+  opt("screenshot-3d", "Write a PNG of the 3D view.", "FILE");
+  opt("dump-state", "Write what the panels and the 3D view show (JSON).", "FILE");
+  opt("quit", "Quit when done (scripted mode).");
+  if (!p.parse(arguments)) {
+    std::fprintf(stderr, "error: %s\n", p.errorText().toLocal8Bit().constData());
+    return 2;
+  }
+  if (p.isSet("help")) {
+    std::printf("%s", p.helpText().toLocal8Bit().constData());
+    return 0;
+  }
+  const bool quit = p.isSet("quit");
+  const QStringList scripted = {"pixel", "step", "step-to", "forward", "back", "screenshot", "screenshot-3d",
+                                "dump-state", "export-trace", "open-bad"};
+  bool anyScript = quit;
+  for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
+
+  try {
+    int ww = 1280, wh = 800;
+    if (p.isSet("window")) parseSize("window", p.value("window"), &ww, &wh);
+    window.resize(ww, wh);
+    if (p.isSet("accel") && p.value("accel") != "grid")
+      fail("--accel '" + p.value("accel").toStdString() + "': the debugger replays the grid (kd-tree: coming)");
+    GridOptions g;
+    if (p.isSet("grid-density")) {
+      bool ok = false;
+      g.density = p.value("grid-density").toFloat(&ok);
+      if (!ok || !(g.density > 0.f && g.density <= 64.f)) fail("--grid-density must be in (0, 64]");
+    }
+    if (p.isSet("grid-res")) {
+      std::vector<int> r = parseInts("grid-res", p.value("grid-res"), 3, 1);
+      for (int v : r)
+        if (v > 4096) fail("--grid-res: each of NX,NY,NZ must be 1..4096");
+      g.resolution = std::array<int, 3>{r[0], r[1], r[2]};
+    }
+    if (p.isSet("grid-insert")) {
+      QString m = p.value("grid-insert");
+      if (m != "exact" && m != "bbox") fail("--grid-insert '" + m.toStdString() + "': expected exact or bbox");
+      g.exact_insert = m == "exact";
+    }
+    window.setGridOptions(g);
+    if (p.isSet("aa")) {
+      parse_antialiasing(p.value("aa").toStdString());  // throws on a bad spec
+      window.imageView()->setAntiAliasing(p.value("aa"));
+    }
+    if (p.isSet("heat")) {
+      parse_heat_quantity(p.value("heat").toStdString());
+      window.imageView()->setHeatQuantity(p.value("heat"));
+    }
+    if (p.isSet("size")) {
+      int w, h;
+      parseSize("size", p.value("size"), &w, &h);
+      window.setImageSize(w, h);
+    }
+    if (p.isSet("secondary")) window.imageView()->setSecondaryRays(true);
+    if (p.isSet("translucent")) window.sceneView()->setTranslucent(true);
+    if (p.isSet("follow")) window.sceneView()->setFollowCell(true);
+
+    QStringList files = p.positionalArguments();
+    if (files.size() > 1) fail("give one scene or trace file");
+    if (!anyScript) {  // interactive: open in the background and return to the event loop
+      window.show();
+      if (!files.isEmpty()) window.openFileReportingErrors(files[0]);
+      return -1;
+    }
+
+    window.setScripted(true);
+    window.show();
+    if (!files.isEmpty()) window.openFile(files[0]);
+    Session* s = window.session();
+    if (p.isSet("pixel")) {
+      std::vector<int> px = parseInts("pixel", p.value("pixel"), 2, 0);
+      if (!s->scene()) fail("--pixel needs a scene (a trace file already holds its rays)");
+      if (px[0] >= s->imageWidth() || px[1] >= s->imageHeight())
+        fail("--pixel " + p.value("pixel").toStdString() + ": outside the " + std::to_string(s->imageWidth()) + "x" +
+             std::to_string(s->imageHeight()) + " image");
+      // A click on the picture, as a user makes it (when the pixel is big enough on screen to hit it).
+      settle(window);
+      ImageCanvas* canvas = window.imageView()->canvas();
+      QPoint at = canvas->widgetPosOf(px[0], px[1]);
+      if (canvas->zoom() >= 1.0 && canvas->rect().contains(at)) {
+        QMouseEvent press(QEvent::MouseButtonPress, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::LeftButton,
+                          Qt::NoModifier);
+        QMouseEvent release(QEvent::MouseButtonRelease, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::NoButton,
+                            Qt::NoModifier);
+        QApplication::sendEvent(canvas, &press);
+        QApplication::sendEvent(canvas, &release);
+      }
+      const Trace* t = s->trace();
+      if (!t || t->rays.empty() || !t->rays[0].has_pixel || t->rays[0].pixel[0] != px[0] || t->rays[0].pixel[1] != px[1])
+      {
+        std::fprintf(stderr, "note: pixel traced without a click (the picture is shown smaller than 1:1)\n");
+        window.tracePixel(px[0], px[1]);
+      }
+    }
+    if (p.isSet("ray")) {
+      bool ok = false;
+      int r = p.value("ray").toInt(&ok);
+      if (!ok || !s->trace() || r < 0 || r >= int(s->trace()->rays.size())) fail("--ray: no such ray in the trace");
+      s->setRay(r);
+    }
+    if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
+    if (p.isSet("step")) {
+      bool ok = false;
+      int n = p.value("step").toInt(&ok);
+      if (!ok || n < 0 || n >= s->eventCount())
+        fail("--step " + p.value("step").toStdString() + ": the ray has " + std::to_string(s->eventCount()) +
+             " events (0.." + std::to_string(s->eventCount() - 1) + ")");
+      s->setStep(n);
+    }
+    if (p.isSet("step-to")) {
+      QStringList kk = p.value("step-to").split(':');
+      bool ok = kk.size() == 2;
+      int k = ok ? kk[1].toInt(&ok) : 0;
+      EventType type;
+      std::string name = kk[0].toStdString();
+      if (name == "hit") name = "hit_accepted";
+      if (!ok || k < 1 || !parse_event_type(name, &type))
+        fail("--step-to '" + p.value("step-to").toStdString() + "': expected KIND:K, K >= 1");
+      int i = s->ray() ? nthEvent(*s->ray(), type, k) : -1;
+      if (i < 0) fail("--step-to " + p.value("step-to").toStdString() + ": the ray has fewer such events");
+      s->setStep(i);
+    }
+    // One key press at a time, as a user would.
+    for (auto [name, delta] : {std::pair{"forward", 1}, std::pair{"back", -1}}) {
+      if (!p.isSet(name)) continue;
+      bool ok = false;
+      int n = p.value(name).toInt(&ok);
+      if (!ok || n < 0) fail(std::string("--") + name + " expects a count >= 0");
+      double total = 0, worst = 0;
+      for (int i = 0; i < n; ++i) {
+        auto t0 = std::chrono::steady_clock::now();
+        s->stepBy(delta);
+        auto t1 = std::chrono::steady_clock::now();
+        QApplication::processEvents();
+        if (getenv("RAYSTEP_GUI_PROFILE"))
+          std::fprintf(stderr, "step handlers %.1f ms, paint %.1f ms\n",
+                       std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        total += ms;
+        worst = std::max(worst, ms);
+      }
+      if (n > 0) std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
+    }
+    if (p.isSet("keys")) {  // through Qt's key handling, shortcuts included, as from the keyboard
+      static const std::map<QString, Qt::Key> keys = {
+          {"Right", Qt::Key_Right}, {"Left", Qt::Key_Left}, {"Space", Qt::Key_Space}, {"Home", Qt::Key_Home},
+          {"End", Qt::Key_End}};
+      // Window shortcuts fire only in the active window; without a window manager nobody activates it.
+      QApplication::setActiveWindow(&window);
+      window.activateWindow();
+      QApplication::processEvents();
+      for (const QString& k : p.value("keys").split(',')) {
+        auto it = keys.find(k.trimmed());
+        if (it == keys.end()) fail("--keys: unknown key '" + k.toStdString() + "' (Right, Left, Space, Home, End)");
+        QTest::keyClick(&window, it->second);
+        QApplication::processEvents();
+      }
+      window.timeline()->setPlaying(false);  // a Space may have started playback: stop where it is
+    }
+    if (p.isSet("zoom")) {
+      bool ok = false;
+      double z = p.value("zoom").toDouble(&ok);
+      if (!ok || z < 0 || z > 64) fail("--zoom must be 0 (fit) .. 64");
+      ImageCanvas* canvas = window.imageView()->canvas();
+      canvas->setZoom(z);
+      const Trace* t = s->trace();
+      if (t && !t->rays.empty() && t->rays[0].has_pixel) canvas->centreOn(t->rays[0].pixel[0], t->rays[0].pixel[1]);
+    }
+    if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
+    settle(window);
+    if (getenv("RAYSTEP_GUI_PROFILE"))
+      for (QWidget* w : window.findChildren<QWidget*>())
+        if (w->minimumSizeHint().width() > 250)
+          std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(), w->metaObject()->className(),
+                       w->objectName().toLocal8Bit().constData());
+    if (p.isSet("export-trace")) {
+      if (!s->trace()) fail("--export-trace: no trace (give --pixel)");
+      window.exportTrace(p.value("export-trace"));
+    }
+    if (p.isSet("screenshot") && !window.grab().save(p.value("screenshot"), "PNG"))
+      fail("cannot write " + p.value("screenshot").toStdString());
+    if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
+      fail("cannot write " + p.value("screenshot-3d").toStdString());
+    if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
+    window.setScripted(false);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return quit ? 0 : -1;
+}
+
+}  // namespace raystep::viz

@@ -1,0 +1,17 @@
+// The command line of raystep-gui and its scripted mode (tests, docs, slides): open, build, trace a pixel,
+// step, then write a screenshot and the drawn state and quit, exactly as a user would have seen it.
+//   raystep-gui SCENE|TRACE [--grid-res NX,NY,NZ] [--grid-density D] [--grid-insert exact|bbox]
+//               [--pixel X,Y] [--step N | --step-to KIND:K] [--size WxH] --screenshot out.png --quit
+// Any error in scripted mode prints one line "error: FILE:LINE: what" and exits with code 2.
+#pragma once
+
+#include <QStringList>
+
+namespace raystep::viz {
+
+class MainWindow;
+
+// Parses the arguments and runs what they ask; returns -1 to go on interactively, else the exit code.
+int runCommandLine(MainWindow& window, const QStringList& arguments);
+
+}  // namespace raystep::viz

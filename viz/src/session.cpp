@@ -1,0 +1,164 @@
+#include "session.h"
+
+#include <chrono>
+
+#include "raystep/io/image_io.h"
+#include "raystep/scene/antialiasing_spec.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/trace/grid_trace.h"
+#include "raystep/trace/pixel_rays.h"
+
+namespace raystep::viz {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::shared_ptr<const SceneData> loadSceneData(const std::string& path) {
+  auto data = std::make_shared<SceneData>();
+  data->scene = load_scene(path);
+  data->path = path;
+  data->hash = file_content_hash(path);
+  return data;
+}
+
+std::shared_ptr<const GridData> buildGridData(std::shared_ptr<const SceneData> scene, const GridOptions& options) {
+  auto data = std::make_shared<GridData>(options);
+  data->scene = std::move(scene);
+  auto t0 = std::chrono::steady_clock::now();
+  data->grid.build(data->scene->scene.geometry);
+  data->buildMs = msSince(t0);
+  return data;
+}
+
+QImage renderPicture(const GridData& grid, const std::string& aaSpec, int width, int height, double* ms) {
+  const Scene& scene = grid.scene->scene;
+  RenderOptions opt = render_options(scene.render);
+  opt.aa = parse_antialiasing(aaSpec);
+  opt.width = width;
+  opt.height = height;
+  RenderResult r = render_image(scene, grid.grid, opt);
+  if (ms) *ms = r.seconds * 1e3;
+  QImage img(width, height, QImage::Format_RGB888);
+  for (int y = 0; y < height; ++y) {
+    uchar* row = img.scanLine(y);
+    for (int x = 0; x < width; ++x) {
+      const glm::vec3& c = r.image.at(x, y);
+      row[3 * x] = srgb_encode8(c.r);
+      row[3 * x + 1] = srgb_encode8(c.g);
+      row[3 * x + 2] = srgb_encode8(c.b);
+    }
+  }
+  return img;
+}
+
+HeatMap computeHeat(const GridData& grid, HeatQuantity q, int width, int height, double* ms) {
+  auto t0 = std::chrono::steady_clock::now();
+  HeatMap h = compute_heatmap(grid.scene->scene.camera, grid.grid, width, height, q, 0);
+  if (ms) *ms = msSince(t0);
+  return h;
+}
+
+Trace tracePixel(const GridData& grid, int width, int height, int px, int py, bool secondary) {
+  const SceneData& sd = *grid.scene;
+  std::vector<RayRequest> requests = pixel_rays(sd.scene, grid.grid, width, height, px, py, secondary);
+  return record_grid_trace(sd.scene.geometry, grid.grid, requests, sd.path, sd.hash);
+}
+
+void Session::setScene(std::shared_ptr<const SceneData> scene) {
+  scene_ = std::move(scene);
+  grid_.reset();
+  picture_ = QImage();
+  heat_.reset();
+  trace_.reset();
+  ray_ = step_ = 0;
+  state_ = ReplayState{};
+  Q_EMIT sceneChanged();
+  Q_EMIT gridChanged();
+  Q_EMIT pictureChanged();
+  Q_EMIT heatChanged();
+  Q_EMIT traceChanged();
+  Q_EMIT stepChanged();
+}
+
+void Session::setGrid(std::shared_ptr<const GridData> grid) {
+  // A trace's cells are indices into the grid it was recorded in: it goes with the old grid.
+  bool hadTrace = trace_ != nullptr;
+  grid_ = std::move(grid);
+  trace_.reset();
+  ray_ = step_ = 0;
+  state_ = ReplayState{};
+  Q_EMIT gridChanged();
+  if (hadTrace) {
+    Q_EMIT traceChanged();
+    Q_EMIT stepChanged();
+  }
+}
+
+void Session::setPicture(const QImage& image) {
+  picture_ = image;
+  Q_EMIT pictureChanged();
+}
+
+void Session::setHeat(std::shared_ptr<const HeatMap> heat) {
+  heat_ = std::move(heat);
+  Q_EMIT heatChanged();
+}
+
+void Session::setImageSize(int width, int height) {
+  imageWidth_ = width;
+  imageHeight_ = height;
+}
+
+void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source) {
+  trace_ = std::move(trace);
+  traceSource_ = source;
+  ray_ = 0;
+  step_ = 0;
+  state_ = ray() ? replayAt(*ray(), 0) : ReplayState{};
+  Q_EMIT traceChanged();
+  Q_EMIT stepChanged();
+}
+
+const TracedRay* Session::ray() const {
+  if (!trace_ || ray_ < 0 || ray_ >= int(trace_->rays.size())) return nullptr;
+  return &trace_->rays[size_t(ray_)];
+}
+
+int Session::eventCount() const {
+  const TracedRay* r = ray();
+  return r ? int(r->events.size()) : 0;
+}
+
+void Session::setRay(int index) {
+  if (!trace_ || index < 0 || index >= int(trace_->rays.size()) || index == ray_) return;
+  ray_ = index;
+  step_ = 0;
+  state_ = replayAt(*ray(), 0);
+  Q_EMIT traceChanged();
+  Q_EMIT stepChanged();
+}
+
+void Session::setStep(int step) {
+  const TracedRay* r = ray();
+  if (!r || r->events.empty()) return;
+  step = std::clamp(step, 0, int(r->events.size()) - 1);
+  if (step == step_ && state_.step == step) return;
+  step_ = step;
+  state_ = replayAt(*r, step);
+  Q_EMIT stepChanged();
+}
+
+bool Session::jumpTo(EventType type, bool forward) {
+  const TracedRay* r = ray();
+  if (!r) return false;
+  int i = findEvent(*r, step_, type, forward);
+  if (i < 0) return false;
+  setStep(i);
+  return true;
+}
+
+}  // namespace raystep::viz

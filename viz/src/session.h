@@ -1,0 +1,98 @@
+// The debugger's document: the scene (or a trace opened on its own), the grid built over it, the picture,
+// the heat map, and the traced pixel with the current ray and step. Views read it and listen to its signals;
+// only the main window changes it. The heavy work (build, render, heat map) is done by the free functions
+// below, which take everything they need by shared pointer so that they can run on a worker thread.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <QImage>
+#include <QObject>
+
+#include "raystep/accel/grid.h"
+#include "raystep/render/render.h"
+#include "raystep/scene/scene.h"
+#include "raystep/trace/heatmap.h"
+#include "raystep/trace/trace_file.h"
+#include "replay.h"
+
+namespace raystep::viz {
+
+struct SceneData {
+  Scene scene;
+  std::string path, hash;
+};
+
+struct GridData {
+  std::shared_ptr<const SceneData> scene;  // the grid points into its geometry: keep it alive
+  UniformGrid grid;
+  double buildMs = 0.0;
+  explicit GridData(GridOptions o) : grid(o) {}
+};
+
+// Each throws InputError on bad input; safe on any thread.
+std::shared_ptr<const SceneData> loadSceneData(const std::string& path);
+std::shared_ptr<const GridData> buildGridData(std::shared_ptr<const SceneData> scene, const GridOptions& options);
+QImage renderPicture(const GridData& grid, const std::string& aaSpec, int width, int height, double* ms);
+HeatMap computeHeat(const GridData& grid, HeatQuantity q, int width, int height, double* ms);
+// The rays of pixel (px, py) of a width x height picture, recorded through the grid.
+Trace tracePixel(const GridData& grid, int width, int height, int px, int py, bool secondary);
+
+class Session : public QObject {
+  Q_OBJECT
+ public:
+  explicit Session(QObject* parent = nullptr) : QObject(parent) {}
+
+  void setScene(std::shared_ptr<const SceneData> scene);  // clears grid, picture, heat map and trace
+  void setGrid(std::shared_ptr<const GridData> grid);     // clears the trace (recorded in the old grid)
+  void setPicture(const QImage& image);
+  void setHeat(std::shared_ptr<const HeatMap> heat);      // null: no overlay
+  void setTrace(std::shared_ptr<const Trace> trace, const QString& source);
+  void setImageSize(int width, int height);
+
+  const SceneData* scene() const { return scene_.get(); }
+  std::shared_ptr<const SceneData> sceneShared() const { return scene_; }
+  const GridData* grid() const { return grid_.get(); }
+  std::shared_ptr<const GridData> gridShared() const { return grid_; }
+  const QImage& picture() const { return picture_; }
+  const HeatMap* heat() const { return heat_.get(); }
+  const Trace* trace() const { return trace_.get(); }
+  QString traceSource() const { return traceSource_; }
+  int imageWidth() const { return imageWidth_; }
+  int imageHeight() const { return imageHeight_; }
+
+  // The ray being replayed and its current event.
+  int rayIndex() const { return ray_; }
+  const TracedRay* ray() const;
+  int step() const { return step_; }
+  int eventCount() const;
+  const ReplayState& state() const { return state_; }
+
+  void setRay(int index);
+  void setStep(int step);  // clamped to the events
+  void stepBy(int delta) { setStep(step_ + delta); }
+  // Jump to the next (or previous) event of a type; false (and no change) when there is none.
+  bool jumpTo(EventType type, bool forward);
+
+ Q_SIGNALS:
+  void sceneChanged();
+  void gridChanged();
+  void pictureChanged();
+  void heatChanged();
+  void traceChanged();  // a new trace, or another ray of it
+  void stepChanged();
+
+ private:
+  std::shared_ptr<const SceneData> scene_;
+  std::shared_ptr<const GridData> grid_;
+  QImage picture_;
+  std::shared_ptr<const HeatMap> heat_;
+  std::shared_ptr<const Trace> trace_;
+  QString traceSource_;
+  int imageWidth_ = 0, imageHeight_ = 0;
+  int ray_ = 0, step_ = 0;
+  ReplayState state_;
+};
+
+}  // namespace raystep::viz

@@ -1,0 +1,175 @@
+#include "timeline.h"
+
+#include <QComboBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QToolButton>
+#include <QShortcut>
+#include <QSlider>
+#include <QSpinBox>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "replay.h"
+#include "session.h"
+
+namespace raystep::viz {
+
+std::vector<EventType> Timeline::typesOf(const QString& kind) {
+  if (kind == "cell") return {EventType::cell};
+  if (kind == "pushpop") return {EventType::push, EventType::pop};
+  if (kind == "node") return {EventType::node};
+  if (kind == "leaf") return {EventType::leaf};
+  if (kind == "prim_test") return {EventType::prim_test};
+  if (kind == "mailbox_hit") return {EventType::mailbox_hit};
+  if (kind == "hit") return {EventType::hit_accepted};
+  return {};
+}
+
+Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session_(session) {
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 2, 4, 2);
+  auto* row = new QHBoxLayout;
+  auto button = [&](const QString& text, const QString& tip) {
+    auto* b = new QToolButton;
+    b->setText(text);
+    b->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    b->setToolTip(tip);
+    b->setFocusPolicy(Qt::NoFocus);
+    row->addWidget(b);
+    return b;
+  };
+  QToolButton* first = button(tr("|<"), tr("First event (Home)"));
+  QToolButton* back = button(tr("< Step"), tr("Step back (Left)"));
+  play_ = button(tr("Play"), tr("Play / pause (Space)"));
+  play_->setObjectName("playButton");
+  QToolButton* fwd = button(tr("Step >"), tr("Step forward (Right)"));
+  QToolButton* last = button(tr(">|"), tr("Last event (End)"));
+  row->addWidget(new QLabel(tr("Speed")));
+  speed_ = new QSpinBox;
+  speed_->setRange(1, 200);
+  speed_->setValue(4);
+  speed_->setSuffix(tr(" ev/s"));
+  row->addWidget(speed_);
+  row->addSpacing(16);
+  row->addWidget(new QLabel(tr("Jump to")));
+  QToolButton* prevKind = button(tr("< prev"), tr("Previous event of this kind"));
+  kind_ = new QComboBox;
+  kind_->setObjectName("jumpKind");
+  kind_->addItem(tr("cell"), "cell");
+  kind_->addItem(tr("push / pop"), "pushpop");
+  kind_->addItem(tr("primitive test"), "prim_test");
+  kind_->addItem(tr("mailbox hit"), "mailbox_hit");
+  kind_->addItem(tr("the hit"), "hit");
+  kind_->setFocusPolicy(Qt::NoFocus);
+  row->addWidget(kind_);
+  QToolButton* nextKind = button(tr("next >"), tr("Next event of this kind"));
+  row->addSpacing(16);
+  row->addWidget(new QLabel(tr("Ray")));
+  ray_ = new QComboBox;
+  ray_->setObjectName("rayCombo");
+  ray_->setFocusPolicy(Qt::NoFocus);
+  ray_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  ray_->setMinimumContentsLength(14);
+  row->addWidget(ray_);
+  row->addStretch();
+  layout->addLayout(row);
+  auto* row2 = new QHBoxLayout;
+  position_ = new QLabel;
+  position_->setObjectName("timelinePosition");
+  position_->setMinimumWidth(230);
+  slider_ = new QSlider(Qt::Horizontal);
+  slider_->setObjectName("timelineSlider");
+  slider_->setFocusPolicy(Qt::NoFocus);
+  row2->addWidget(slider_, 1);
+  row2->addWidget(position_);
+  layout->addLayout(row2);
+
+  timer_ = new QTimer(this);
+  connect(timer_, &QTimer::timeout, this, [this] {
+    if (session_->step() + 1 >= session_->eventCount()) setPlaying(false);
+    else session_->stepBy(1);
+  });
+  connect(speed_, QOverload<int>::of(&QSpinBox::valueChanged), this, [this](int v) { timer_->setInterval(1000 / v); });
+  timer_->setInterval(1000 / speed_->value());
+
+  connect(first, &QToolButton::clicked, this, [this] { session_->setStep(0); });
+  connect(last, &QToolButton::clicked, this, [this] { session_->setStep(session_->eventCount() - 1); });
+  connect(back, &QToolButton::clicked, this, [this] { session_->stepBy(-1); });
+  connect(fwd, &QToolButton::clicked, this, [this] { session_->stepBy(1); });
+  connect(play_, &QToolButton::clicked, this, [this] { setPlaying(!playing()); });
+  connect(prevKind, &QToolButton::clicked, this, [this] { jump(kind_->currentData().toString(), false); });
+  connect(nextKind, &QToolButton::clicked, this, [this] { jump(kind_->currentData().toString(), true); });
+  connect(slider_, &QSlider::valueChanged, this, [this](int v) { session_->setStep(v); });
+  connect(ray_, QOverload<int>::of(&QComboBox::activated), this, [this](int i) { session_->setRay(i); });
+
+  // Window-wide keys, so that they work whichever panel has the focus.
+  QWidget* top = parent ? parent : this;
+  auto key = [&](Qt::Key k, auto fn) {
+    auto* s = new QShortcut(QKeySequence(k), top);
+    s->setContext(Qt::WindowShortcut);
+    connect(s, &QShortcut::activated, this, fn);
+  };
+  key(Qt::Key_Right, [this] { session_->stepBy(1); });
+  key(Qt::Key_Left, [this] { session_->stepBy(-1); });
+  key(Qt::Key_Space, [this] { setPlaying(!playing()); });
+  key(Qt::Key_Home, [this] { session_->setStep(0); });
+  key(Qt::Key_End, [this] { session_->setStep(session_->eventCount() - 1); });
+
+  connect(session_, &Session::traceChanged, this, [this] {
+    setPlaying(false);
+    ray_->clear();
+    if (const Trace* t = session_->trace())
+      for (size_t i = 0; i < t->rays.size(); ++i) {
+        const TracedRay& r = t->rays[i];
+        ray_->addItem(QString("%1: %2 (depth %3)").arg(i).arg(ray_kind_name(r.kind)).arg(r.depth));
+      }
+    ray_->setCurrentIndex(session_->rayIndex());
+    refresh();
+  });
+  connect(session_, &Session::stepChanged, this, &Timeline::refresh);
+  refresh();
+}
+
+bool Timeline::jump(const QString& kind, bool forward) {
+  const TracedRay* r = session_->ray();
+  if (!r) return false;
+  int best = -1;
+  for (EventType t : typesOf(kind)) {
+    int i = findEvent(*r, session_->step(), t, forward);
+    if (i >= 0 && (best < 0 || (forward ? i < best : i > best))) best = i;
+  }
+  if (best < 0) {  // say so, rather than doing nothing
+    position_->setText(forward ? tr("no further <b>%1</b> event").arg(kind_->currentText())
+                               : tr("no earlier <b>%1</b> event").arg(kind_->currentText()));
+    return false;
+  }
+  session_->setStep(best);
+  return true;
+}
+
+void Timeline::setPlaying(bool on) {
+  if (on && session_->eventCount() == 0) on = false;
+  if (on) {
+    if (session_->step() + 1 >= session_->eventCount()) session_->setStep(0);
+    timer_->start();
+  } else {
+    timer_->stop();
+  }
+  play_->setText(on ? tr("Pause") : tr("Play"));
+}
+
+bool Timeline::playing() const { return timer_->isActive(); }
+
+void Timeline::refresh() {
+  int n = session_->eventCount();
+  QSignalBlocker block(slider_);
+  slider_->setRange(0, std::max(0, n - 1));
+  slider_->setValue(session_->step());
+  slider_->setEnabled(n > 0);
+  const ReplayState& s = session_->state();
+  position_->setText(n ? tr("event %1 / %2: <b>%3</b>").arg(session_->step()).arg(n - 1).arg(event_type_name(s.event->type))
+                       : tr("no trace: click a pixel"));
+}
+
+}  // namespace raystep::viz

@@ -1,0 +1,46 @@
+// The timeline: step forward and back, jump to the next or previous event of a kind (cell, push/pop,
+// primitive test, mailbox hit, the hit), play and pause at a chosen speed, and a slider over all events.
+// Keys (window-wide): Right/Left step, Space plays or pauses, Home/End go to the first/last event.
+#pragma once
+
+#include <vector>
+
+#include <QWidget>
+
+#include "raystep/trace/events.h"
+
+class QComboBox;
+class QLabel;
+class QToolButton;
+class QSlider;
+class QSpinBox;
+class QTimer;
+
+namespace raystep::viz {
+
+class Session;
+
+class Timeline : public QWidget {
+  Q_OBJECT
+ public:
+  explicit Timeline(Session* session, QWidget* parent = nullptr);
+
+  // A jump target: "cell", "pushpop", "prim_test", "mailbox_hit", "hit", "node", "leaf".
+  bool jump(const QString& kind, bool forward);
+  void setPlaying(bool on);
+  bool playing() const;
+  static std::vector<EventType> typesOf(const QString& kind);
+
+ private:
+  void refresh();
+  Session* session_;
+  QSlider* slider_;
+  QLabel* position_;
+  QComboBox* kind_;
+  QComboBox* ray_;
+  QToolButton* play_;
+  QSpinBox* speed_;
+  QTimer* timer_;
+};
+
+}  // namespace raystep::viz
