@@ -12,65 +12,15 @@
 #include "raystep/trace/kd_trace.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
-Geometry make_soup(uint32_t seed, int triangles) {
-  Geometry g;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-2.f, 2.f), s(-0.4f, 0.4f);
-  g.begin_object("soup", 0);
-  for (int i = 0; i < triangles; ++i) {
-    glm::vec3 p(u(rng), u(rng), u(rng));
-    g.add_triangle(p, p + glm::vec3(s(rng), s(rng), s(rng)), p + glm::vec3(s(rng), s(rng), s(rng)));
-  }
-  g.add_sphere(Sphere{glm::vec3(0.5f), 0.4f});
-  return g;
-}
-
-// Keeps every build event in memory, as the trace reader would read them back.
-class CollectBuild final : public BuildListener {
- public:
-  std::vector<TraceBuildEvent> events;
-  bool wants_candidates(uint32_t) const override { return true; }
-  void sah_candidate(uint32_t node, const SahCandidate& c) override {
-    TraceBuildEvent b;
-    b.type = EventType::sah_candidate;
-    b.node = node;
-    b.candidate = c;
-    events.push_back(b);
-  }
-  void split(uint32_t node, const KdNodeInfo& info, uint32_t n, int axis, float pos, float cost, float leaf) override {
-    TraceBuildEvent b = base(EventType::split, node, info, n, leaf);
-    b.axis = axis;
-    b.position = pos;
-    b.cost = cost;
-    events.push_back(b);
-  }
-  void leaf_made(uint32_t node, const KdNodeInfo& info, uint32_t n, float leaf, LeafReason reason) override {
-    TraceBuildEvent b = base(EventType::leaf_made, node, info, n, leaf);
-    b.reason = reason;
-    events.push_back(b);
-  }
-
- private:
-  static TraceBuildEvent base(EventType type, uint32_t node, const KdNodeInfo& info, uint32_t n, float leaf) {
-    TraceBuildEvent b;
-    b.type = type;
-    b.node = node;
-    b.depth = info.depth;
-    b.box = info.box;
-    b.prims = n;
-    b.leaf_cost = leaf;
-    return b;
-  }
-};
-
 struct KdScene {
-  Geometry g = make_soup(3, 150);
+  Geometry g = test::make_soup(3, 150, 1);
   KdTree tree;
-  CollectBuild build;
+  BuildEventCollector build;
   Trace trace() {
     tree.build(g, build);
     std::vector<RayRequest> rays;
@@ -127,6 +77,7 @@ TEST(KdTrace, JsonRoundTripIsIdenticalWithNodesAndBuildEvents) {
   EXPECT_NE(once.find("\"type\":\"leaf_made\""), std::string::npos);
 }
 
+// The streamed log and a collected one agree, event for event, with the builder's own decisions.
 TEST(KdTrace, StreamedBuildEventsAreTheSameAsCollectedOnes) {
   KdScene s;
   Trace t = s.trace();
@@ -138,6 +89,24 @@ TEST(KdTrace, StreamedBuildEventsAreTheSameAsCollectedOnes) {
   for (size_t i = 0; i < t.build.size(); ++i) collected += (i ? ",\n  " : "\n  ") + build_event_json(t.build[i], i);
   EXPECT_EQ(writer.count(), t.build.size());
   EXPECT_EQ(streamed.str(), collected);
+  // One decision per node, matching the tree: splits where the tree has inner nodes, at their planes.
+  const KdTreeData& d = s.tree.data();
+  std::vector<int> decisions(d.nodes.size(), 0);
+  for (const TraceBuildEvent& b : t.build) {
+    if (b.type == EventType::sah_candidate) continue;
+    ASSERT_LT(b.node, d.nodes.size());
+    ++decisions[b.node];
+    const KdNode& n = d.nodes[b.node];
+    EXPECT_EQ(b.type == EventType::leaf_made, n.is_leaf()) << b.node;
+    if (!n.is_leaf()) {
+      EXPECT_EQ(b.axis, n.axis());
+      EXPECT_EQ(b.position, n.split);
+    } else {
+      EXPECT_EQ(b.prims, n.prim_count());
+    }
+    EXPECT_EQ(b.box.lo, d.info[b.node].box.lo);
+  }
+  for (size_t i = 0; i < decisions.size(); ++i) EXPECT_EQ(decisions[i], 1) << "node " << i;
 }
 
 TEST(KdTrace, DamagedTreeTracesAreRefused) {

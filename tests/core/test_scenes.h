@@ -1,0 +1,25 @@
+// Small generated scenes shared by the structure tests (grid, kd-tree, traces).
+#pragma once
+
+#include <cstdint>
+#include <random>
+
+#include "raystep/scene/geometry.h"
+
+namespace raystep::test {
+
+// A soup of random small triangles and a few spheres in [-2, 2]^3.
+inline Geometry make_soup(uint32_t seed, int triangles, int spheres) {
+  Geometry g;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-2.f, 2.f), s(-0.4f, 0.4f);
+  g.begin_object("soup", 0);
+  for (int i = 0; i < triangles; ++i) {
+    glm::vec3 p(u(rng), u(rng), u(rng));
+    g.add_triangle(p, p + glm::vec3(s(rng), s(rng), s(rng)), p + glm::vec3(s(rng), s(rng), s(rng)));
+  }
+  for (int i = 0; i < spheres; ++i) g.add_sphere(Sphere{glm::vec3(u(rng), u(rng), u(rng)), 0.3f});
+  return g;
+}
+
+}  // namespace raystep::test
