@@ -197,11 +197,15 @@ class SweepBuilder {
       new_below_[a].clear();
       new_above_[a].clear();
     }
+    Bounds3 box = below_box;
+    box.hi[k] = above_box.hi[k];
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
       const Event& e = events_[k][i];
       if (e.type() != kStart || side_[e.prim()] != Side::both) continue;
-      append_events(straddler_bounds(geometry_, e.prim(), below_box), e.prim(), new_below_);
-      append_events(straddler_bounds(geometry_, e.prim(), above_box), e.prim(), new_above_);
+      Bounds3 below_bounds, above_bounds;
+      straddler_bounds_split(geometry_, e.prim(), box, k, p, &below_bounds, &above_bounds);
+      append_events(below_bounds, e.prim(), new_below_);
+      append_events(above_bounds, e.prim(), new_above_);
     }
 
     // 3. The primitives on one side keep their events, spliced out in order: the above ones moved down in place
