@@ -66,15 +66,25 @@ inline void merge_events_in_place(Event* a, size_t n_a, const Event* b, size_t n
   while (j > 0) a[--w] = b[--j];  // what is left of a is in place already
 }
 
-// The events of a primitive with bounds b, appended to one list per axis.
-void append_events(const Bounds3& b, uint32_t prim, std::vector<Event>* lists) {
+// The events of a primitive with bounds b, written at out[a] on each axis a (each pointer moves past them; a
+// primitive has at most two events per axis).
+inline void append_events(const Bounds3& b, uint32_t prim, Event** out) {
   for (int a = 0; a < 3; ++a) {
     if (b.lo[a] == b.hi[a]) {
-      lists[a].push_back(Event::make(b.lo[a], kPlanar, prim));
+      *out[a]++ = Event::make(b.lo[a], kPlanar, prim);
     } else {
-      lists[a].push_back(Event::make(b.lo[a], kStart, prim));
-      lists[a].push_back(Event::make(b.hi[a], kEnd, prim));
+      *out[a]++ = Event::make(b.lo[a], kStart, prim);
+      *out[a]++ = Event::make(b.hi[a], kEnd, prim);
     }
+  }
+}
+
+// Room for n primitives' events in each of three lists, and the pointers where to write them. The lists only
+// grow (no zeroing of the room again for every node); what was written ends at the pointers.
+inline void make_room(std::vector<Event>* lists, size_t n, Event** out) {
+  for (int a = 0; a < 3; ++a) {
+    if (lists[a].size() < 2 * n) lists[a].resize(std::max(2 * n, 2 * lists[a].size()));
+    out[a] = lists[a].data();
   }
 }
 
@@ -101,11 +111,13 @@ class SweepBuilder {
     NodeEvents root;
     // The arenas grow to a few times the root's events (the waiting above siblings); reserved once.
     for (int a = 0; a < 3; ++a) events_[a].reserve(8 * size_t(n) + 16);
-    for (uint32_t id = 0; id < n; ++id) append_events(clipped_bounds(geometry_, id, box), id, events_);
+    Event* out[3];
+    make_room(events_, n, out);
+    for (uint32_t id = 0; id < n; ++id) append_events(clipped_bounds(geometry_, id, box), id, out);
     for (int a = 0; a < 3; ++a) {
-      std::sort(events_[a].begin(), events_[a].end());
+      std::sort(events_[a].data(), out[a]);
       root.begin[a] = 0;
-      root.end[a] = events_[a].size();
+      root.end[a] = size_t(out[a] - events_[a].data());
     }
     root.n_prims = n;
     side_.assign(n, Side::both);
@@ -176,11 +188,13 @@ class SweepBuilder {
 
     // 1. Classify by one pass over the split axis's events: a start at or after p means above only, an end at
     //    or before p below only, anything else both; planar ones by their position and the chosen side.
+    size_t most_straddlers = 0;  // the starts below p: the straddlers and those that end at or before p
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
       const Event& e = events_[k][i];
       switch (e.type()) {
         case kStart:
           side_[e.prim()] = e.position() >= p ? Side::above : Side::both;
+          most_straddlers += e.position() < p;
           break;
         case kEnd:
           if (e.position() <= p) side_[e.prim()] = Side::below;
@@ -193,10 +207,9 @@ class SweepBuilder {
     }
 
     // 2. The straddling primitives are clipped again to each child; their new events are sorted (few).
-    for (int a = 0; a < 3; ++a) {
-      new_below_[a].clear();
-      new_above_[a].clear();
-    }
+    Event *below_out[3], *above_out[3];
+    make_room(new_below_, most_straddlers, below_out);
+    make_room(new_above_, most_straddlers, above_out);
     Bounds3 box = below_box;
     box.hi[k] = above_box.hi[k];
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
@@ -204,33 +217,38 @@ class SweepBuilder {
       if (e.type() != kStart || side_[e.prim()] != Side::both) continue;
       Bounds3 below_bounds, above_bounds;
       straddler_bounds_split(geometry_, e.prim(), box, k, p, &below_bounds, &above_bounds);
-      append_events(below_bounds, e.prim(), new_below_);
-      append_events(above_bounds, e.prim(), new_above_);
+      append_events(below_bounds, e.prim(), below_out);
+      append_events(above_bounds, e.prim(), above_out);
     }
+
 
     // 3. The primitives on one side keep their events, spliced out in order: the above ones moved down in place
     //    (never past where they are read), the below ones to scratch; 4. merged with the new ones. The above
     //    child goes to the arena first, the below child on top of it (it is built first).
     for (int a = 0; a < 3; ++a) {
-      std::sort(new_below_[a].begin(), new_below_[a].end());
-      std::sort(new_above_[a].begin(), new_above_[a].end());
+      const Event *new_below = new_below_[a].data(), *new_above = new_above_[a].data();
+      const size_t n_new_below = size_t(below_out[a] - new_below), n_new_above = size_t(above_out[a] - new_above);
+      std::sort(new_below_[a].data(), below_out[a]);
+      std::sort(new_above_[a].data(), above_out[a]);
       const size_t base = ev.begin[a], count = ev.end[a] - ev.begin[a];
-      const size_t most = base + count + new_above_[a].size() + new_below_[a].size();
+      const size_t most = base + count + n_new_above + n_new_below;
       if (events_[a].size() < most) events_[a].resize(most);
       if (kept_below_.size() < count) kept_below_.resize(count);
       Event* e = events_[a].data() + base;
       size_t n_kept_above = 0, n_kept_below = 0;
-      for (size_t i = 0; i < count; ++i) {
+      for (size_t i = 0; i < count; ++i) {  // without branches: the sides of successive events are random
         const Event x = e[i];
         const Side s = side_[x.prim()];
-        if (s == Side::above) e[n_kept_above++] = x;
-        else if (s == Side::below) kept_below_[n_kept_below++] = x;
+        e[n_kept_above] = x;  // n_kept_above <= i: already read
+        kept_below_[n_kept_below] = x;
+        n_kept_above += s == Side::above;
+        n_kept_below += s == Side::below;
       }
-      const size_t n_above = n_kept_above + new_above_[a].size();
-      const size_t n_below = n_kept_below + new_below_[a].size();
-      merge_events_in_place(e, n_kept_above, new_above_[a].data(), new_above_[a].size());
-      merge_events(kept_below_.data(), kept_below_.data() + n_kept_below, new_below_[a].data(),
-                   new_below_[a].data() + new_below_[a].size(), e + n_above);
+      const size_t n_above = n_kept_above + n_new_above;
+      const size_t n_below = n_kept_below + n_new_below;
+      merge_events_in_place(e, n_kept_above, new_above, n_new_above);
+      merge_events(kept_below_.data(), kept_below_.data() + n_kept_below, new_below, new_below + n_new_below,
+                   e + n_above);
       above->begin[a] = base;
       above->end[a] = base + n_above;
       below->begin[a] = base + n_above;
