@@ -212,13 +212,20 @@ class SweepBuilder {
     make_room(new_above_, most_straddlers, above_out);
     Bounds3 box = below_box;
     box.hi[k] = above_box.hi[k];
+    straddlers_.clear();
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
       const Event& e = events_[k][i];
-      if (e.type() != kStart || side_[e.prim()] != Side::both) continue;
+      if (e.type() == kStart && side_[e.prim()] == Side::both) straddlers_.push_back(e.prim());
+    }
+    for (size_t i = 0; i < straddlers_.size(); ++i) {
+      // The triangles are scattered in memory: ask for the vertices a few clips ahead.
+      if (i + kPrefetchAhead < straddlers_.size() && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
+        __builtin_prefetch(&geometry_.vertex(straddlers_[i + kPrefetchAhead], 0));
+      const uint32_t prim = straddlers_[i];
       Bounds3 below_bounds, above_bounds;
-      straddler_bounds_split(geometry_, e.prim(), box, k, p, &below_bounds, &above_bounds);
-      append_events(below_bounds, e.prim(), below_out);
-      append_events(above_bounds, e.prim(), above_out);
+      straddler_bounds_split(geometry_, prim, box, k, p, &below_bounds, &above_bounds);
+      append_events(below_bounds, prim, below_out);
+      append_events(above_bounds, prim, above_out);
     }
 
 
@@ -295,7 +302,8 @@ class SweepBuilder {
   std::vector<Side> side_;        // per primitive, valid for the node being split
   // Scratch reused by every node: no allocation per node once they have grown.
   std::vector<Event> new_below_[3], new_above_[3], kept_below_;
-  std::vector<uint32_t> leaf_prims_;
+  std::vector<uint32_t> leaf_prims_, straddlers_;
+  static constexpr size_t kPrefetchAhead = 4;
 };
 
 }  // namespace
