@@ -151,18 +151,17 @@ class SweepBuilder {
       const size_t count = ev.end[axis] - ev.begin[axis];
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p-, p|, p+: how many events of each type lie at this position (sorted by type within it).
+        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the type).
         const float position = e[i].position();
-        const uint64_t at_position = e[i].group() & ~uint64_t(3);
-        const size_t first = i;
-        while (i < count && e[i].group() == (at_position | kEnd)) ++i;
-        const uint32_t ends = uint32_t(i - first);
-        const size_t first_planar = i;
-        while (i < count && e[i].group() == (at_position | kPlanar)) ++i;
-        const uint32_t planars = uint32_t(i - first_planar);
-        const size_t first_start = i;
-        while (i < count && e[i].group() == (at_position | kStart)) ++i;
-        const uint32_t starts = uint32_t(i - first_start);
+        const uint64_t at_position = e[i].group() >> 2;
+        uint32_t ends = 0, planars = 0, starts = 0;
+        do {
+          const EventType type = e[i].type();
+          ends += type == kEnd;
+          planars += type == kPlanar;
+          starts += type == kStart;
+          ++i;
+        } while (i < count && e[i].group() >> 2 == at_position);
         // Move the plane onto p: N_P = p|, N_R -= p| + p-; evaluate; then N_L += p+ + p|.
         n_right -= planars + ends;
         if (box.lo[axis] < position && position < box.hi[axis]) {
@@ -189,21 +188,16 @@ class SweepBuilder {
     // 1. Classify by one pass over the split axis's events: a start at or after p means above only, an end at
     //    or before p below only, anything else both; planar ones by their position and the chosen side.
     size_t most_straddlers = 0;  // the starts below p: the straddlers and those that end at or before p
-    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
+    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {  // selects, not branches: the types come in random order
       const Event& e = events_[k][i];
-      switch (e.type()) {
-        case kStart:
-          side_[e.prim()] = e.position() >= p ? Side::above : Side::both;
-          most_straddlers += e.position() < p;
-          break;
-        case kEnd:
-          if (e.position() <= p) side_[e.prim()] = Side::below;
-          break;
-        case kPlanar:
-          side_[e.prim()] =
-              (e.position() < p || (e.position() == p && plane.planar_below)) ? Side::below : Side::above;
-          break;
-      }
+      const float x = e.position();
+      const EventType type = e.type();
+      Side& side = side_[e.prim()];
+      const Side start_side = x >= p ? Side::above : Side::both;
+      const Side planar_side = (x < p || (x == p && plane.planar_below)) ? Side::below : Side::above;
+      const Side end_side = x <= p ? Side::below : side;
+      side = type == kStart ? start_side : (type == kPlanar ? planar_side : end_side);
+      most_straddlers += type == kStart && x < p;
     }
 
     // 2. The straddling primitives are clipped again to each child; their new events are sorted (few).
