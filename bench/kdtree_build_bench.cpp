@@ -1,13 +1,16 @@
 // raystep_bench_kdtree_build: kd-tree build time (median of several builds, one thread) of the SAH sweep and
 // the spatial-median builder on a mesh at 1x, 4x and 16x its triangles (each triangle split into four at its
 // edge midpoints, repeatedly), to show the O(N log N) growth; with each tree's nodes, leaves, depth,
-// references per primitive and SAH cost.
+// references per primitive, SAH cost and a checksum of the whole tree (nodes, node info, prim_index), so that a
+// faster build can be shown to build the very same tree.
 // Usage: raystep_bench_kdtree_build [MESH.obj|SCENE.json] [--reps N] [--levels L] [--builders sah,median,...]
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -38,6 +41,35 @@ Geometry subdivide(const Geometry& g) {
     out.add_triangle(ab, bc, ca);
   }
   return out;
+}
+
+// FNV-1a over every field of the tree: equal checksums, bit-identical trees (in all likelihood).
+struct Fnv1a {
+  uint64_t h = 14695981039346656037ull;
+  void add(uint32_t v) {
+    for (int i = 0; i < 4; ++i) h = (h ^ ((v >> (8 * i)) & 0xffu)) * 1099511628211ull;
+  }
+  void add(float f) {
+    uint32_t v;
+    std::memcpy(&v, &f, 4);
+    add(v);
+  }
+};
+
+uint64_t tree_checksum(const KdTreeData& t) {
+  Fnv1a f;
+  for (int a = 0; a < 3; ++a) f.add(t.bounds.lo[a]), f.add(t.bounds.hi[a]);
+  for (size_t i = 0; i < t.nodes.size(); ++i) {
+    f.add(t.nodes[i].first_prim);
+    f.add(t.nodes[i].bits);
+    const KdNodeInfo& info = t.info[i];
+    for (int a = 0; a < 3; ++a) f.add(info.box.lo[a]), f.add(info.box.hi[a]);
+    f.add(uint32_t(info.parent));
+    f.add(uint32_t(info.depth));
+    f.add(info.cost);
+  }
+  for (uint32_t p : t.prim_index) f.add(p);
+  return f.h;
 }
 
 double median_ms(std::vector<double> v) {
@@ -76,8 +108,8 @@ int main(int argc, char** argv) {
     for (int l = 0; l < levels; ++l) scaled.push_back(subdivide(scaled.back()));
 
     std::printf("%s\n", mesh.c_str());
-    std::printf("%-8s %6s %9s %10s %9s %9s %8s %6s %9s %10s\n", "builder", "scale", "prims", "build_ms", "nodes",
-                "leaves", "empty", "depth", "refs/prim", "sah_cost");
+    std::printf("%-8s %6s %9s %10s %10s %9s %9s %8s %6s %9s %10s  %-16s\n", "builder", "scale", "prims", "build_ms",
+                "min_ms", "nodes", "leaves", "empty", "depth", "refs/prim", "sah_cost", "checksum");
     std::stringstream list(builders);
     std::string name;
     while (std::getline(list, name, ',')) {
@@ -100,9 +132,10 @@ int main(int argc, char** argv) {
           ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
         }
         KdTreeStats s = kd_tree_stats(tree, o);
-        std::printf("%-8s %5zux %9zu %10.1f %9zu %9zu %8zu %6d %9.2f %10.1f\n", name.c_str(), size_t(1) << (2 * l),
-                    g.size(), median_ms(ms), s.nodes, s.leaves, s.empty_leaves, s.max_depth,
-                    double(s.references) / double(std::max<size_t>(g.size(), 1)), s.sah_cost);
+        std::printf("%-8s %5zux %9zu %10.1f %10.1f %9zu %9zu %8zu %6d %9.2f %10.1f  %016llx\n", name.c_str(),
+                    size_t(1) << (2 * l), g.size(), median_ms(ms), *std::min_element(ms.begin(), ms.end()), s.nodes,
+                    s.leaves, s.empty_leaves, s.max_depth, double(s.references) / double(std::max<size_t>(g.size(), 1)),
+                    s.sah_cost, (unsigned long long)tree_checksum(tree));
         std::fflush(stdout);
       }
     }

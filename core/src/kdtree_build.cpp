@@ -130,6 +130,24 @@ Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3&
   return b;
 }
 
+void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis, float position,
+                            Bounds3* below, Bounds3* above) {
+  Bounds3 below_box = box, above_box = box;
+  below_box.hi[axis] = position;
+  above_box.lo[axis] = position;
+  if (geometry.type(prim) != PrimType::triangle) {
+    *below = straddler_bounds(geometry, prim, below_box);
+    *above = straddler_bounds(geometry, prim, above_box);
+    return;
+  }
+  clip_triangle_bounds_split(geometry.vertex(prim, 0), geometry.vertex(prim, 1), geometry.vertex(prim, 2), box, axis,
+                             position, below, above);
+  *below = below->empty() ? intersection_of(geometry.prim_bounds(prim), below_box) : *below;
+  *above = above->empty() ? intersection_of(geometry.prim_bounds(prim), above_box) : *above;
+  *below = without_negative_zero(*below);
+  *above = without_negative_zero(*above);
+}
+
 std::vector<PrimRef> root_prim_refs(const Geometry& geometry) {
   std::vector<PrimRef> prims(geometry.size());
   for (uint32_t id = 0; id < geometry.size(); ++id) prims[id] = {id, clipped_bounds(geometry, id, geometry.bounds())};

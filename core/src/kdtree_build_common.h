@@ -21,6 +21,10 @@ Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& b
 // A straddling primitive's bounds in one child. When in doubt, both: should clipping leave nothing (the
 // primitive reaches the child only within rounding), it keeps its own bounds intersected with the child.
 Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& child);
+// The same for both children of `box` cut at `position` on `axis`, at once (the sweep's split step): bit for bit
+// straddler_bounds(.., below child) and straddler_bounds(.., above child), by clip_triangle_bounds_split.
+void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis, float position,
+                            Bounds3* below, Bounds3* above);
 
 // The surface areas of the two children of a node box cut on one axis: S = 2 (e_u e_v + e_a (e_u + e_v)) with
 // e_a the child's extent on the axis (the other two extents are the node's).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kdtree_build_common.h"
+#include "raystep/geometry/numerics.h"
 
 namespace raystep::kd {
 namespace {
@@ -14,29 +15,76 @@ namespace {
 // The paper's event types, in its order at equal positions: end (-), planar (|), start (+).
 enum EventType : uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
 
-// One event on one axis. The type sits above the primitive id in `key`, so that ordering by (position, key) is
-// the paper's order by (position, type), made total by the id.
+// One event on one axis, packed in 64 bits so that events sort and merge as integers: above, the position's
+// bits made order-preserving; below, the key, the type above the primitive id. Ordering the packed bits is the
+// paper's order by (position, type), made total by the id. (Positions are finite and never -0, see
+// kd::clipped_bounds, so equal positions are equal bits.)
 struct Event {
-  float position;
-  uint32_t key;
+  uint64_t bits;
 
   static Event make(float position, EventType type, uint32_t prim) {
-    return Event{position, (uint32_t(type) << 30) | prim};
+    return Event{(uint64_t(ordered_bits(position)) << 32) | (uint64_t(type) << 30) | prim};
   }
-  EventType type() const { return EventType(key >> 30); }
-  uint32_t prim() const { return key & KdNode::kMaxIndex; }
-  bool operator<(const Event& e) const { return position < e.position || (position == e.position && key < e.key); }
+  float position() const { return from_ordered_bits(uint32_t(bits >> 32)); }
+  EventType type() const { return EventType((bits >> 30) & 3u); }
+  uint32_t prim() const { return uint32_t(bits) & KdNode::kMaxIndex; }
+  // (position, type): the same for all the events one step of the sweep counts together.
+  uint64_t group() const { return bits >> 30; }
+  bool operator<(const Event& e) const { return bits < e.bits; }
+
+  // A float's bits as an unsigned integer in the order of the floats: the sign bit flipped for positive
+  // numbers, every bit for negative ones.
+  static uint32_t ordered_bits(float f) {
+    const uint32_t u = float_to_bits(f);
+    return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
+  }
+  static float from_ordered_bits(uint32_t o) { return bits_to_float((o & 0x80000000u) ? (o & 0x7fffffffu) : ~o); }
 };
 
-// The events of a primitive with bounds b, appended to one list per axis.
-void append_events(const Bounds3& b, uint32_t prim, std::vector<Event>* lists) {
+// The merge of two sorted runs of distinct events into out; returns the end of the output.
+inline Event* merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
+  while (a != a_end && b != b_end) {
+    const bool take_b = b->bits < a->bits;
+    *out++ = take_b ? *b : *a;
+    b += take_b;
+    a += !take_b;
+  }
+  out = std::copy(a, a_end, out);
+  return std::copy(b, b_end, out);
+}
+
+// The same in place, for a run a[0, n_a) that begins the output: a[0, n_a + n_b) gets the merge, written from
+// the back, so that no event of a is overwritten before it is read.
+inline void merge_events_in_place(Event* a, size_t n_a, const Event* b, size_t n_b) {
+  size_t i = n_a, j = n_b, w = n_a + n_b;
+  while (i > 0 && j > 0) {
+    const bool take_a = b[j - 1].bits < a[i - 1].bits;
+    a[--w] = take_a ? a[i - 1] : b[j - 1];
+    i -= take_a;
+    j -= !take_a;
+  }
+  while (j > 0) a[--w] = b[--j];  // what is left of a is in place already
+}
+
+// The events of a primitive with bounds b, written at out[a] on each axis a (each pointer moves past them; a
+// primitive has at most two events per axis).
+inline void append_events(const Bounds3& b, uint32_t prim, Event** out) {
   for (int a = 0; a < 3; ++a) {
     if (b.lo[a] == b.hi[a]) {
-      lists[a].push_back(Event::make(b.lo[a], kPlanar, prim));
+      *out[a]++ = Event::make(b.lo[a], kPlanar, prim);
     } else {
-      lists[a].push_back(Event::make(b.lo[a], kStart, prim));
-      lists[a].push_back(Event::make(b.hi[a], kEnd, prim));
+      *out[a]++ = Event::make(b.lo[a], kStart, prim);
+      *out[a]++ = Event::make(b.hi[a], kEnd, prim);
     }
+  }
+}
+
+// Room for n primitives' events in each of three lists, and the pointers where to write them. The lists only
+// grow (no zeroing of the room again for every node); what was written ends at the pointers.
+inline void make_room(std::vector<Event>* lists, size_t n, Event** out) {
+  for (int a = 0; a < 3; ++a) {
+    if (lists[a].size() < 2 * n) lists[a].resize(std::max(2 * n, 2 * lists[a].size()));
+    out[a] = lists[a].data();
   }
 }
 
@@ -61,12 +109,15 @@ class SweepBuilder {
     const Bounds3 box = geometry_.bounds();
     const uint32_t n = uint32_t(geometry_.size());
     NodeEvents root;
-    for (int a = 0; a < 3; ++a) events_[a].reserve(2 * size_t(n) + 16);
-    for (uint32_t id = 0; id < n; ++id) append_events(clipped_bounds(geometry_, id, box), id, events_);
+    // The arenas grow to a few times the root's events (the waiting above siblings); reserved once.
+    for (int a = 0; a < 3; ++a) events_[a].reserve(8 * size_t(n) + 16);
+    Event* out[3];
+    make_room(events_, n, out);
+    for (uint32_t id = 0; id < n; ++id) append_events(clipped_bounds(geometry_, id, box), id, out);
     for (int a = 0; a < 3; ++a) {
-      std::sort(events_[a].begin(), events_[a].end());
+      std::sort(events_[a].data(), out[a]);
       root.begin[a] = 0;
-      root.end[a] = events_[a].size();
+      root.end[a] = size_t(out[a] - events_[a].data());
     }
     root.n_prims = n;
     side_.assign(n, Side::both);
@@ -100,14 +151,17 @@ class SweepBuilder {
       const size_t count = ev.end[axis] - ev.begin[axis];
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p-, p|, p+: how many events of each type lie at this position.
-        const float position = e[i].position;
-        uint32_t at[3] = {0, 0, 0};  // indexed by EventType
+        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the type).
+        const float position = e[i].position();
+        const uint64_t at_position = e[i].group() >> 2;
+        uint32_t ends = 0, planars = 0, starts = 0;
         do {
-          ++at[e[i].type()];
+          const EventType type = e[i].type();
+          ends += type == kEnd;
+          planars += type == kPlanar;
+          starts += type == kStart;
           ++i;
-        } while (i < count && e[i].position == position);
-        const uint32_t ends = at[kEnd], planars = at[kPlanar], starts = at[kStart];
+        } while (i < count && e[i].group() >> 2 == at_position);
         // Move the plane onto p: N_P = p|, N_R -= p| + p-; evaluate; then N_L += p+ + p|.
         n_right -= planars + ends;
         if (box.lo[axis] < position && position < box.hi[axis]) {
@@ -133,54 +187,69 @@ class SweepBuilder {
 
     // 1. Classify by one pass over the split axis's events: a start at or after p means above only, an end at
     //    or before p below only, anything else both; planar ones by their position and the chosen side.
-    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
+    size_t most_straddlers = 0;  // the starts below p: the straddlers and those that end at or before p
+    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {  // selects, not branches: the types come in random order
       const Event& e = events_[k][i];
-      switch (e.type()) {
-        case kStart:
-          side_[e.prim()] = e.position >= p ? Side::above : Side::both;
-          break;
-        case kEnd:
-          if (e.position <= p) side_[e.prim()] = Side::below;
-          break;
-        case kPlanar:
-          side_[e.prim()] =
-              (e.position < p || (e.position == p && plane.planar_below)) ? Side::below : Side::above;
-          break;
-      }
+      const float x = e.position();
+      const EventType type = e.type();
+      Side& side = side_[e.prim()];
+      const Side start_side = x >= p ? Side::above : Side::both;
+      const Side planar_side = (x < p || (x == p && plane.planar_below)) ? Side::below : Side::above;
+      const Side end_side = x <= p ? Side::below : side;
+      side = type == kStart ? start_side : (type == kPlanar ? planar_side : end_side);
+      most_straddlers += type == kStart && x < p;
     }
 
     // 2. The straddling primitives are clipped again to each child; their new events are sorted (few).
-    for (int a = 0; a < 3; ++a) {
-      new_below_[a].clear();
-      new_above_[a].clear();
-    }
+    Event *below_out[3], *above_out[3];
+    make_room(new_below_, most_straddlers, below_out);
+    make_room(new_above_, most_straddlers, above_out);
+    Bounds3 box = below_box;
+    box.hi[k] = above_box.hi[k];
+    straddlers_.clear();
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
       const Event& e = events_[k][i];
-      if (e.type() != kStart || side_[e.prim()] != Side::both) continue;
-      append_events(straddler_bounds(geometry_, e.prim(), below_box), e.prim(), new_below_);
-      append_events(straddler_bounds(geometry_, e.prim(), above_box), e.prim(), new_above_);
+      if (e.type() == kStart && side_[e.prim()] == Side::both) straddlers_.push_back(e.prim());
+    }
+    for (size_t i = 0; i < straddlers_.size(); ++i) {
+      // The triangles are scattered in memory: ask for the vertices a few clips ahead.
+      if (i + kPrefetchAhead < straddlers_.size() && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
+        __builtin_prefetch(&geometry_.vertex(straddlers_[i + kPrefetchAhead], 0));
+      const uint32_t prim = straddlers_[i];
+      Bounds3 below_bounds, above_bounds;
+      straddler_bounds_split(geometry_, prim, box, k, p, &below_bounds, &above_bounds);
+      append_events(below_bounds, prim, below_out);
+      append_events(above_bounds, prim, above_out);
     }
 
-    // 3. The primitives on one side keep their events, spliced out in order; 4. merged with the new ones. The
-    //    above child goes to the arena first, the below child on top of it (it is built first).
+
+    // 3. The primitives on one side keep their events, spliced out in order: the above ones moved down in place
+    //    (never past where they are read), the below ones to scratch; 4. merged with the new ones. The above
+    //    child goes to the arena first, the below child on top of it (it is built first).
     for (int a = 0; a < 3; ++a) {
-      std::sort(new_below_[a].begin(), new_below_[a].end());
-      std::sort(new_above_[a].begin(), new_above_[a].end());
-      kept_below_.clear();
-      kept_above_.clear();
-      for (size_t i = ev.begin[a]; i < ev.end[a]; ++i) {
-        const Event& e = events_[a][i];
-        Side s = side_[e.prim()];
-        if (s == Side::below) kept_below_.push_back(e);
-        else if (s == Side::above) kept_above_.push_back(e);
+      const Event *new_below = new_below_[a].data(), *new_above = new_above_[a].data();
+      const size_t n_new_below = size_t(below_out[a] - new_below), n_new_above = size_t(above_out[a] - new_above);
+      std::sort(new_below_[a].data(), below_out[a]);
+      std::sort(new_above_[a].data(), above_out[a]);
+      const size_t base = ev.begin[a], count = ev.end[a] - ev.begin[a];
+      const size_t most = base + count + n_new_above + n_new_below;
+      if (events_[a].size() < most) events_[a].resize(most);
+      if (kept_below_.size() < count) kept_below_.resize(count);
+      Event* e = events_[a].data() + base;
+      size_t n_kept_above = 0, n_kept_below = 0;
+      for (size_t i = 0; i < count; ++i) {  // without branches: the sides of successive events are random
+        const Event x = e[i];
+        const Side s = side_[x.prim()];
+        e[n_kept_above] = x;  // n_kept_above <= i: already read
+        kept_below_[n_kept_below] = x;
+        n_kept_above += s == Side::above;
+        n_kept_below += s == Side::below;
       }
-      const size_t base = ev.begin[a];
-      const size_t n_above = kept_above_.size() + new_above_[a].size();
-      const size_t n_below = kept_below_.size() + new_below_[a].size();
-      if (events_[a].size() < base + n_above + n_below) events_[a].resize(base + n_above + n_below);
-      auto out = events_[a].begin() + base;
-      out = std::merge(kept_above_.begin(), kept_above_.end(), new_above_[a].begin(), new_above_[a].end(), out);
-      std::merge(kept_below_.begin(), kept_below_.end(), new_below_[a].begin(), new_below_[a].end(), out);
+      const size_t n_above = n_kept_above + n_new_above;
+      const size_t n_below = n_kept_below + n_new_below;
+      merge_events_in_place(e, n_kept_above, new_above, n_new_above);
+      merge_events(kept_below_.data(), kept_below_.data() + n_kept_below, new_below, new_below + n_new_below,
+                   e + n_above);
       above->begin[a] = base;
       above->end[a] = base + n_above;
       below->begin[a] = base + n_above;
@@ -226,8 +295,9 @@ class SweepBuilder {
   std::vector<Event> events_[3];  // one arena per axis
   std::vector<Side> side_;        // per primitive, valid for the node being split
   // Scratch reused by every node: no allocation per node once they have grown.
-  std::vector<Event> new_below_[3], new_above_[3], kept_below_, kept_above_;
-  std::vector<uint32_t> leaf_prims_;
+  std::vector<Event> new_below_[3], new_above_[3], kept_below_;
+  std::vector<uint32_t> leaf_prims_, straddlers_;
+  static constexpr size_t kPrefetchAhead = 4;
 };
 
 }  // namespace

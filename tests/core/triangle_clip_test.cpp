@@ -65,5 +65,59 @@ TEST(TriangleClip, ConservativeOnRandomTriangles) {
   EXPECT_GT(clipped, 100);
 }
 
+// The kd-tree's split step clips a triangle to both children at once: bit for bit the two plain clips, on random
+// triangles and boxes (many planes crossed), on a lattice (exact arithmetic), for vertices on the cut plane and
+// for cuts at the triangle's own bounds.
+TEST(TriangleClip, SplitGivesTheTwoPlainClipsBitForBit) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-2.f, 2.f), f(0.f, 1.f);
+  std::uniform_int_distribution<int> lattice(-8, 8), pick(0, 4);
+  auto same_bits = [](const Bounds3& a, const Bounds3& b) {
+    for (int k = 0; k < 3; ++k)
+      if (float_to_bits(a.lo[k]) != float_to_bits(b.lo[k]) || float_to_bits(a.hi[k]) != float_to_bits(b.hi[k]))
+        return false;
+    return true;
+  };
+  int both = 0, one = 0;
+  for (int k = 0; k < 200000; ++k) {
+    glm::vec3 p[3];
+    Bounds3 box;
+    const int kind = k % 4;
+    if (kind == 3) {  // a lattice of halves: interpolation is often exact
+      for (auto& v : p) v = 0.5f * glm::vec3(lattice(rng), lattice(rng), lattice(rng));
+      box = Bounds3(0.5f * glm::vec3(lattice(rng), lattice(rng), lattice(rng)),
+                    0.5f * glm::vec3(lattice(rng), lattice(rng), lattice(rng)));
+    } else {
+      for (auto& v : p) v = glm::vec3(u(rng), u(rng), u(rng));
+      // Boxes from large to tiny, so that a triangle crosses from one to six of their planes.
+      glm::vec3 c(u(rng), u(rng), u(rng)), h = glm::vec3(f(rng), f(rng), f(rng)) * (kind == 0 ? 2.f : kind == 1 ? 0.5f : 0.05f);
+      box = Bounds3(c - h, c + h);
+    }
+    const int axis = k % 3;
+    if (!(box.lo[axis] < box.hi[axis])) continue;
+    float position;
+    switch (pick(rng)) {
+      case 0: position = p[k % 3][axis]; break;  // through a vertex
+      default: position = box.lo[axis] + f(rng) * (box.hi[axis] - box.lo[axis]); break;
+    }
+    if (!(box.lo[axis] < position && position < box.hi[axis])) continue;
+    Bounds3 below_box = box, above_box = box;
+    below_box.hi[axis] = position;
+    above_box.lo[axis] = position;
+    Bounds3 below, above;
+    clip_triangle_bounds_split(p[0], p[1], p[2], box, axis, position, &below, &above);
+    const Bounds3 plain_below = clip_triangle_bounds(p[0], p[1], p[2], below_box);
+    const Bounds3 plain_above = clip_triangle_bounds(p[0], p[1], p[2], above_box);
+    ASSERT_EQ(below.empty(), plain_below.empty()) << k;
+    ASSERT_EQ(above.empty(), plain_above.empty()) << k;
+    if (!below.empty()) ASSERT_TRUE(same_bits(below, plain_below)) << k;
+    if (!above.empty()) ASSERT_TRUE(same_bits(above, plain_above)) << k;
+    if (!below.empty() && !above.empty()) ++both;
+    else if (!below.empty() || !above.empty()) ++one;
+  }
+  EXPECT_GT(both, 10000);
+  EXPECT_GT(one, 10000);
+}
+
 }  // namespace
 }  // namespace raystep

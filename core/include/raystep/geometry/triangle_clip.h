@@ -4,6 +4,7 @@
 // exact clipped triangle: a structure built on these bounds never loses a primitive to rounding.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -123,6 +124,139 @@ inline Bounds3 clip_triangle_bounds(const glm::vec3& p0, const glm::vec3& p1, co
     r.hi[b] = h;
   }
   return intersection_of(r, limit);
+}
+
+// The faster variant for the kd-tree's split step: the bounds of a triangle in both children of `box` cut at
+// `position` on `axis`, bit for bit clip_triangle_bounds(p0, p1, p2, below) and clip_triangle_bounds(p0, p1, p2,
+// above) (tests/core/triangle_clip_test.cpp checks it). The two clips run the same operations on the same
+// numbers up to the cut axis, whose planes come after those of the axes before it: that part is clipped once,
+// then the polygon is copied and clipped on by each child's remaining planes. Each vertex's side of a plane
+// is also tested once instead of twice.
+namespace triangle_clip_detail {
+
+struct Vertex {
+  glm::dvec3 p;
+  uint32_t exact;  // bit a: coordinate a is an exact float
+};
+
+// One Sutherland-Hodgman step of clip_triangle_bounds: poly[0, n) by the half-space x_a >= plane (keep_above)
+// or x_a <= plane, into next; returns the new vertex count.
+inline int clip_polygon(const Vertex* poly, int n, int a, bool keep_above, double plane, Vertex* next) {
+  auto inside = [&](const Vertex& v) { return keep_above ? v.p[a] >= plane : v.p[a] <= plane; };
+  int m = 0;
+  bool s_in = inside(poly[n - 1]);
+  for (int i = 0, j = n - 1; i < n; j = i++) {  // the edge from s = poly[j] to e = poly[i]
+    const Vertex& s = poly[j];
+    const Vertex& e = poly[i];
+    const bool e_in = inside(e);
+    if (s_in != e_in) {
+      double t = (plane - s.p[a]) / (e.p[a] - s.p[a]);
+      t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+      Vertex& x = next[m++];
+      x.p = s.p + t * (e.p - s.p);
+      x.p[a] = plane;
+      x.exact = 1u << a;
+      double num = plane - s.p[a], den = e.p[a] - s.p[a];
+      bool t_exact = ((s.exact & e.exact) >> a & 1u) && t > 0.0 && t < 1.0 && t * den == num &&
+                     two_product_error(t, den, t * den) == 0.0 && two_sum_error(plane, -s.p[a], num) == 0.0 &&
+                     two_sum_error(e.p[a], -s.p[a], den) == 0.0;
+      for (int b = 0; b < 3; ++b) {
+        if (b == a || !(s.exact & e.exact & (1u << b))) continue;
+        double d = e.p[b] - s.p[b], r = t * d;
+        if (d == 0.0 || (t_exact && two_sum_error(e.p[b], -s.p[b], d) == 0.0 &&
+                         two_product_error(t, d, r) == 0.0 && two_sum_error(s.p[b], r, x.p[b]) == 0.0))
+          x.exact |= 1u << b;
+      }
+    }
+    if (e_in) next[m++] = e;
+    s_in = e_in;
+  }
+  return m;
+}
+
+// A polygon being clipped in two buffers used in turn.
+struct Polygon {
+  Vertex buffer[2][10];
+  int current = 0, n = 0;
+
+  const Vertex* vertices() const { return buffer[current]; }
+  // Clips by the planes of box on the axes [from, to) that the triangle (bounds tri) crosses, in the order of
+  // clip_triangle_bounds; false when nothing is left.
+  bool clip_by(const Bounds3& tri, const Bounds3& box, int from, int to) {
+    for (int a = from; a < to; ++a)
+      for (int side = 0; side < 2; ++side) {
+        const bool keep_above = side == 0;
+        if (keep_above ? tri.lo[a] >= box.lo[a] : tri.hi[a] <= box.hi[a]) continue;
+        n = clip_polygon(buffer[current], n, a, keep_above, keep_above ? box.lo[a] : box.hi[a],
+                         buffer[1 - current]);
+        current = 1 - current;
+        if (n == 0) return false;
+      }
+    return true;
+  }
+  void copy_to(Polygon* other) const {
+    other->current = 0;
+    other->n = n;
+    std::copy(buffer[current], buffer[current] + n, other->buffer[0]);
+  }
+  // The bounds as clip_triangle_bounds rounds them, within limit.
+  Bounds3 bounds(const glm::dvec3& widen, const Bounds3& limit) const {
+    const Vertex* poly = vertices();
+    glm::dvec3 lo(kInfinity), hi(-kInfinity);
+    for (int i = 0; i < n; ++i)
+      for (int b = 0; b < 3; ++b) {
+        double w = (poly[i].exact >> b) & 1u ? 0.0 : widen[b];
+        double l = poly[i].p[b] - w, h = poly[i].p[b] + w;
+        lo[b] = l < lo[b] ? l : lo[b];
+        hi[b] = h > hi[b] ? h : hi[b];
+      }
+    Bounds3 r;
+    for (int b = 0; b < 3; ++b) {
+      float l = float(lo[b]), h = float(hi[b]);
+      if (double(l) > lo[b]) l = next_float_down(l);
+      if (double(h) < hi[b]) h = next_float_up(h);
+      r.lo[b] = l;
+      r.hi[b] = h;
+    }
+    return intersection_of(r, limit);
+  }
+};
+
+}  // namespace triangle_clip_detail
+
+inline void clip_triangle_bounds_split(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                                       const Bounds3& box, int axis, float position, Bounds3* below,
+                                       Bounds3* above) {
+  using triangle_clip_detail::Polygon;
+  Bounds3 below_box = box, above_box = box;
+  below_box.hi[axis] = position;
+  above_box.lo[axis] = position;
+  *below = Bounds3();
+  *above = Bounds3();
+  Bounds3 tri(p0, p1);
+  tri.extend(p2);
+  const Bounds3 below_limit = intersection_of(tri, below_box), above_limit = intersection_of(tri, above_box);
+  const bool want_below = !below_limit.empty(), want_above = !above_limit.empty();
+  if (!want_below && !want_above) return;
+
+  // The planes both clips share: those of the axes before the cut.
+  Polygon poly;
+  poly.n = 3;
+  poly.buffer[0][0] = {glm::dvec3(p0), 7u};
+  poly.buffer[0][1] = {glm::dvec3(p1), 7u};
+  poly.buffer[0][2] = {glm::dvec3(p2), 7u};
+  if (!poly.clip_by(tri, box, 0, axis)) return;
+
+  glm::dvec3 magnitude =
+      glm::max(glm::abs(glm::dvec3(p0)), glm::max(glm::abs(glm::dvec3(p1)), glm::abs(glm::dvec3(p2))));
+  glm::dvec3 widen = magnitude * (1.0 / double(uint64_t(1) << 40));
+  // Then each child on its own: the cut axis and the axes after it.
+  if (want_above) {
+    Polygon upper;
+    poly.copy_to(&upper);
+    if (upper.clip_by(tri, above_box, axis, 3)) *above = upper.bounds(widen, above_limit);
+  }
+  if (want_below && poly.clip_by(tri, below_box, axis, 3)) *below = poly.bounds(widen, below_limit);
 }
 
 }  // namespace raystep
