@@ -272,7 +272,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.stackActor = unlitActor(d.stackData, palette::stackNode, 2.f);
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
-  for (vtkActor* a : {d.splitActor.Get(), d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
+  d.base->AddActor(d.splitActor);  // under the walk: the translucent plane must not tint the ray
+  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
 
