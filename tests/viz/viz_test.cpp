@@ -75,12 +75,12 @@ const std::string kPixel = "'" + kScene + "' --pixel 160,200 --window 1280x800";
 
 // What the 3D view should show: the current cell's colour inside its projected box, the ray's colours (walked,
 // ahead, or the current interval's) near most of its projected samples.
-void checkScreenshot(const std::string& png, const json& state) {
+void checkScreenshot(const std::string& png, const json& state, const std::string& box = "current_cell") {
   raystep::Rgb8Image img = raystep::read_png_rgb8(png);
   ASSERT_EQ(img.width, state["window"][0].get<int>());
   const json& view = state["view"];
-  ASSERT_TRUE(view.contains("current_cell"));
-  const json& corners = view["current_cell"]["projected_corners"];
+  ASSERT_TRUE(view.contains(box));
+  const json& corners = view[box]["projected_corners"];
   ASSERT_EQ(corners.size(), 8u);
   double x0 = 1e9, y0 = 1e9, x1 = -1e9, y1 = -1e9;
   for (const json& c : corners) {
@@ -131,6 +131,21 @@ TEST(Viz, ScriptedScreenshotShowsCurrentCellAndRay) {
     std::string expect = "(" + std::to_string(cc[0].get<int>()) + ", " + std::to_string(cc[1].get<int>()) + ", " +
                          std::to_string(cc[2].get<int>()) + ")";
     EXPECT_NE(cell.find(expect), std::string::npos) << cell;
+  }
+}
+
+// The kd-tree: the current node's highlight where its box projects, the ray along its projection.
+TEST(Viz, KdScreenshotShowsCurrentNodeAndRay) {
+  for (const char* step : {"push:1", "leaf:2"}) {
+    std::string tag = std::string("cornell_kd_") + step;
+    tag[tag.find(':')] = '_';
+    std::string png = kOut + "/" + tag + ".png", st = kOut + "/" + tag + ".json";
+    GuiRun r = gui(kPixel + " --accel kd --step-to " + step + " --screenshot '" + png + "' --dump-state '" + st +
+                       "' --quit",
+                   tag);
+    ASSERT_EQ(r.code, 0) << r.err;
+    json state = readJson(st);
+    checkScreenshot(png, state, "current_node");
   }
 }
 

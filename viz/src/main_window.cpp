@@ -199,7 +199,7 @@ void MainWindow::openTrace(const QString& path) {
 
 void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs) {
   auto t0 = std::chrono::steady_clock::now();
-  ++generation_["build"];  // a grid still being built for the previous scene is of no use now
+  ++generation_["build"];  // a structure still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
   session_->setTrace(trace, path);
   double showMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -234,7 +234,9 @@ void MainWindow::openScene(const QString& path) {
   });
 }
 
-void MainWindow::setGridOptions(const GridOptions& o) { structure_->setGridOptions(o); }
+void MainWindow::setStructureOptions(const std::string& accelName, const StructureOptions& o) {
+  structure_->setStructure(accelName, o);
+}
 
 void MainWindow::setImageSize(int w, int h) {
   sizeW_ = w;
@@ -244,27 +246,44 @@ void MainWindow::setImageSize(int w, int h) {
 void MainWindow::buildStructure() {
   auto scene = session_->sceneShared();
   if (!scene) return showError(tr("Open a scene first: a trace replays the structure it recorded."));
-  GridOptions o = structure_->gridOptions();
-  runTask("build", tr("Building the grid..."), [this, scene, o] {
-    auto grid = buildGridData(scene, o);
-    return std::function<void()>([this, grid, scene] {
+  std::string kind = structure_->accelName();
+  StructureOptions o = structure_->options();
+  QString what = kind == "grid" ? tr("Building the grid...") : tr("Building the kd-tree...");
+  runTask("build", what, [this, scene, kind, o] {
+    auto built = buildStructureData(scene, kind, o);
+    return std::function<void()>([this, built, scene] {
       if (scene != session_->sceneShared()) return;  // built for a scene since replaced
-      // Rebuilt with other settings: the same pixel is traced again through the new grid.
+      // Rebuilt with other settings: the same pixel is traced again through the new structure.
       const Trace* old = session_->trace();
       bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
       int px = retrace ? old->rays[0].pixel[0] : 0, py = retrace ? old->rays[0].pixel[1] : 0;
-      session_->setGrid(grid);
-      auto r = grid->grid.resolution();
-      structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
-                              .arg(r[0])
-                              .arg(r[1])
-                              .arg(r[2])
-                              .arg(grid->grid.reference_count())
-                              .arg(double(grid->grid.reference_count()) /
-                                       std::max<size_t>(1, grid->scene->scene.geometry.size()),
-                                   0, 'f', 2) +
-                          took(tr(", built"), grid->buildMs));
-      if (scripted_) std::fprintf(stderr, "timing: grid build %.1f ms\n", grid->buildMs);
+      session_->setStructure(built);
+      size_t n = std::max<size_t>(1, built->scene->scene.geometry.size());
+      if (const UniformGrid* grid = built->grid()) {
+        auto r = grid->resolution();
+        structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
+                                .arg(r[0])
+                                .arg(r[1])
+                                .arg(r[2])
+                                .arg(grid->reference_count())
+                                .arg(double(grid->reference_count()) / n, 0, 'f', 2) +
+                            took(tr(", built"), built->buildMs));
+      } else if (const KdTree* kd = built->kdTree()) {
+        KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
+        structure_->setInfo(tr("%1: %2 nodes, %3 leaves (%4 empty), depth %5, %6 references (%7 per primitive), "
+                               "SAH cost %8")
+                                .arg(QString::fromStdString(built->kind))
+                                .arg(st.nodes)
+                                .arg(st.leaves)
+                                .arg(st.empty_leaves)
+                                .arg(st.max_depth)
+                                .arg(st.references)
+                                .arg(double(st.references) / n, 0, 'f', 2)
+                                .arg(st.sah_cost, 0, 'f', 1) +
+                            took(tr(", built"), built->buildMs));
+      }
+      if (scripted_) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
+      auto* grid = built.get();
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
                              sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);
       if (retrace && px < session_->imageWidth() && py < session_->imageHeight()) tracePixel(px, py);
@@ -275,7 +294,7 @@ void MainWindow::buildStructure() {
 }
 
 void MainWindow::renderPicture() {
-  auto grid = session_->gridShared();
+  auto grid = session_->structureShared();
   if (!grid) return;
   std::string aa = imageView_->antiAliasing().toStdString();
   int w = session_->imageWidth(), h = session_->imageHeight();
@@ -284,7 +303,7 @@ void MainWindow::renderPicture() {
     double ms = 0;
     QImage img = viz::renderPicture(*grid, aa, w, h, &ms);
     return std::function<void()>([this, grid, img, ms, w, h, aa] {
-      if (grid != session_->gridShared()) return;  // made for a grid since replaced
+      if (grid != session_->structureShared()) return;  // made for a structure since replaced
       session_->setPicture(img);
       imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
                             took(tr(", rendered"), ms) + tr(". Click a pixel to trace its ray."));
@@ -294,7 +313,7 @@ void MainWindow::renderPicture() {
 }
 
 void MainWindow::computeHeat() {
-  auto grid = session_->gridShared();
+  auto grid = session_->structureShared();
   QString q = imageView_->heatQuantity();
   if (!grid || q == "off") {
     session_->setHeat(nullptr);
@@ -306,7 +325,7 @@ void MainWindow::computeHeat() {
     double ms = 0;
     auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, w, h, &ms));
     return std::function<void()>([this, grid, heat, ms] {
-      if (grid != session_->gridShared()) return;
+      if (grid != session_->structureShared()) return;
       session_->setHeat(heat);
       statusBar()->showMessage(tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
                                tr(" (max %1, mean %2)")
@@ -318,8 +337,8 @@ void MainWindow::computeHeat() {
 }
 
 void MainWindow::tracePixel(int x, int y) {
-  const GridData* grid = session_->grid();
-  if (!grid) return showError(tr("The grid is not built yet."));
+  const StructureData* grid = session_->structure();
+  if (!grid) return showError(tr("The structure is not built yet."));
   int w = session_->imageWidth(), h = session_->imageHeight();
   if (x < 0 || y < 0 || x >= w || y >= h)
     throw InputError("", 0, "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +

@@ -1,6 +1,6 @@
 // The debugger's window: structure panel and image on the left, the 3D view in the middle, state panels and
 // the event list on the right, the timeline along the bottom. It owns the session and runs the heavy work
-// (loading, grid build, render, heat map) on worker threads, so the window never freezes; in scripted mode
+// (loading, structure build, render, heat map) on worker threads, so the window never freezes; in scripted mode
 // the same work runs in place, one step after the other.
 #pragma once
 
@@ -10,7 +10,9 @@
 
 #include <QMainWindow>
 
-#include "raystep/accel/grid.h"
+#include <string>
+
+#include "raystep/accel/structure_options.h"
 
 namespace raystep {
 struct Trace;
@@ -40,7 +42,7 @@ class MainWindow : public QMainWindow {
   void openFile(const QString& path);
   // The GUI path of opening, in every mode: an error goes to a dialog (auto-closed in scripted mode).
   void openFileReportingErrors(const QString& path);
-  void setGridOptions(const GridOptions& o);
+  void setStructureOptions(const std::string& accelName, const StructureOptions& o);
   void setImageSize(int w, int h);  // the picture's size (default: the scene's)
   void buildStructure();
   void renderPicture();

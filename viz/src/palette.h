@@ -7,8 +7,10 @@
 
 namespace raystep::viz::palette {
 
-inline const QColor currentCell{255, 214, 0};    // the cell the 3D-DDA is in: yellow
+inline const QColor currentCell{255, 214, 0};    // the cell the 3D-DDA is in, or the current kd node: yellow
 inline const QColor visitedCell{90, 140, 255};   // cells already walked: faded blue
+inline const QColor stackNode{255, 130, 170};   // kd-tree: nodes waiting on the stack: pink
+inline const QColor splitPlane{255, 240, 150};   // kd-tree: the current node's split plane (translucent)
 inline const QColor gridOutline{150, 150, 150};  // the grid's bounding box
 inline const QColor ray{0, 230, 255};            // the ray up to where the walk is: cyan
 inline const QColor rayAhead{0, 105, 125};       // the rest of the ray, not walked yet: dark cyan

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <unordered_map>
+#include <unordered_set>
 
 #include <QCheckBox>
 #include <QHBoxLayout>
@@ -121,6 +123,9 @@ struct SceneView::Impl {
       segmentData;
   vtkSmartPointer<vtkActor> sceneActor, outlineActor, latticeActor, visitedActor, cellActor, primActor, rayActor, aheadActor,
       segmentActor;
+  // kd-tree: the nodes waiting on the stack, the current node's split plane.
+  vtkNew<vtkPolyData> stackData, splitData;
+  vtkSmartPointer<vtkActor> stackActor, splitActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
 
@@ -128,6 +133,12 @@ struct SceneView::Impl {
   bool haveGrid = false;
   glm::vec3 gridLo{0.f}, gridHi{1.f};
   int res[3] = {1, 1, 1};
+  // A tree (kd): its root box is gridLo..gridHi; its nodes are the trace's, by id (those the walk names).
+  bool haveTree = false;
+  const Trace* nodesOf = nullptr;
+  std::unordered_map<int32_t, const TraceNode*> nodes;
+  int32_t currentNode = -1;
+  std::vector<int32_t> visitedNodes;
   std::map<int32_t, PrimShape> prims;
   // The current block's primitive shapes: which ray and block they were made for, cells per primitive.
   const void* primBlockRay = nullptr;
@@ -140,6 +151,16 @@ struct SceneView::Impl {
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
   bool rayDrawn = false;
 
+  const TraceNode* node(int32_t id) const {
+    auto it = nodes.find(id);
+    return it == nodes.end() ? nullptr : it->second;
+  }
+  void indexNodes(const Trace* t) {
+    nodesOf = t;
+    nodes.clear();
+    if (t)
+      for (const TraceNode& n : t->nodes) nodes[n.id] = &n;
+  }
   glm::vec3 cellLo(const int c[3]) const {
     glm::vec3 size = (gridHi - gridLo) / glm::vec3(res[0], res[1], res[2]);
     return gridLo + glm::vec3(c[0], c[1], c[2]) * size;
@@ -169,7 +190,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
 
   auto* bar = new QHBoxLayout;
   auto* translucent = d_->translucentCheck = new QCheckBox(tr("Translucent"));
-  auto* follow = d_->followCheck = new QCheckBox(tr("Follow cell"));
+  auto* follow = d_->followCheck = new QCheckBox(tr("Follow"));
+  follow->setToolTip(tr("The camera follows the current cell (grid) or node (kd-tree)"));
   auto* fit = new QToolButton;
   fit->setText(tr("Fit view"));
   translucent->setObjectName("translucentCheck");
@@ -247,24 +269,18 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.hitActor->SetMapper(mapper);
     d.hitActor->GetProperty()->SetLighting(false);
   }
-  for (vtkActor* a : {d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
+  d.stackActor = unlitActor(d.stackData, palette::stackNode, 2.f);
+  d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
+  d.splitActor->GetProperty()->SetOpacity(0.35);
+  d.base->AddActor(d.splitActor);  // under the walk: the translucent plane must not tint the ray
+  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
 
-  // The legend: every colour of the view and what it means.
-  auto swatch = [](const QColor& c, const QString& text) {
-    return QString("<span style='background:%1'>&nbsp;&nbsp;&nbsp;&nbsp;</span>&nbsp;%2&nbsp;&nbsp; ")
-        .arg(c.name(), text);
-  };
+  // The legend: every colour of the view and what it means (set for the structure in rebuildGeometry).
   d.legend = new QLabel;
   d.legend->setObjectName("legend");
   d.legend->setWordWrap(true);
-  d.legend->setText(swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) + swatch(palette::segment, tr("current [tmin, tmax]")) +
-                    swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
-                    swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit")) +
-                    "<br>" + tr("Primitives of the current cell: ") + swatch(palette::primPending, tr("not reached")) +
-                    swatch(palette::primTesting, tr("being tested")) + swatch(palette::primHit, tr("hit")) +
-                    swatch(palette::primMissed, tr("missed")) + swatch(palette::primSkipped, tr("skipped (mailbox)")));
   layout->addWidget(d.legend);
 
   connect(session_, &Session::sceneChanged, this, [this] {
@@ -273,6 +289,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     updateStep();
   });
   connect(session_, &Session::traceChanged, this, [this] {
+    d_->indexNodes(session_->trace());
     d_->primBlockRay = nullptr;  // a new trace may live where the old one did
     // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
     if (!session_->scene()) {
@@ -280,11 +297,12 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
       fitCamera();
     }
   });
-  connect(session_, &Session::gridChanged, this, [this] {
+  connect(session_, &Session::structureChanged, this, [this] {
     rebuildGeometry();
     updateStep();
   });
   connect(session_, &Session::stepChanged, this, &SceneView::updateStep);
+  rebuildGeometry();  // the legend
 }
 
 SceneView::~SceneView() = default;
@@ -346,11 +364,12 @@ void SceneView::rebuildGeometry() {
   d.sceneData->Modified();
 
   // The structure: the scene's grid, or the one named by a trace opened on its own.
-  if (const GridData* gd = session_->grid()) {
-    d.haveGrid = !gd->grid.empty();
-    d.gridLo = gd->grid.bounds().lo;
-    d.gridHi = gd->grid.bounds().hi;
-    auto r = gd->grid.resolution();
+  const UniformGrid* liveGrid = session_->structure() ? session_->structure()->grid() : nullptr;
+  if (liveGrid) {
+    d.haveGrid = !liveGrid->empty();
+    d.gridLo = liveGrid->bounds().lo;
+    d.gridHi = liveGrid->bounds().hi;
+    auto r = liveGrid->resolution();
     for (int a = 0; a < 3; ++a) d.res[a] = r[a];
   } else if (const Trace* t = session_->trace(); t && !session_->scene() && t->structure.kind == "grid") {
     d.haveGrid = true;
@@ -358,9 +377,21 @@ void SceneView::rebuildGeometry() {
     d.gridHi = t->structure.bounds.hi;
     for (int a = 0; a < 3; ++a) d.res[a] = t->structure.resolution[size_t(a)];
   }
+  // A kd-tree: the scene's, or the one named by a trace opened on its own; its root box is outlined.
+  d.haveTree = false;
+  d.indexNodes(session_->trace());
+  if (const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr) {
+    d.haveTree = !kd->data().nodes.empty();
+    d.gridLo = kd->data().bounds.lo;
+    d.gridHi = kd->data().bounds.hi;
+  } else if (const Trace* t = session_->trace(); t && !session_->scene() && t->structure.kind != "grid") {
+    d.haveTree = true;
+    d.gridLo = t->structure.bounds.lo;
+    d.gridHi = t->structure.bounds.hi;
+  }
   vtkNew<vtkPoints> opts;
   vtkNew<vtkCellArray> olines;
-  if (d.haveGrid) {
+  if (d.haveGrid || d.haveTree) {
     addBoxEdges(opts, olines, d.gridLo, d.gridHi);
     bounds.extend(Bounds3(d.gridLo, d.gridHi));
   }
@@ -392,6 +423,25 @@ void SceneView::rebuildGeometry() {
   d.latticeData->SetLines(llines);
   d.latticeData->Modified();
   d.sceneRadius = bounds.empty() ? 1.f : 0.5f * glm::length(bounds.extent());
+
+  auto swatch = [](const QColor& c, const QString& text) {
+    return QString("<span style='background:%1'>&nbsp;&nbsp;&nbsp;&nbsp;</span>&nbsp;%2&nbsp;&nbsp; ")
+        .arg(c.name(), text);
+  };
+  QString walk = swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) +
+                 swatch(palette::segment, tr("current [tmin, tmax]"));
+  QString hits = swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit"));
+  QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested")) +
+                       swatch(palette::primHit, tr("hit")) + swatch(palette::primMissed, tr("missed")) +
+                       swatch(palette::primSkipped, tr("skipped (mailbox)"));
+  if (d.haveTree)
+    d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
+                      swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
+                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" + tr("Primitives of the current leaf: ") +
+                      primStates);
+  else
+    d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
+                      hits + "<br>" + tr("Primitives of the current cell: ") + primStates);
 }
 
 void SceneView::updateStep() {
@@ -417,6 +467,54 @@ void SceneView::updateStep() {
       addBoxEdges(cpts, clines, d.cellLo(e.cell), d.cellHi(e.cell));
     }
   }
+  // kd-tree: the current node (the last one visited or popped; at a push, still the inner node being split),
+  // its split plane clipped to its box, the nodes on the stack, the nodes visited before.
+  vtkNew<vtkPoints> stpts, sppts;
+  vtkNew<vtkCellArray> stlines, sptris;
+  d.currentNode = -1;
+  d.visitedNodes.clear();
+  if (ray && d.haveTree) {
+    if (d.nodesOf != session_->trace()) d.indexNodes(session_->trace());
+    std::unordered_set<int32_t> seen;
+    for (int i = 0; i <= s.step && i < int(ray->events.size()); ++i) {
+      const Event& e = ray->events[size_t(i)];
+      if (e.type == EventType::node || e.type == EventType::pop) {
+        if (d.currentNode >= 0 && seen.insert(d.currentNode).second) d.visitedNodes.push_back(d.currentNode);
+        d.currentNode = e.node;
+      }
+    }
+    std::unordered_set<int32_t> onStack;
+    for (const StackEntry& se : s.stack) onStack.insert(se.node);
+    size_t first = d.visitedNodes.size() > kMaxVisitedDrawn ? d.visitedNodes.size() - kMaxVisitedDrawn : 0;
+    for (size_t v = first; v < d.visitedNodes.size(); ++v) {
+      int32_t id = d.visitedNodes[v];
+      const TraceNode* n = d.node(id);
+      if (n && id != d.currentNode && !onStack.count(id)) addBoxEdges(vpts, vlines, n->box.lo, n->box.hi);
+    }
+    for (const StackEntry& se : s.stack)
+      if (const TraceNode* n = d.node(se.node)) addBoxEdges(stpts, stlines, n->box.lo, n->box.hi);
+    if (const TraceNode* n = d.node(d.currentNode)) {
+      addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
+      if (!n->leaf) {
+        int a = n->axis, b = (a + 1) % 3, c = (a + 2) % 3;
+        vtkIdType ids[4];
+        for (int k = 0; k < 4; ++k) {
+          glm::vec3 p;
+          p[a] = n->split;
+          p[b] = (k == 1 || k == 2) ? n->box.hi[b] : n->box.lo[b];
+          p[c] = k >= 2 ? n->box.hi[c] : n->box.lo[c];
+          ids[k] = sppts->InsertNextPoint(p.x, p.y, p.z);
+        }
+        sptris->InsertNextCell(4, ids);
+      }
+    }
+  }
+  d.stackData->SetPoints(stpts);
+  d.stackData->SetLines(stlines);
+  d.stackData->Modified();
+  d.splitData->SetPoints(sppts);
+  d.splitData->SetPolys(sptris);
+  d.splitData->Modified();
   d.visitedData->SetPoints(vpts);
   d.visitedData->SetLines(vlines);
   d.visitedData->Modified();
@@ -475,7 +573,7 @@ void SceneView::updateStep() {
     if (last.prim < 0) {
       float t0r, t1r;
       SlabRay slab(ray->ray);
-      if (d.haveGrid && intersect_slabs(Bounds3(d.gridLo, d.gridHi), slab, &t0r, &t1r)) tEnd = t1r;
+      if ((d.haveGrid || d.haveTree) && intersect_slabs(Bounds3(d.gridLo, d.gridHi), slab, &t0r, &t1r)) tEnd = t1r;
       else tEnd = 2.f * d.sceneRadius / std::max(1e-12f, glm::length(ray->ray.direction));
     }
     float tStart = std::max(ray->ray.tmin, 0.f);
@@ -527,9 +625,11 @@ void SceneView::updateStep() {
     d.hitActor->SetVisibility(false);
   }
 
-  if (d.follow && ray && s.cellEvent >= 0 && d.haveGrid) {
-    const Event& e = ray->events[size_t(s.cellEvent)];
-    glm::vec3 c = 0.5f * (d.cellLo(e.cell) + d.cellHi(e.cell));
+  const TraceNode* followNode = d.haveTree ? d.node(d.currentNode) : nullptr;
+  if (d.follow && ray && ((s.cellEvent >= 0 && d.haveGrid) || followNode)) {
+    glm::vec3 lo = followNode ? followNode->box.lo : d.cellLo(ray->events[size_t(s.cellEvent)].cell);
+    glm::vec3 hi = followNode ? followNode->box.hi : d.cellHi(ray->events[size_t(s.cellEvent)].cell);
+    glm::vec3 c = 0.5f * (lo + hi);
     vtkCamera* cam = d.base->GetActiveCamera();
     double fp[3], pos[3];
     cam->GetFocalPoint(fp);
@@ -537,7 +637,8 @@ void SceneView::updateStep() {
     glm::dvec3 offset(pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2]);
     if (d.followZoom) {  // on switching follow on: come close enough that about a dozen cells fill the view
       d.followZoom = false;
-      double span = 12.0 * glm::length(glm::dvec3(d.cellHi(e.cell) - d.cellLo(e.cell)));
+      // (a kd node: about three times its size)
+      double span = (followNode ? 3.0 : 12.0) * glm::length(glm::dvec3(hi - lo));
       double dist = 0.5 * span / std::tan(0.5 * cam->GetViewAngle() * M_PI / 180.0);
       if (dist < glm::length(offset)) offset = glm::normalize(offset) * dist;
     }
@@ -626,7 +727,9 @@ QJsonObject SceneView::dumpState() const {
                             {"ray_ahead", jsonColor(palette::rayAhead)},
                             {"segment", jsonColor(palette::segment)},
                             {"hit_final", jsonColor(palette::hitFinal)},
-                            {"hit_candidate", jsonColor(palette::hitCandidate)}};
+                            {"hit_candidate", jsonColor(palette::hitCandidate)},
+                            {"stack_node", jsonColor(palette::stackNode)},
+                            {"split_plane", jsonColor(palette::splitPlane)}};
   const TracedRay* ray = session_->ray();
   const ReplayState& s = session_->state();
   if (ray && s.cellEvent >= 0 && d.haveGrid) {
@@ -642,6 +745,33 @@ QJsonObject SceneView::dumpState() const {
                                     {"min", QJsonArray{lo.x, lo.y, lo.z}},
                                     {"max", QJsonArray{hi.x, hi.y, hi.z}},
                                     {"projected_corners", corners}};
+  }
+  auto projectBox = [&](const glm::vec3& lo, const glm::vec3& hi) {
+    QJsonArray corners;
+    for (int c = 0; c < 8; ++c) {
+      QPointF p;
+      glm::vec3 w(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+      if (d.project(w, win, &p)) corners.append(QJsonArray{p.x(), p.y()});
+    }
+    return corners;
+  };
+  if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
+    QJsonObject cn{{"node", n->id},
+                   {"depth", n->depth},
+                   {"leaf", n->leaf},
+                   {"min", QJsonArray{n->box.lo.x, n->box.lo.y, n->box.lo.z}},
+                   {"max", QJsonArray{n->box.hi.x, n->box.hi.y, n->box.hi.z}},
+                   {"projected_corners", projectBox(n->box.lo, n->box.hi)}};
+    if (!n->leaf) {
+      cn["axis"] = axisName(n->axis);
+      cn["split"] = n->split;
+    }
+    o["current_node"] = cn;
+    QJsonArray stack, vis;
+    for (const StackEntry& se : s.stack) stack.append(se.node);
+    for (int32_t id : d.visitedNodes) vis.append(id);
+    o["stack_nodes"] = stack;
+    o["visited_nodes"] = vis;
   }
   QJsonArray visited;
   for (int i : s.visitedCellEvents) {

@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <regex>
 
@@ -99,7 +100,13 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   auto opt = [&](const QString& name, const QString& help, const QString& value = QString()) {
     p.addOption(QCommandLineOption(name, help, value));
   };
-  opt("accel", "Acceleration structure: grid.", "NAME");
+  opt("accel", "Acceleration structure: grid, kd (SAH) or kd-median.", "NAME");
+  opt("ti", "kd: t_i, the cost of a ray-primitive test (default 80).", "T");
+  opt("tt", "kd: t_t, the cost of a traversal step (default 1).", "T");
+  opt("empty-bonus", "kd: bonus in [0,1) for splits that cut off empty space (default 0).", "B");
+  opt("max-depth", "kd: depth limit (0: 8 + 1.3 log2 N).", "D");
+  opt("leaf-size", "kd: a node with at most this many primitives is a leaf (default 1).", "N");
+  opt("mailbox", "kd: mailboxes on | off (default on).", "MODE");
   opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
@@ -143,9 +150,28 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     int ww = 1280, wh = 800;
     if (p.isSet("window")) parseSize("window", p.value("window"), &ww, &wh);
     window.resize(ww, wh);
-    if (p.isSet("accel") && p.value("accel") != "grid")
-      fail("--accel '" + p.value("accel").toStdString() + "': the debugger replays the grid (kd-tree: coming)");
-    GridOptions g;
+    std::string accel = p.isSet("accel") ? p.value("accel").toStdString() : "grid";
+    if (accel != "grid" && accel != "kd" && accel != "kd-median")
+      fail("--accel '" + accel + "': the debugger replays grid, kd or kd-median");
+    StructureOptions so;
+    auto number = [&](const char* name, double lo, double hi, bool loOpen, bool hiOpen) {
+      bool ok = false;
+      double v = p.value(name).toDouble(&ok);
+      if (!ok || !std::isfinite(v) || (loOpen ? v <= lo : v < lo) || (hiOpen ? v >= hi : v > hi))
+        fail(std::string("--") + name + " '" + p.value(name).toStdString() + "': out of range");
+      return v;
+    };
+    if (p.isSet("ti")) so.kd.t_i = float(number("ti", 0.0, 1e4, true, false));
+    if (p.isSet("tt")) so.kd.t_t = float(number("tt", 0.0, 1e4, true, false));
+    if (p.isSet("empty-bonus")) so.kd.empty_bonus = float(number("empty-bonus", 0.0, 1.0, false, true));
+    if (p.isSet("max-depth")) so.kd.max_depth = int(number("max-depth", 0, kKdMaxDepth, false, false));
+    if (p.isSet("leaf-size")) so.kd.leaf_size = int(number("leaf-size", 1, 1e6, false, false));
+    if (p.isSet("mailbox")) {
+      QString m = p.value("mailbox");
+      if (m != "on" && m != "off") fail("--mailbox '" + m.toStdString() + "': expected on or off");
+      so.kd_mailboxes = m == "on";
+    }
+    GridOptions& g = so.grid;
     if (p.isSet("grid-density")) {
       bool ok = false;
       g.density = p.value("grid-density").toFloat(&ok);
@@ -162,7 +188,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       if (m != "exact" && m != "bbox") fail("--grid-insert '" + m.toStdString() + "': expected exact or bbox");
       g.exact_insert = m == "exact";
     }
-    window.setGridOptions(g);
+    window.setStructureOptions(accel, so);
     if (p.isSet("aa")) {
       parse_antialiasing(p.value("aa").toStdString());  // throws on a bad spec
       window.imageView()->setAntiAliasing(p.value("aa"));

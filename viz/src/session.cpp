@@ -5,7 +5,7 @@
 #include "raystep/io/image_io.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
-#include "raystep/trace/grid_trace.h"
+#include "raystep/trace/record_trace.h"
 #include "raystep/trace/pixel_rays.h"
 
 namespace raystep::viz {
@@ -25,22 +25,25 @@ std::shared_ptr<const SceneData> loadSceneData(const std::string& path) {
   return data;
 }
 
-std::shared_ptr<const GridData> buildGridData(std::shared_ptr<const SceneData> scene, const GridOptions& options) {
-  auto data = std::make_shared<GridData>(options);
+std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene, const std::string& kind,
+                                                        const StructureOptions& options) {
+  auto data = std::make_shared<StructureData>();
   data->scene = std::move(scene);
+  data->kind = kind;
+  data->accel = make_accelerator(kind, options);
   auto t0 = std::chrono::steady_clock::now();
-  data->grid.build(data->scene->scene.geometry);
+  data->accel->build(data->scene->scene.geometry);
   data->buildMs = msSince(t0);
   return data;
 }
 
-QImage renderPicture(const GridData& grid, const std::string& aaSpec, int width, int height, double* ms) {
-  const Scene& scene = grid.scene->scene;
+QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms) {
+  const Scene& scene = s.scene->scene;
   RenderOptions opt = render_options(scene.render);
   opt.aa = parse_antialiasing(aaSpec);
   opt.width = width;
   opt.height = height;
-  RenderResult r = render_image(scene, grid.grid, opt);
+  RenderResult r = render_image(scene, *s.accel, opt);
   if (ms) *ms = r.seconds * 1e3;
   QImage img(width, height, QImage::Format_RGB888);
   for (int y = 0; y < height; ++y) {
@@ -55,43 +58,43 @@ QImage renderPicture(const GridData& grid, const std::string& aaSpec, int width,
   return img;
 }
 
-HeatMap computeHeat(const GridData& grid, HeatQuantity q, int width, int height, double* ms) {
+HeatMap computeHeat(const StructureData& s, HeatQuantity q, int width, int height, double* ms) {
   auto t0 = std::chrono::steady_clock::now();
-  HeatMap h = compute_heatmap(grid.scene->scene.camera, grid.grid, width, height, q, 0);
+  HeatMap h = compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
   if (ms) *ms = msSince(t0);
   return h;
 }
 
-Trace tracePixel(const GridData& grid, int width, int height, int px, int py, bool secondary) {
-  const SceneData& sd = *grid.scene;
-  std::vector<RayRequest> requests = pixel_rays(sd.scene, grid.grid, width, height, px, py, secondary);
-  return record_grid_trace(sd.scene.geometry, grid.grid, requests, sd.path, sd.hash);
+Trace tracePixel(const StructureData& s, int width, int height, int px, int py, bool secondary) {
+  const SceneData& sd = *s.scene;
+  std::vector<RayRequest> requests = pixel_rays(sd.scene, *s.accel, width, height, px, py, secondary);
+  return record_trace(sd.scene.geometry, *s.accel, requests, sd.path, sd.hash);
 }
 
 void Session::setScene(std::shared_ptr<const SceneData> scene) {
   scene_ = std::move(scene);
-  grid_.reset();
+  structure_.reset();
   picture_ = QImage();
   heat_.reset();
   trace_.reset();
   ray_ = step_ = 0;
   state_ = ReplayState{};
   Q_EMIT sceneChanged();
-  Q_EMIT gridChanged();
+  Q_EMIT structureChanged();
   Q_EMIT pictureChanged();
   Q_EMIT heatChanged();
   Q_EMIT traceChanged();
   Q_EMIT stepChanged();
 }
 
-void Session::setGrid(std::shared_ptr<const GridData> grid) {
-  // A trace's cells are indices into the grid it was recorded in: it goes with the old grid.
+void Session::setStructure(std::shared_ptr<const StructureData> structure) {
+  // A trace's cells and nodes are those of the structure it was recorded in: it goes with the old one.
   bool hadTrace = trace_ != nullptr;
-  grid_ = std::move(grid);
+  structure_ = std::move(structure);
   trace_.reset();
   ray_ = step_ = 0;
   state_ = ReplayState{};
-  Q_EMIT gridChanged();
+  Q_EMIT structureChanged();
   if (hadTrace) {
     Q_EMIT traceChanged();
     Q_EMIT stepChanged();

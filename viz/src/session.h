@@ -1,4 +1,5 @@
-// The debugger's document: the scene (or a trace opened on its own), the grid built over it, the picture,
+// The debugger's document: the scene (or a trace opened on its own), the structure built over it (a grid or a
+// kd-tree), the picture,
 // the heat map, and the traced pixel with the current ray and step. Views read it and listen to its signals;
 // only the main window changes it. The heavy work (build, render, heat map) is done by the free functions
 // below, which take everything they need by shared pointer so that they can run on a worker thread.
@@ -11,6 +12,8 @@
 #include <QObject>
 
 #include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/structure_options.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/scene.h"
 #include "raystep/trace/heatmap.h"
@@ -24,28 +27,32 @@ struct SceneData {
   std::string path, hash;
 };
 
-struct GridData {
-  std::shared_ptr<const SceneData> scene;  // the grid points into its geometry: keep it alive
-  UniformGrid grid;
+// Any accelerator that records events: "grid", "kd" (SAH) or "kd-median".
+struct StructureData {
+  std::shared_ptr<const SceneData> scene;  // the structure points into its geometry: keep it alive
+  std::string kind;
+  std::unique_ptr<Accelerator> accel;
   double buildMs = 0.0;
-  explicit GridData(GridOptions o) : grid(o) {}
+  const UniformGrid* grid() const { return dynamic_cast<const UniformGrid*>(accel.get()); }
+  const KdTree* kdTree() const { return dynamic_cast<const KdTree*>(accel.get()); }
 };
 
 // Each throws InputError on bad input; safe on any thread.
 std::shared_ptr<const SceneData> loadSceneData(const std::string& path);
-std::shared_ptr<const GridData> buildGridData(std::shared_ptr<const SceneData> scene, const GridOptions& options);
-QImage renderPicture(const GridData& grid, const std::string& aaSpec, int width, int height, double* ms);
-HeatMap computeHeat(const GridData& grid, HeatQuantity q, int width, int height, double* ms);
-// The rays of pixel (px, py) of a width x height picture, recorded through the grid.
-Trace tracePixel(const GridData& grid, int width, int height, int px, int py, bool secondary);
+std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene, const std::string& kind,
+                                                        const StructureOptions& options);
+QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms);
+HeatMap computeHeat(const StructureData& s, HeatQuantity q, int width, int height, double* ms);
+// The rays of pixel (px, py) of a width x height picture, recorded through the structure.
+Trace tracePixel(const StructureData& s, int width, int height, int px, int py, bool secondary);
 
 class Session : public QObject {
   Q_OBJECT
  public:
   explicit Session(QObject* parent = nullptr) : QObject(parent) {}
 
-  void setScene(std::shared_ptr<const SceneData> scene);  // clears grid, picture, heat map and trace
-  void setGrid(std::shared_ptr<const GridData> grid);     // clears the trace (recorded in the old grid)
+  void setScene(std::shared_ptr<const SceneData> scene);  // clears structure, picture, heat map and trace
+  void setStructure(std::shared_ptr<const StructureData> structure);  // clears the trace (of the old one)
   void setPicture(const QImage& image);
   void setHeat(std::shared_ptr<const HeatMap> heat);      // null: no overlay
   void setTrace(std::shared_ptr<const Trace> trace, const QString& source);
@@ -53,8 +60,8 @@ class Session : public QObject {
 
   const SceneData* scene() const { return scene_.get(); }
   std::shared_ptr<const SceneData> sceneShared() const { return scene_; }
-  const GridData* grid() const { return grid_.get(); }
-  std::shared_ptr<const GridData> gridShared() const { return grid_; }
+  const StructureData* structure() const { return structure_.get(); }
+  std::shared_ptr<const StructureData> structureShared() const { return structure_; }
   const QImage& picture() const { return picture_; }
   const HeatMap* heat() const { return heat_.get(); }
   const Trace* trace() const { return trace_.get(); }
@@ -77,7 +84,7 @@ class Session : public QObject {
 
  Q_SIGNALS:
   void sceneChanged();
-  void gridChanged();
+  void structureChanged();
   void pictureChanged();
   void heatChanged();
   void traceChanged();  // a new trace, or another ray of it
@@ -85,7 +92,7 @@ class Session : public QObject {
 
  private:
   std::shared_ptr<const SceneData> scene_;
-  std::shared_ptr<const GridData> grid_;
+  std::shared_ptr<const StructureData> structure_;
   QImage picture_;
   std::shared_ptr<const HeatMap> heat_;
   std::shared_ptr<const Trace> trace_;

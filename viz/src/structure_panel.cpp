@@ -21,14 +21,16 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   auto* top = new QHBoxLayout;
   top->addWidget(new QLabel(tr("<b>Structure</b>")));
   accel_ = new QComboBox;
+  accel_->setObjectName("accelBox");
   accel_->addItem(tr("uniform grid"), "grid");
+  accel_->addItem(tr("kd-tree"), "kd");
   top->addWidget(accel_, 1);
   build_ = new QPushButton(tr("Build"));
   build_->setObjectName("buildButton");
   top->addWidget(build_);
   layout->addLayout(top);
 
-  auto* grid = new QGroupBox(tr("Uniform grid"));
+  auto* grid = grid_ = new QGroupBox(tr("Uniform grid"));
   auto* g = new QGridLayout(grid);
   g->setContentsMargins(6, 2, 6, 4);
   g->setVerticalSpacing(2);
@@ -65,34 +67,69 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
     density_->setEnabled(!on);
   });
 
-  // The kd-tree's parameters, wired when the kd-tree core is merged.
-  kd_ = new QGroupBox(tr("kd-tree (with the kd-tree core)"));
+  // The kd-tree's parameters (defaults as KdOptions and the command line's).
+  kd_ = new QGroupBox(tr("kd-tree"));
   auto* k = new QGridLayout(kd_);
   k->setContentsMargins(6, 2, 6, 4);
   k->setVerticalSpacing(2);
-  auto spin = [](double v) {
+  KdOptions def;
+  auto spin = [](const char* name, double lo, double hi, double step, int decimals, double v) {
     auto* s = new QDoubleSpinBox;
+    s->setObjectName(name);
+    s->setRange(lo, hi);
+    s->setSingleStep(step);
+    s->setDecimals(decimals);
     s->setValue(v);
-    s->setMaximumWidth(70);
+    s->setMaximumWidth(80);
     return s;
   };
+  ti_ = spin("kdTi", 0.01, 10000.0, 1.0, 2, def.t_i);
+  ti_->setToolTip(tr("t_i: the cost of one ray-primitive test (lecture: t_i = 80 t_t)"));
+  tt_ = spin("kdTt", 0.01, 10000.0, 0.5, 2, def.t_t);
+  tt_->setToolTip(tr("t_t: the cost of one traversal step"));
+  emptyBonus_ = spin("kdEmptyBonus", 0.0, 0.99, 0.05, 2, def.empty_bonus);
+  emptyBonus_->setToolTip(tr("b in [0, 1): a split with an empty child costs t_t + (1 - b) t_i (...)"));
   k->addWidget(new QLabel(tr("t_i")), 0, 0);
-  k->addWidget(spin(1.0), 0, 1);
+  k->addWidget(ti_, 0, 1);
   k->addWidget(new QLabel(tr("t_t")), 0, 2);
-  k->addWidget(spin(1.0), 0, 3);
+  k->addWidget(tt_, 0, 3);
   k->addWidget(new QLabel(tr("empty bonus")), 0, 4);
-  k->addWidget(spin(0.2), 0, 5);
-  auto* builder = new QComboBox;
-  builder->addItems({tr("SAH"), tr("median")});
+  k->addWidget(emptyBonus_, 0, 5);
+  builder_ = new QComboBox;
+  builder_->setObjectName("kdBuilder");
+  builder_->addItem(tr("SAH"), "kd");
+  builder_->addItem(tr("median"), "kd-median");
+  builder_->setToolTip(tr("SAH: the cheapest plane by the Surface Area Heuristic; median: the longest axis's middle"));
   k->addWidget(new QLabel(tr("builder")), 1, 0);
-  k->addWidget(builder, 1, 1, 1, 2);
-  auto* depth = new QSpinBox;
-  depth->setRange(1, 64);
-  depth->setValue(24);
-  k->addWidget(new QLabel(tr("max depth")), 1, 3, 1, 2);
-  k->addWidget(depth, 1, 5);
-  kd_->setEnabled(false);
+  k->addWidget(builder_, 1, 1);
+  maxDepth_ = new QSpinBox;
+  maxDepth_->setObjectName("kdMaxDepth");
+  maxDepth_->setRange(0, kKdMaxDepth);
+  maxDepth_->setValue(def.max_depth);
+  maxDepth_->setSpecialValueText(tr("auto"));
+  maxDepth_->setToolTip(tr("The depth limit; auto: 8 + 1.3 log2(N) (pbrt)"));
+  k->addWidget(new QLabel(tr("max depth")), 1, 2);
+  k->addWidget(maxDepth_, 1, 3);
+  leafSize_ = new QSpinBox;
+  leafSize_->setObjectName("kdLeafSize");
+  leafSize_->setRange(1, 1000000);
+  leafSize_->setValue(def.leaf_size);
+  leafSize_->setToolTip(tr("A node with at most this many primitives is a leaf without a search"));
+  k->addWidget(new QLabel(tr("leaf size")), 1, 4);
+  k->addWidget(leafSize_, 1, 5);
+  mailboxes_ = new QCheckBox(tr("mailboxes"));
+  mailboxes_->setObjectName("kdMailboxes");
+  mailboxes_->setChecked(true);
+  mailboxes_->setToolTip(tr("Skip a primitive that an earlier leaf of the same ray already tested"));
+  k->addWidget(mailboxes_, 2, 0, 1, 3);
   layout->addWidget(kd_);
+  auto showSection = [this] {
+    bool kd = accel_->currentData().toString() == "kd";
+    grid_->setVisible(!kd);
+    kd_->setVisible(kd);
+  };
+  connect(accel_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, showSection);
+  showSection();
 
   progress_ = new QProgressBar;
   progress_->setRange(0, 1);
@@ -107,15 +144,37 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   connect(build_, &QPushButton::clicked, this, &StructurePanel::buildRequested);
 }
 
-GridOptions StructurePanel::gridOptions() const {
-  GridOptions o;
+std::string StructurePanel::accelName() const {
+  if (accel_->currentData().toString() == "grid") return "grid";
+  return builder_->currentData().toString().toStdString();
+}
+
+StructureOptions StructurePanel::options() const {
+  StructureOptions so;
+  GridOptions& o = so.grid;
   o.density = float(density_->value());
   if (explicitRes_->isChecked()) o.resolution = std::array<int, 3>{res_[0]->value(), res_[1]->value(), res_[2]->value()};
   o.exact_insert = insert_->currentData().toString() == "exact";
-  return o;
+  so.kd.builder = builder_->currentData().toString() == "kd-median" ? KdBuilder::median : KdBuilder::sah;
+  so.kd.t_i = float(ti_->value());
+  so.kd.t_t = float(tt_->value());
+  so.kd.empty_bonus = float(emptyBonus_->value());
+  so.kd.max_depth = maxDepth_->value();
+  so.kd.leaf_size = leafSize_->value();
+  so.kd_mailboxes = mailboxes_->isChecked();
+  return so;
 }
 
-void StructurePanel::setGridOptions(const GridOptions& o) {
+void StructurePanel::setStructure(const std::string& accelName, const StructureOptions& so) {
+  accel_->setCurrentIndex(accelName == "grid" ? 0 : 1);
+  builder_->setCurrentIndex(accelName == "kd-median" ? 1 : 0);
+  ti_->setValue(so.kd.t_i);
+  tt_->setValue(so.kd.t_t);
+  emptyBonus_->setValue(so.kd.empty_bonus);
+  maxDepth_->setValue(so.kd.max_depth);
+  leafSize_->setValue(so.kd.leaf_size);
+  mailboxes_->setChecked(so.kd_mailboxes);
+  const GridOptions& o = so.grid;
   density_->setValue(o.density);
   explicitRes_->setChecked(bool(o.resolution));
   if (o.resolution)

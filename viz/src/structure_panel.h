@@ -1,12 +1,14 @@
 // The structure panel: which acceleration structure and its build parameters. Grid: density d (in
 // max(nx, ny, nz) = d * cbrt(n)) or an explicit resolution, exact (triangle-box overlap) or bounding-box
-// insertion. The kd-tree section (t_i, t_t, empty bonus, SAH or median, max depth) is laid out but disabled
-// until the kd-tree core is merged. The build itself runs off the GUI thread (the main window does it).
+// insertion. kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0: the
+// pbrt rule), leaf size, mailboxes. The build itself runs off the GUI thread (the main window does it).
 #pragma once
 
 #include <QWidget>
 
-#include "raystep/accel/grid.h"
+#include <string>
+
+#include "raystep/accel/structure_options.h"
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -23,8 +25,10 @@ class StructurePanel : public QWidget {
   Q_OBJECT
  public:
   explicit StructurePanel(QWidget* parent = nullptr);
-  GridOptions gridOptions() const;
-  void setGridOptions(const GridOptions& o);
+  // The accelerator's name for make_accelerator: "grid", "kd" (SAH) or "kd-median".
+  std::string accelName() const;
+  StructureOptions options() const;
+  void setStructure(const std::string& accelName, const StructureOptions& o);
   void setBusy(bool busy);  // a moving bar while work runs in the background
   void setInfo(const QString& text);
 
@@ -40,7 +44,15 @@ class StructurePanel : public QWidget {
   QPushButton* build_;
   QProgressBar* progress_;
   QLabel* info_;
+  QGroupBox* grid_;
   QGroupBox* kd_;
+  QDoubleSpinBox* ti_;
+  QDoubleSpinBox* tt_;
+  QDoubleSpinBox* emptyBonus_;
+  QComboBox* builder_;
+  QSpinBox* maxDepth_;
+  QSpinBox* leafSize_;
+  QCheckBox* mailboxes_;
 };
 
 }  // namespace raystep::viz
