@@ -29,16 +29,7 @@ struct CellLog {
   void ray_end(const Hit&) {}
 };
 
-// Same primitive and same t as brute force, for intersect and occluded.
-int count_disagreements(const Accelerator& acc, const BruteForce& brute, const std::vector<Ray>& rays) {
-  int bad = 0;
-  for (const Ray& r : rays) {
-    Hit a, b;
-    bool ha = brute.intersect(r, &a), hb = acc.intersect(r, &b);
-    if (ha != hb || a.prim != b.prim || a.t != b.t || brute.occluded(r) != acc.occluded(r)) ++bad;
-  }
-  return bad;
-}
+using test::count_disagreements;
 
 std::vector<Ray> random_rays(const Bounds3& b, int count, uint32_t seed) {
   std::mt19937 rng(seed);

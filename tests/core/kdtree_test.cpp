@@ -67,17 +67,7 @@ std::unique_ptr<KdTree> make_tree(const Geometry& g, KdBuilder builder, bool mai
   return tree;
 }
 
-// Same primitive and same t as brute force, for intersect and occluded. Ties (coincident faces, rays through a
-// shared edge) go to the lower primitive id in every structure, so they must agree too.
-int count_disagreements(const Accelerator& acc, const BruteForce& brute, const std::vector<Ray>& rays) {
-  int bad = 0;
-  for (const Ray& r : rays) {
-    Hit a, b;
-    bool ha = brute.intersect(r, &a), hb = acc.intersect(r, &b);
-    if (ha != hb || a.t != b.t || a.prim != b.prim || brute.occluded(r) != acc.occluded(r)) ++bad;
-  }
-  return bad;
-}
+using test::count_disagreements;
 
 const KdBuilder kBuilders[] = {KdBuilder::sah, KdBuilder::median};
 

@@ -1,9 +1,12 @@
-// Small generated scenes shared by the structure tests (grid, kd-tree, traces).
+// Small generated scenes and the brute-force comparison shared by the structure tests (grid, kd-tree, traces).
 #pragma once
 
 #include <cstdint>
 #include <random>
 
+#include <vector>
+
+#include "raystep/accel/brute_force.h"
 #include "raystep/scene/geometry.h"
 
 namespace raystep::test {
@@ -20,6 +23,18 @@ inline Geometry make_soup(uint32_t seed, int triangles, int spheres) {
   }
   for (int i = 0; i < spheres; ++i) g.add_sphere(Sphere{glm::vec3(u(rng), u(rng), u(rng)), 0.3f});
   return g;
+}
+
+// Rays on which a structure's answer differs from brute force's: another primitive, another t, or another
+// occlusion. Ties (coincident faces, a shared edge) go to the lower primitive id everywhere, so they count too.
+inline int count_disagreements(const Accelerator& acc, const BruteForce& brute, const std::vector<Ray>& rays) {
+  int bad = 0;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    bool ha = brute.intersect(r, &a), hb = acc.intersect(r, &b);
+    if (ha != hb || a.prim != b.prim || a.t != b.t || brute.occluded(r) != acc.occluded(r)) ++bad;
+  }
+  return bad;
 }
 
 }  // namespace raystep::test
