@@ -354,10 +354,10 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
              std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
     case EventType::leaf: {
       size_t k = s.prims.size();
-      return "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) +
-             "]: test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
-             " against the ray (the mailbox skips any tested before)." +
-             (k == 0 ? " An empty leaf: nothing to test." : "");
+      std::string head = "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+      if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
+      return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
+             " against the ray (the mailbox skips any tested before).";
     }
     case EventType::pop: {
       std::string head = "Pop node " + std::to_string(e.node) + " with [t_min, t_max] = [" + num(e.t_min_node) + ", " +
@@ -365,6 +365,10 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       bool visited = after && after->type == EventType::node && after->node == e.node;
       if (visited) {
         if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
+        if (s.nearestT < e.t_min_node)
+          return head + "The nearest hit so far, t = " + num(s.nearestT) + ", lies before its t_min, but by less "
+                        "than the walk's safety margin (2^-12 of the ray's extent in the root box): visit it, so that "
+                        "no hit is lost to rounding.";
         return head + "The nearest hit so far, t = " + num(s.nearestT) + ", is not before its t_min: a nearer hit may "
                       "lie in it, so visit it.";
       }
