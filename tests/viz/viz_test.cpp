@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -29,10 +30,10 @@ struct GuiRun {
   std::string err;
 };
 
-// Runs raystep-gui with the arguments; stderr is captured.
-GuiRun gui(const std::string& args, const std::string& tag) {
+// Runs raystep-gui with the arguments (and environment variables `env`, "NAME=value ..."); stderr is captured.
+GuiRun gui(const std::string& args, const std::string& tag, const std::string& env = "") {
   std::string errFile = kOut + "/" + tag + ".stderr";
-  std::string cmd = "'" + kExe + "' " + args + " 2> '" + errFile + "'";
+  std::string cmd = (env.empty() ? "" : "env " + env + " ") + "'" + kExe + "' " + args + " 2> '" + errFile + "'";
   GuiRun r;
   int status = std::system(cmd.c_str());
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -191,6 +192,31 @@ TEST(Viz, KdStepBackAndForthGivesTheSameState) {
   json st = readJson(kOut + "/kd_step_k.json");
   EXPECT_TRUE(st["panels"].contains("stack")) << st["panels"].dump();
   EXPECT_TRUE(st["view"].contains("current_node")) << st["view"].dump();
+}
+
+// The 3D view keeps the scene's layer as an image while only the walk changes (BackdropCache): what it shows
+// is pixel for pixel what drawing everything gives, at a cell, at a node with its split plane, after steps
+// that kept the image and after a camera change (the fit at the start) that made it anew.
+TEST(Viz, BackdropImageDrawsLikeTheScene) {
+  for (const char* run : {"grid --step-to cell:3 --forward 3", "kd --step-to node:3", "kd --step-to leaf:2 --back 2"}) {
+    std::string tag = std::string("backdrop_") + std::to_string(std::hash<std::string>{}(run) % 1000);
+    std::string args = kPixel + " --accel " + run + " --screenshot-3d ";
+    std::string sa = kOut + "/" + tag + "_image.json", sb = kOut + "/" + tag + "_drawn.json";
+    GuiRun a = gui(args + "'" + kOut + "/" + tag + "_image.png' --dump-state '" + sa + "' --quit", tag + "_image");
+    GuiRun b = gui(args + "'" + kOut + "/" + tag + "_drawn.png' --dump-state '" + sb + "' --quit", tag + "_drawn",
+                   "RAYSTEP_GUI_NO_BACKDROP=1");
+    ASSERT_EQ(a.code, 0) << a.err;
+    ASSERT_EQ(b.code, 0) << b.err;
+    EXPECT_EQ(readJson(sa)["view"]["backdrop"], "image");
+    EXPECT_EQ(readJson(sb)["view"]["backdrop"], "drawn");
+    raystep::Rgb8Image ia = raystep::read_png_rgb8(kOut + "/" + tag + "_image.png");
+    raystep::Rgb8Image ib = raystep::read_png_rgb8(kOut + "/" + tag + "_drawn.png");
+    ASSERT_EQ(ia.width, ib.width);
+    ASSERT_EQ(ia.height, ib.height);
+    size_t differ = 0;
+    for (size_t i = 0; i < ia.rgb.size(); ++i) differ += ia.rgb[i] != ib.rgb[i];
+    EXPECT_EQ(differ, 0u) << run;
+  }
 }
 
 #ifdef RAYSTEP_CLI_EXE
