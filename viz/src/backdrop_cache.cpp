@@ -79,7 +79,8 @@ struct BackdropCache::Impl {
   vtkNew<vtkTexture> texture;
   vtkNew<vtkImageData> image;
   vtkNew<vtkCallbackCommand> onStart;
-  Key key;
+  Key key;   // of the image
+  Key seen;  // at the last prepare()
   bool cached = false;
 
   void live() {
@@ -130,7 +131,15 @@ void BackdropCache::prepare(bool ready) {
     d.live();
     return;
   }
-  if (d.cached && keyOf(d.window, d.base) == d.key) return;
+  Key now = keyOf(d.window, d.base);
+  if (d.cached && now == d.key) return;
+  // A view that has just changed may go on changing (the camera following the walk): draw it directly, and
+  // take the image only when a step finds it unchanged.
+  if (!(now == d.seen)) {
+    d.seen = now;
+    d.live();
+    return;
+  }
   // Draw the base layer alone and keep its pixels.
   d.live();
   std::vector<int> draw;

@@ -2,9 +2,10 @@
 // or the scene does, while a step changes only the walk drawn over them. Under software OpenGL (llvmpipe)
 // drawing a 70k-triangle mesh is most of a step's redraw, so the base layer is drawn once into an image, and
 // while nothing of it changes, a second renderer on the same layer shows that image as its background in its
-// place. Any change (the camera, the size, an actor of the base layer or its data) makes the next step's render
-// draw the base layer anew and take a new image; an interactive render in between (the user turning the
-// camera) draws it directly. The image is the base layer's own pixels, so the picture is the same either way.
+// place. After any change (the camera, the size, an actor of the base layer or its data) a step draws the base
+// layer directly, and the next step that finds it unchanged takes a new image (so a camera that follows the
+// walk costs no more than drawing everything); an interactive render in between (the user turning the camera)
+// draws it directly. The image is the base layer's own pixels, so the picture is the same either way.
 #pragma once
 
 #include <array>
