@@ -16,7 +16,10 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
+#include <vtkCellPicker.h>
+#include <vtkCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -128,6 +131,16 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkActor> stackActor, splitActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
+  // The node selected in the tree view (its box, in the live kd-tree), and the click that picks the scene.
+  vtkNew<vtkPolyData> selectedData;
+  vtkSmartPointer<vtkActor> selectedActor;
+  int selectedDrawn = -1;
+  glm::vec3 selectedLo{0.f}, selectedHi{0.f};
+  vtkNew<vtkCellPicker> picker;
+  vtkNew<vtkCallbackCommand> clickCallback;
+  int pressAt[2] = {0, 0};
+  bool havePicked = false;
+  glm::vec3 picked{0.f};
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
@@ -273,6 +286,26 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
   d.base->AddActor(d.splitActor);  // under the walk: the translucent plane must not tint the ray
+  d.selectedActor = unlitActor(d.selectedData, palette::selectedNode, 3.f);
+  d.overlay->AddActor(d.selectedActor);
+  // A click without a drag picks the scene (a drag still turns the camera).
+  d.picker->SetTolerance(0.0005);
+  d.picker->PickFromListOn();
+  d.picker->AddPickList(d.sceneActor);
+  d.clickCallback->SetClientData(this);
+  d.clickCallback->SetCallback([](vtkObject* caller, unsigned long event, void* client, void*) {
+    auto* self = static_cast<SceneView*>(client);
+    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+    int* at = interactor->GetEventPosition();
+    if (event == vtkCommand::LeftButtonPressEvent) {
+      self->d_->pressAt[0] = at[0];
+      self->d_->pressAt[1] = at[1];
+    } else if (std::abs(at[0] - self->d_->pressAt[0]) + std::abs(at[1] - self->d_->pressAt[1]) <= 3) {
+      self->pickDisplay(at[0], at[1]);
+    }
+  });
+  d.window->GetInteractor()->AddObserver(vtkCommand::LeftButtonPressEvent, d.clickCallback, 1.0);
+  d.window->GetInteractor()->AddObserver(vtkCommand::LeftButtonReleaseEvent, d.clickCallback, 1.0);
   for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
@@ -302,6 +335,10 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     updateStep();
   });
   connect(session_, &Session::stepChanged, this, &SceneView::updateStep);
+  connect(session_, &Session::selectedNodeChanged, this, [this] {
+    updateSelected();
+    renderNow();
+  });
   rebuildGeometry();  // the legend
 }
 
@@ -437,11 +474,50 @@ void SceneView::rebuildGeometry() {
   if (d.haveTree)
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
-                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" + tr("Primitives of the current leaf: ") +
+                      swatch(palette::visitedCell, tr("visited")) + hits +
+                      (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
+                      "<br>" + tr("Primitives of the current leaf: ") +
                       primStates);
   else
     d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
                       hits + "<br>" + tr("Primitives of the current cell: ") + primStates);
+  updateSelected();
+}
+
+void SceneView::updateSelected() {
+  Impl& d = *d_;
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  d.selectedDrawn = -1;
+  const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+  int n = session_->selectedNode();
+  if (kd && n >= 0 && size_t(n) < kd->data().info.size()) {
+    const Bounds3& b = kd->data().info[size_t(n)].box;
+    addBoxEdges(pts, lines, b.lo, b.hi);
+    d.selectedDrawn = n;
+    d.selectedLo = b.lo;
+    d.selectedHi = b.hi;
+  }
+  d.selectedData->SetPoints(pts);
+  d.selectedData->SetLines(lines);
+  d.selectedData->Modified();
+}
+
+bool SceneView::pickAt(const QPoint& at) {
+  QPoint local = d_->widget->mapFrom(window(), at);
+  double ratio = d_->widget->devicePixelRatioF();
+  return pickDisplay(int(std::lround(local.x() * ratio)), int(std::lround((d_->widget->height() - local.y()) * ratio)));
+}
+
+bool SceneView::pickDisplay(int x, int y) {
+  Impl& d = *d_;
+  if (!d.picker->Pick(x, y, 0.0, d.base) || d.picker->GetCellId() < 0) return false;
+  double p[3];
+  d.picker->GetPickPosition(p);
+  d.havePicked = true;
+  d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
+  Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
+  return true;
 }
 
 void SceneView::updateStep() {
@@ -729,7 +805,8 @@ QJsonObject SceneView::dumpState() const {
                             {"hit_final", jsonColor(palette::hitFinal)},
                             {"hit_candidate", jsonColor(palette::hitCandidate)},
                             {"stack_node", jsonColor(palette::stackNode)},
-                            {"split_plane", jsonColor(palette::splitPlane)}};
+                            {"split_plane", jsonColor(palette::splitPlane)},
+                            {"selected_node", jsonColor(palette::selectedNode)}};
   const TracedRay* ray = session_->ray();
   const ReplayState& s = session_->state();
   if (ray && s.cellEvent >= 0 && d.haveGrid) {
@@ -755,6 +832,12 @@ QJsonObject SceneView::dumpState() const {
     }
     return corners;
   };
+  if (d.selectedDrawn >= 0)
+    o["selected_node"] = QJsonObject{{"node", d.selectedDrawn},
+                                     {"min", QJsonArray{d.selectedLo.x, d.selectedLo.y, d.selectedLo.z}},
+                                     {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
+                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)}};
+  if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
     QJsonObject cn{{"node", n->id},
                    {"depth", n->depth},
