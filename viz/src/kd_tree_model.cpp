@@ -54,6 +54,7 @@ QModelIndex KdTreeModel::indexOfNode(int node) const {
 QModelIndex KdTreeModel::index(int row, int column, const QModelIndex& parent) const {
   if (!tree_ || column < 0 || column >= ColumnCount) return {};
   if (!parent.isValid()) return row == 0 ? createIndex(0, column, quintptr(0)) : QModelIndex();
+  if (parent.column() != 0) return {};
   uint32_t p = uint32_t(parent.internalId());
   const KdNode& n = tree_->nodes[p];
   if (n.is_leaf() || row < 0 || row > 1) return {};
@@ -85,10 +86,8 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   const KdNodeInfo& info = tree_->info[id];
   if (role == Qt::DisplayRole) {
     switch (index.column()) {
-      case NodeColumn: {
-        QString side = info.parent < 0 ? QString() : index.row() == 0 ? QStringLiteral("L ") : QStringLiteral("R ");
-        return side + QString::number(id);
-      }
+      case SideColumn: return info.parent < 0 ? tr("root") : index.row() == 0 ? QStringLiteral("L") : QStringLiteral("R");
+      case NodeColumn: return id;
       case DepthColumn: return info.depth;
       case WhatColumn:
         if (n.is_leaf())
@@ -113,6 +112,7 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
 QVariant KdTreeModel::headerData(int section, Qt::Orientation orientation, int role) const {
   if (orientation != Qt::Horizontal || role != Qt::DisplayRole) return {};
   switch (section) {
+    case SideColumn: return tr("tree");
     case NodeColumn: return tr("node");
     case DepthColumn: return tr("depth");
     case WhatColumn: return tr("split or leaf");

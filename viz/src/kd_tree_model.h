@@ -23,7 +23,8 @@ int kdLeafContaining(const KdTreeData& tree, const glm::vec3& p);
 class KdTreeModel : public QAbstractItemModel {
   Q_OBJECT
  public:
-  enum Column { NodeColumn, DepthColumn, WhatColumn, CostColumn, ColumnCount };
+  // The first column carries the tree's lines and the side (L, R); the id has its own so that deep rows show it.
+  enum Column { SideColumn, NodeColumn, DepthColumn, WhatColumn, CostColumn, ColumnCount };
   explicit KdTreeModel(QObject* parent = nullptr) : QAbstractItemModel(parent) {}
 
   // The structure whose kd-tree is shown (none, or a grid: an empty model); kept alive while shown.

@@ -94,7 +94,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   kdSplit->addWidget(sahChart_);
   kdSplit->setStretchFactor(0, 0);
   kdSplit->setStretchFactor(1, 1);
-  kdSplit->setSizes({380, 900});
+  kdSplit->setSizes({440, 840});
   kdDock_ = new QDockWidget(tr("kd-tree: nodes and SAH inspector"), this);
   kdDock_->setObjectName("kdDock");
   kdDock_->setWidget(kdSplit);

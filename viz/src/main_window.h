@@ -64,6 +64,7 @@ class MainWindow : public QMainWindow {
   Timeline* timeline() const { return timeline_; }
   StatePanel* statePanel() const { return statePanel_; }
   EventList* eventList() const { return eventList_; }
+  StructurePanel* structurePanel() const { return structure_; }
   TreeView* treeView() const { return treeView_; }
   SahChart* sahChart() const { return sahChart_; }
   QString lastError() const { return lastError_; }

@@ -54,7 +54,8 @@ void addRow(vtkTable* t, double x, double y) {
 }
 
 vtkPlot* addLine(vtkChartXY* chart, vtkTable* t, const QColor& c, float width, const std::string& label) {
-  vtkPlot* p = chart->AddPlot(vtkChart::LINE);
+  // One point is no line (VTK complains): a marker alone.
+  vtkPlot* p = chart->AddPlot(t->GetNumberOfRows() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
   p->SetInputData(t, 0, 1);
   p->SetColor((unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue(), 255);
   p->SetWidth(width);
@@ -166,9 +167,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     if (byAxis[a].empty()) continue;  // an empty series draws nothing, but warns
     vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f,
                          std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
-    if (auto* line = vtkPlotLine::SafeDownCast(p)) {
-      line->SetMarkerStyle(byAxis[a].size() <= 400 ? vtkPlotPoints::CIRCLE : vtkPlotPoints::NONE);
-      line->SetMarkerSize(5.f);
+    if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
+      bool few = byAxis[a].size() <= 400;
+      points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE : vtkPlotPoints::NONE);
+      points->SetMarkerSize(byAxis[a].size() == 1 ? 8.f : 5.f);
     }
   }
   // The leaf cost: a split is made only below this line.

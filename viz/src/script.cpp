@@ -11,6 +11,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QDoubleSpinBox>
 #include <QMouseEvent>
 #include <QTreeView>
 #include <QTest>
@@ -23,6 +24,7 @@
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
+#include "structure_panel.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "sah_chart.h"
@@ -145,6 +147,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
   opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.", "PATH");
   opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).", "X,Y");
+  opt("edit-ti", "Then type t_i into the structure panel, as a user would (the kd-tree is rebuilt).", "T");
   opt("export-sah", "Write the selected node's SAH curve as CSV (the columns of `raystep sah`).", "FILE");
   opt("screenshot-sah", "Write a PNG of the SAH chart.", "FILE");
   opt("open-bad", "After the set-up, open FILE through the GUI path (errors go to a dialog).", "FILE");
@@ -164,7 +167,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   const bool quit = p.isSet("quit");
   const QStringList scripted = {"pixel", "step", "step-to", "forward", "back", "screenshot", "screenshot-3d",
                                 "dump-state", "export-trace", "open-bad", "panel", "node", "node-path",
-                                "pick-3d", "export-sah", "screenshot-sah"};
+                                "pick-3d", "export-sah", "screenshot-sah", "edit-ti"};
   bool anyScript = quit;
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
@@ -361,7 +364,9 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
         try {
           node = int(kd_node_by_path(kd->data(), p.value("node-path").toStdString()));
         } catch (const InputError& e) {
-          fail("--node-path '" + p.value("node-path").toStdString() + "': " + e.detail());
+          std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
+          if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos) why = why.substr(colon + 3);
+          fail("--node-path '" + p.value("node-path").toStdString() + "': " + why);
         }
       }
       window.showKdPanel();
@@ -373,6 +378,17 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
         if (!window.sceneView()->pickAt(QPoint(at[0], at[1])))
           fail("--pick-3d " + p.value("pick-3d").toStdString() + ": no geometry under that pixel of the 3D view");
       }
+    }
+    if (p.isSet("edit-ti")) {  // through the spin box: the rebuild starts once the value has rested
+      double ti = number("edit-ti", 0.0, 1e4, true, false);
+      auto* spin = window.findChild<QDoubleSpinBox*>("kdTi");
+      if (!spin) fail("--edit-ti: no t_i box");
+      spin->setValue(ti);
+      for (int i = 0; i < 1000 && window.structurePanel()->costsEditPending(); ++i) {
+        QApplication::processEvents();
+        QThread::msleep(5);
+      }
+      QApplication::processEvents();
     }
     if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
     settle(window);

@@ -201,4 +201,6 @@ void StructurePanel::setBusy(bool busy) {
 
 void StructurePanel::setInfo(const QString& text) { info_->setText(text); }
 
+bool StructurePanel::costsEditPending() const { return costsTimer_->isActive(); }
+
 }  // namespace raystep::viz

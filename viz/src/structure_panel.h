@@ -33,6 +33,7 @@ class StructurePanel : public QWidget {
   void setStructure(const std::string& accelName, const StructureOptions& o);
   void setBusy(bool busy);  // a moving bar while work runs in the background
   void setInfo(const QString& text);
+  bool costsEditPending() const;  // an edited kd cost waits for the spin box to rest
 
  Q_SIGNALS:
   void buildRequested();

@@ -33,11 +33,14 @@ TreeView::TreeView(Session* session, QWidget* parent)
   view_->setModel(model_);
   view_->setUniformRowHeights(true);  // no per-row size queries: fast on deep trees
   view_->setSelectionMode(QAbstractItemView::SingleSelection);
+  view_->setIndentation(10);
+  view_->setAllColumnsShowFocus(true);
   view_->header()->setStretchLastSection(false);
-  view_->header()->setSectionResizeMode(KdTreeModel::WhatColumn, QHeaderView::Stretch);
-  view_->setColumnWidth(KdTreeModel::NodeColumn, 130);
-  view_->setColumnWidth(KdTreeModel::DepthColumn, 45);
-  view_->setColumnWidth(KdTreeModel::CostColumn, 60);
+  view_->header()->setSectionResizeMode(KdTreeModel::SideColumn, QHeaderView::ResizeToContents);
+  view_->setColumnWidth(KdTreeModel::NodeColumn, 60);
+  view_->setColumnWidth(KdTreeModel::DepthColumn, 40);
+  view_->setColumnWidth(KdTreeModel::WhatColumn, 150);
+  view_->setColumnWidth(KdTreeModel::CostColumn, 55);
   layout->addWidget(view_, 1);
 
   connect(view_->selectionModel(), &QItemSelectionModel::currentChanged, this, [this](const QModelIndex& i) {
@@ -68,7 +71,7 @@ void TreeView::showSelected() {
   if (i.isValid()) {
     for (QModelIndex p = i.parent(); p.isValid(); p = p.parent()) view_->expand(p);
     view_->selectionModel()->setCurrentIndex(i, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
-    view_->scrollTo(i);
+    view_->scrollTo(i.siblingAtColumn(KdTreeModel::NodeColumn));
   } else {
     view_->selectionModel()->clearSelection();
   }
