@@ -187,7 +187,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     addLine(d.chart, chosen, palette::sahChosen, 1.5f, std::string("chosen: ") + axisName(c.axis));
   }
   vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
-  double pad = std::max(1e-3, 0.05 * (hi - lo));
+  double pad = hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));  // a lone leaf cost: a plain range
   left->SetBehavior(vtkAxis::FIXED);
   left->SetRange(lo - pad, hi + pad);
   d.chart->RecalculateBounds();

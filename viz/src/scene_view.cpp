@@ -2,11 +2,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
 
+#include <QApplication>
 #include <QCheckBox>
+#include <QMouseEvent>
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
@@ -16,10 +19,8 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
-#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCellPicker.h>
-#include <vtkCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -137,8 +138,8 @@ struct SceneView::Impl {
   int selectedDrawn = -1;
   glm::vec3 selectedLo{0.f}, selectedHi{0.f};
   vtkNew<vtkCellPicker> picker;
-  vtkNew<vtkCallbackCommand> clickCallback;
-  int pressAt[2] = {0, 0};
+  QPoint pressAt;
+  int pickCount = 0, missCount = 0;  // clicks that hit or missed the scene
   bool havePicked = false;
   glm::vec3 picked{0.f};
 
@@ -292,20 +293,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.picker->SetTolerance(0.0005);
   d.picker->PickFromListOn();
   d.picker->AddPickList(d.sceneActor);
-  d.clickCallback->SetClientData(this);
-  d.clickCallback->SetCallback([](vtkObject* caller, unsigned long event, void* client, void*) {
-    auto* self = static_cast<SceneView*>(client);
-    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
-    int* at = interactor->GetEventPosition();
-    if (event == vtkCommand::LeftButtonPressEvent) {
-      self->d_->pressAt[0] = at[0];
-      self->d_->pressAt[1] = at[1];
-    } else if (std::abs(at[0] - self->d_->pressAt[0]) + std::abs(at[1] - self->d_->pressAt[1]) <= 3) {
-      self->pickDisplay(at[0], at[1]);
-    }
-  });
-  d.window->GetInteractor()->AddObserver(vtkCommand::LeftButtonPressEvent, d.clickCallback, 1.0);
-  d.window->GetInteractor()->AddObserver(vtkCommand::LeftButtonReleaseEvent, d.clickCallback, 1.0);
+  // (Watched in Qt: once the camera's style has the mouse, VTK gives the release to the style alone.)
+  d.widget->installEventFilter(this);
   for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
@@ -503,15 +492,47 @@ void SceneView::updateSelected() {
   d.selectedData->Modified();
 }
 
+bool SceneView::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == d_->widget) {
+    auto* m = static_cast<QMouseEvent*>(event);
+    if (event->type() == QEvent::MouseButtonPress && m->button() == Qt::LeftButton) {
+      d_->pressAt = m->pos();
+    } else if (event->type() == QEvent::MouseButtonRelease && m->button() == Qt::LeftButton &&
+               (m->pos() - d_->pressAt).manhattanLength() <= 3) {
+      double ratio = d_->widget->devicePixelRatioF();
+      pickDisplay(int(std::lround(m->pos().x() * ratio)), int(std::lround((d_->widget->height() - m->pos().y()) * ratio)));
+    }
+  }
+  return QWidget::eventFilter(watched, event);  // the camera still gets the mouse
+}
+
 bool SceneView::pickAt(const QPoint& at) {
+  // A click as the mouse makes it: through Qt and VTK's interactor to the click observer.
   QPoint local = d_->widget->mapFrom(window(), at);
-  double ratio = d_->widget->devicePixelRatioF();
-  return pickDisplay(int(std::lround(local.x() * ratio)), int(std::lround((d_->widget->height() - local.y()) * ratio)));
+  int before = d_->pickCount;
+  QMouseEvent press(QEvent::MouseButtonPress, local, d_->widget->mapToGlobal(local), Qt::LeftButton, Qt::LeftButton,
+                    Qt::NoModifier);
+  QMouseEvent release(QEvent::MouseButtonRelease, local, d_->widget->mapToGlobal(local), Qt::LeftButton, Qt::NoButton,
+                      Qt::NoModifier);
+  QApplication::sendEvent(d_->widget, &press);
+  QApplication::sendEvent(d_->widget, &release);
+  if (d_->pickCount != before) return true;
+  if (d_->missCount == 0) {  // the click did not reach the observer (no interactor yet): pick directly
+    std::fprintf(stderr, "note: 3D view picked without a click (the click did not reach VTK)\n");
+    double ratio = d_->widget->devicePixelRatioF();
+    return pickDisplay(int(std::lround(local.x() * ratio)), int(std::lround((d_->widget->height() - local.y()) * ratio)));
+  }
+  d_->missCount = 0;
+  return false;
 }
 
 bool SceneView::pickDisplay(int x, int y) {
   Impl& d = *d_;
-  if (!d.picker->Pick(x, y, 0.0, d.base) || d.picker->GetCellId() < 0) return false;
+  if (!d.picker->Pick(x, y, 0.0, d.base) || d.picker->GetCellId() < 0) {
+    ++d.missCount;
+    return false;
+  }
+  ++d.pickCount;
   double p[3];
   d.picker->GetPickPosition(p);
   d.havePicked = true;

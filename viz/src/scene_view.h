@@ -44,7 +44,8 @@ class SceneView : public QWidget {
   void rebuildGeometry();
   void updateStep();
   void updateSelected();  // the selected kd-tree node's box
-  bool pickDisplay(int x, int y);  // VTK display coordinates (origin bottom left, device pixels)
+  bool pickDisplay(int x, int y);
+  bool eventFilter(QObject* watched, QEvent* event) override;  // a click without a drag picks  // VTK display coordinates (origin bottom left, device pixels)
   struct Impl;
   std::unique_ptr<Impl> d_;
   Session* session_;
