@@ -1,8 +1,9 @@
-// The kd-tree's inspector in raystep-gui, run in scripted mode under Xvfb like viz_test.cpp: the SAH chart has
-// one point per candidate that core's record_sah_curve gives for the node, per axis, and the same decision;
-// the GUI's CSV export is the command line's `raystep sah`; the chart shows the three series' colours; the
-// selected node's highlight is where its box projects in the 3D view; a click in the 3D view selects the leaf
-// holding the picked point; a rebuild with another t_i keeps the node by its path; a bad node exits 2.
+// The kd-tree's inspector in raystep-gui, run in scripted mode under Xvfb like viz_test.cpp: the SAH chart
+// has one point per candidate that core's record_sah_curve gives for the node, per axis, and the same
+// decision; the GUI's CSV export is the command line's `raystep sah`; the chart shows the three series'
+// colours; the selected node's highlight is where its box projects in the 3D view; a click in the 3D view
+// selects the leaf holding the picked point; a rebuild with another t_i keeps the node by its path; a bad
+// node exits 2.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -90,8 +91,9 @@ TEST(Inspector, TreeViewMakesOnlyTheRowsShown) {
   for (uint32_t n = 0; n < tree.nodes.size(); ++n)
     if (tree.info[n].depth > tree.info[deep].depth) deep = n;
   std::string st = kOut + "/inspector_knot.json";
-  GuiRun r = gui("'" + knot + "' --accel kd --node " + std::to_string(deep) + " --dump-state '" + st + "' --quit",
-                 "inspector_knot");
+  GuiRun r =
+      gui("'" + knot + "' --accel kd --node " + std::to_string(deep) + " --dump-state '" + st + "' --quit",
+          "inspector_knot");
   ASSERT_EQ(r.code, 0) << r.err;
   json s = readJson(st);
   EXPECT_EQ(s["tree"]["nodes"].get<size_t>(), tree.nodes.size());
@@ -108,8 +110,8 @@ TEST(Inspector, ExportedCsvIsTheCommandLinesCurve) {
     std::string gcsv = kOut + "/" + tag + "_gui.csv", ccsv = kOut + "/" + tag + "_cli.csv";
     GuiRun r = gui(kKd + " --node " + std::to_string(node) + " --export-sah '" + gcsv + "' --quit", tag);
     ASSERT_EQ(r.code, 0) << r.err;
-    std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' sah '" + kScene + "' --node " + std::to_string(node) +
-                      " -o '" + ccsv + "' > /dev/null";
+    std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' sah '" + kScene + "' --node " +
+                      std::to_string(node) + " -o '" + ccsv + "' > /dev/null";
     ASSERT_EQ(std::system(cmd.c_str()), 0);
     std::string g = slurp(gcsv);
     EXPECT_FALSE(g.empty());
@@ -137,7 +139,8 @@ TEST(Inspector, ScreenshotShowsTheThreeSeriesColours) {
     if (series != std::string("leaf_cost")) ASSERT_GT(sah["points"][series].get<int>(), 0) << series;
     int n = countColor(img, sah["colors"][series], x0, y0, x1, y1, 24);
     EXPECT_GT(n, 40) << "the " << series << " series' colour in the chart";
-    EXPECT_LT(countColor(blank, sah["colors"][series], x0, y0, x1, y1, 24), 5) << series << " in the empty chart";
+    EXPECT_LT(countColor(blank, sah["colors"][series], x0, y0, x1, y1, 24), 5)
+        << series << " in the empty chart";
   }
 }
 
@@ -159,7 +162,8 @@ TEST(Inspector, SelectedNodeIsHighlightedWhereItsBoxProjects) {
     EXPECT_GT(inside, 40) << "selected node " << node << "'s colour inside its projected box";
     const json& vp = view["viewport"];
     double vx0 = vp[0], vy0 = vp[1];
-    int all = countColor(img, color, vx0, vy0, vx0 + vp[2].get<double>() - 1, vy0 + vp[3].get<double>() - 1, 10);
+    int all =
+        countColor(img, color, vx0, vy0, vx0 + vp[2].get<double>() - 1, vy0 + vp[3].get<double>() - 1, 10);
     EXPECT_GT(inside, all * 9 / 10) << "the selection colour appears away from the selected node";
   }
   // Nothing selected: the colour is nowhere in the 3D view.
@@ -213,16 +217,18 @@ TEST(Inspector, BadNodeExits2) {
   struct Case {
     std::string args, message;
   };
-  for (const Case& c : {Case{"--node 100000", "error: --node 100000: the kd-tree has"},
-                        Case{"--node -3", "error: --node -3: the kd-tree has"},
-                        Case{"--node-path LLLLLLLLLLLLLLLLLLLLLLLLLLLL", "error: --node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLLLL'"},
-                        Case{"--node-path LXR", "error: --node-path 'LXR'"},
-                        Case{"--panel nonsense", "error: --panel 'nonsense'"}}) {
+  for (const Case& c :
+       {Case{"--node 100000", "error: --node 100000: the kd-tree has"},
+        Case{"--node -3", "error: --node -3: the kd-tree has"},
+        Case{"--node-path LLLLLLLLLLLLLLLLLLLLLLLLLLLL", "error: --node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLLLL'"},
+        Case{"--node-path LXR", "error: --node-path 'LXR'"},
+        Case{"--panel nonsense", "error: --panel 'nonsense'"}}) {
     GuiRun r = gui(kKd + " " + c.args + " --quit", "inspector_bad");
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
     size_t lines = 0;
-    for (size_t at = r.err.find("error:"); at != std::string::npos; at = r.err.find("error:", at + 1)) ++lines;
+    for (size_t at = r.err.find("error:"); at != std::string::npos; at = r.err.find("error:", at + 1))
+      ++lines;
     EXPECT_EQ(lines, 1u) << "one error line: " << r.err;
   }
   // No kd-tree to look into: the grid.

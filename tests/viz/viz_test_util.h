@@ -58,10 +58,12 @@ inline bool nearColor(const uint8_t* px, const json& rgb, int tol) {
 }
 
 // Pixels of colour rgb (within tol per channel) in the box [x0, x1] x [y0, y1] of the image.
-inline int countColor(const Rgb8Image& img, const json& rgb, double x0, double y0, double x1, double y1, int tol) {
+inline int countColor(const Rgb8Image& img, const json& rgb, double x0, double y0, double x1, double y1,
+                      int tol) {
   int n = 0;
   for (int y = std::max(0, int(y0)); y <= std::min(img.height - 1, int(y1)); ++y)
-    for (int x = std::max(0, int(x0)); x <= std::min(img.width - 1, int(x1)); ++x) n += nearColor(img.at(x, y), rgb, tol);
+    for (int x = std::max(0, int(x0)); x <= std::min(img.width - 1, int(x1)); ++x)
+      n += nearColor(img.at(x, y), rgb, tol);
   return n;
 }
 

@@ -75,9 +75,13 @@ int KdTreeModel::rowCount(const QModelIndex& parent) const {
   return tree_->nodes[size_t(parent.internalId())].is_leaf() ? 0 : 2;
 }
 
-int KdTreeModel::columnCount(const QModelIndex&) const { return ColumnCount; }
+int KdTreeModel::columnCount(const QModelIndex&) const {
+  return ColumnCount;
+}
 
-bool KdTreeModel::hasChildren(const QModelIndex& parent) const { return rowCount(parent) > 0; }
+bool KdTreeModel::hasChildren(const QModelIndex& parent) const {
+  return rowCount(parent) > 0;
+}
 
 QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   if (!tree_ || !index.isValid()) return {};
@@ -86,14 +90,19 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   const KdNodeInfo& info = tree_->info[id];
   if (role == Qt::DisplayRole) {
     switch (index.column()) {
-      case SideColumn: return info.parent < 0 ? tr("root") : index.row() == 0 ? QStringLiteral("L") : QStringLiteral("R");
-      case NodeColumn: return id;
-      case DepthColumn: return info.depth;
+      case SideColumn:
+        return info.parent < 0 ? tr("root") : index.row() == 0 ? QStringLiteral("L") : QStringLiteral("R");
+      case NodeColumn:
+        return id;
+      case DepthColumn:
+        return info.depth;
       case WhatColumn:
         if (n.is_leaf())
-          return n.prim_count() == 0 ? tr("leaf, empty") : tr("leaf, %n primitive(s)", "", int(n.prim_count()));
+          return n.prim_count() == 0 ? tr("leaf, empty")
+                                     : tr("leaf, %n primitive(s)", "", int(n.prim_count()));
         return tr("split %1 = %2").arg(axisName(n.axis())).arg(double(n.split), 0, 'g', 5);
-      case CostColumn: return QString::number(double(info.cost), 'f', 1);
+      case CostColumn:
+        return QString::number(double(info.cost), 'f', 1);
     }
   } else if (role == Qt::ToolTipRole) {
     return tr("node %1, path \"%2\", box (%3, %4, %5) .. (%6, %7, %8)")
@@ -112,11 +121,16 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
 QVariant KdTreeModel::headerData(int section, Qt::Orientation orientation, int role) const {
   if (orientation != Qt::Horizontal || role != Qt::DisplayRole) return {};
   switch (section) {
-    case SideColumn: return tr("tree");
-    case NodeColumn: return tr("node");
-    case DepthColumn: return tr("depth");
-    case WhatColumn: return tr("split or leaf");
-    case CostColumn: return tr("cost");
+    case SideColumn:
+      return tr("tree");
+    case NodeColumn:
+      return tr("node");
+    case DepthColumn:
+      return tr("depth");
+    case WhatColumn:
+      return tr("split or leaf");
+    case CostColumn:
+      return tr("cost");
   }
   return {};
 }

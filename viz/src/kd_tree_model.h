@@ -15,7 +15,8 @@ namespace raystep::viz {
 
 struct StructureData;
 
-// 'L' for the child below the split plane (the node after its parent), 'R' for the one above; "" for the root.
+// 'L' for the child below the split plane (the node after its parent), 'R' for the one above; "" for the
+// root.
 std::string kdNodePath(const KdTreeData& tree, uint32_t node);
 // The leaf whose box contains p (on a split plane: the child above); -1 when p is outside the root's box.
 int kdLeafContaining(const KdTreeData& tree, const glm::vec3& p);
@@ -23,7 +24,8 @@ int kdLeafContaining(const KdTreeData& tree, const glm::vec3& p);
 class KdTreeModel : public QAbstractItemModel {
   Q_OBJECT
  public:
-  // The first column carries the tree's lines and the side (L, R); the id has its own so that deep rows show it.
+  // The first column carries the tree's lines and the side (L, R); the id has its own so that deep rows show
+  // it.
   enum Column { SideColumn, NodeColumn, DepthColumn, WhatColumn, CostColumn, ColumnCount };
   explicit KdTreeModel(QObject* parent = nullptr) : QAbstractItemModel(parent) {}
 

@@ -172,7 +172,7 @@ void MainWindow::buildMenus() {
   file->addAction(tr("Screenshot of the SAH &chart..."), this, [this] {
     if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-sah.png", tr("PNG (*.png)"));
-    if (!path.isEmpty() && !sahChart_->grabChart().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
+    if (!path.isEmpty() && !sahChart_->saveChart(path)) showError(tr("Cannot write %1").arg(path));
   });
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);

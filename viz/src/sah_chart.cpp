@@ -6,6 +6,7 @@
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
+#include <QSaveFile>
 #include <QVBoxLayout>
 
 #include <QVTKOpenGLNativeWidget.h>
@@ -33,9 +34,13 @@
 namespace raystep::viz {
 namespace {
 
-QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.blue()}; }
+QJsonArray jsonColor(const QColor& c) {
+  return QJsonArray{c.red(), c.green(), c.blue()};
+}
 
-const QColor& axisColor(int axis) { return axis == 0 ? palette::sahX : axis == 1 ? palette::sahY : palette::sahZ; }
+const QColor& axisColor(int axis) {
+  return axis == 0 ? palette::sahX : axis == 1 ? palette::sahY : palette::sahZ;
+}
 
 vtkSmartPointer<vtkTable> makeTable(const char* xName, const char* yName) {
   auto t = vtkSmartPointer<vtkTable>::New();
@@ -63,15 +68,22 @@ vtkPlot* addLine(vtkChartXY* chart, vtkTable* t, const QColor& c, float width, c
   return p;
 }
 
-QString fmt(double v) { return QString::number(std::abs(v) < 1e-30 ? 0.0 : v, 'g', 5); }
+QString fmt(double v) {
+  return QString::number(std::abs(v) < 1e-30 ? 0.0 : v, 'g', 5);
+}
 
 QString leafReasonText(LeafReason r) {
   switch (r) {
-    case LeafReason::few_primitives: return QObject::tr("N <= leaf size: no search");
-    case LeafReason::max_depth: return QObject::tr("the depth limit");
-    case LeafReason::no_cheaper_split: return QObject::tr("no split costs less than N t_i");
-    case LeafReason::no_candidate: return QObject::tr("no plane strictly inside the node");
-    case LeafReason::budget: return QObject::tr("the reference budget is spent");
+    case LeafReason::few_primitives:
+      return QObject::tr("N <= leaf size: no search");
+    case LeafReason::max_depth:
+      return QObject::tr("the depth limit");
+    case LeafReason::no_cheaper_split:
+      return QObject::tr("no split costs less than N t_i");
+    case LeafReason::no_candidate:
+      return QObject::tr("no plane strictly inside the node");
+    case LeafReason::budget:
+      return QObject::tr("the reference budget is spent");
   }
   return {};
 }
@@ -169,7 +181,8 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
                          std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
     if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
       bool few = byAxis[a].size() <= 400;
-      points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE : vtkPlotPoints::NONE);
+      points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE
+                                                                  : vtkPlotPoints::NONE);
       points->SetMarkerSize(byAxis[a].size() == 1 ? 8.f : 5.f);
     }
   }
@@ -187,27 +200,36 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     addLine(d.chart, chosen, palette::sahChosen, 1.5f, std::string("chosen: ") + axisName(c.axis));
   }
   vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
-  double pad = hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));  // a lone leaf cost: a plain range
+  double pad =
+      hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));  // a lone leaf cost: a plain range
   left->SetBehavior(vtkAxis::FIXED);
   left->SetRange(lo - pad, hi + pad);
   d.chart->RecalculateBounds();
 
   // The text: which node, what it holds, what the builder decided and why.
-  QString t = tr("<b>node %1</b> (path \"%2\"), depth %3<br>N = %4 primitives<br>box (%5, %6, %7)<br>"
-                 "&nbsp;&nbsp;.. (%8, %9, %10)<br>")
-                  .arg(c.node)
-                  .arg(path)
-                  .arg(c.info.depth)
-                  .arg(c.n_prims)
-                  .arg(fmt(box.lo.x), fmt(box.lo.y), fmt(box.lo.z), fmt(box.hi.x), fmt(box.hi.y), fmt(box.hi.z));
-  t += tr("candidates: x %1, y %2, z %3<br>").arg(byAxis[0].size()).arg(byAxis[1].size()).arg(byAxis[2].size());
+  QString t =
+      tr("<b>node %1</b> (path \"%2\"), depth %3<br>N = %4 primitives<br>box (%5, %6, %7)<br>"
+         "&nbsp;&nbsp;.. (%8, %9, %10)<br>")
+          .arg(c.node)
+          .arg(path)
+          .arg(c.info.depth)
+          .arg(c.n_prims)
+          .arg(fmt(box.lo.x), fmt(box.lo.y), fmt(box.lo.z), fmt(box.hi.x), fmt(box.hi.y), fmt(box.hi.z));
+  t += tr("candidates: x %1, y %2, z %3<br>")
+           .arg(byAxis[0].size())
+           .arg(byAxis[1].size())
+           .arg(byAxis[2].size());
   t += tr("leaf cost N t_i = %1 &times; %2 = %3<br>").arg(c.n_prims).arg(double(t_i)).arg(fmt(c.leaf_cost));
   if (c.leaf) {
     t += tr("<b>leaf</b>: %1 (%2)").arg(leaf_reason_name(c.leaf_reason)).arg(leafReasonText(c.leaf_reason));
     if (!c.candidates.empty()) {
-      auto best = std::min_element(c.candidates.begin(), c.candidates.end(),
-                                   [](const SahCandidate& a, const SahCandidate& b) { return a.cost < b.cost; });
-      t += tr("; the cheapest plane (%1 = %2) costs %3").arg(axisName(best->axis)).arg(fmt(best->position)).arg(fmt(best->cost));
+      auto best =
+          std::min_element(c.candidates.begin(), c.candidates.end(),
+                           [](const SahCandidate& a, const SahCandidate& b) { return a.cost < b.cost; });
+      t += tr("; the cheapest plane (%1 = %2) costs %3")
+               .arg(axisName(best->axis))
+               .arg(fmt(best->position))
+               .arg(fmt(best->cost));
     }
     d.chart->SetTitle("node " + std::to_string(c.node) + ": leaf (" + leaf_reason_name(c.leaf_reason) + ")");
   } else {
@@ -231,7 +253,14 @@ void SahChart::renderNow() {
   d_->window->Render();
 }
 
-QImage SahChart::grabChart() { return d_->widget->grabFramebuffer(); }
+QImage SahChart::grabChart() {
+  return d_->widget->grabFramebuffer();
+}
+
+bool SahChart::saveChart(const QString& path) {
+  QSaveFile file(path);
+  return file.open(QIODevice::WriteOnly) && grabChart().save(&file, "PNG") && file.commit();
+}
 
 QJsonObject SahChart::dumpState() const {
   const Impl& d = *d_;
@@ -253,11 +282,14 @@ QJsonObject SahChart::dumpState() const {
   o["n_prims"] = int(c.n_prims);
   o["leaf_cost"] = c.leaf_cost;
   o["leaf"] = c.leaf;
-  if (c.leaf) o["leaf_reason"] = leaf_reason_name(c.leaf_reason);
+  if (c.leaf)
+    o["leaf_reason"] = leaf_reason_name(c.leaf_reason);
   else
-    o["chosen"] = QJsonObject{{"axis", axisName(c.axis)}, {"position", c.position}, {"cost", c.cost}, {"index", c.chosen}};
+    o["chosen"] = QJsonObject{
+        {"axis", axisName(c.axis)}, {"position", c.position}, {"cost", c.cost}, {"index", c.chosen}};
   QJsonObject points;
-  for (int a = 0; a < 3; ++a) points[axisName(a)] = d.axisTable[a] ? int(d.axisTable[a]->GetNumberOfRows()) : 0;
+  for (int a = 0; a < 3; ++a)
+    points[axisName(a)] = d.axisTable[a] ? int(d.axisTable[a]->GetNumberOfRows()) : 0;
   o["points"] = points;  // as plotted: one per candidate
   o["plots"] = int(d.chart->GetNumberOfPlots());
   o["candidates"] = int(c.candidates.size());

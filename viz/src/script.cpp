@@ -407,7 +407,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       fail("cannot write " + p.value("screenshot").toStdString());
     if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
       fail("cannot write " + p.value("screenshot-3d").toStdString());
-    if (p.isSet("screenshot-sah") && !window.sahChart()->grabChart().save(p.value("screenshot-sah"), "PNG"))
+    if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
       fail("cannot write " + p.value("screenshot-sah").toStdString());
     if (p.isSet("export-sah")) {
       if (!window.sahChart()->curve()) fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");

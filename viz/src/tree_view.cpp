@@ -61,7 +61,8 @@ TreeView::TreeView(Session* session, QWidget* parent)
     showSelected();
   });
   connect(session_, &Session::selectedNodeChanged, this, &TreeView::showSelected);
-  connect(session_, &Session::stepChanged, this, [this] { current_->setEnabled(session_->state().nodeEvent >= 0); });
+  connect(session_, &Session::stepChanged, this,
+          [this] { current_->setEnabled(session_->state().nodeEvent >= 0); });
   current_->setEnabled(false);
 }
 
@@ -70,7 +71,8 @@ void TreeView::showSelected() {
   QModelIndex i = model_->indexOfNode(session_->selectedNode());
   if (i.isValid()) {
     for (QModelIndex p = i.parent(); p.isValid(); p = p.parent()) view_->expand(p);
-    view_->selectionModel()->setCurrentIndex(i, QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+    view_->selectionModel()->setCurrentIndex(i,
+                                             QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
     view_->scrollTo(i.siblingAtColumn(KdTreeModel::NodeColumn));
   } else {
     view_->selectionModel()->clearSelection();
