@@ -1,4 +1,7 @@
 // raystep-gui: the step-debugger. Everything lives in raystep_viz; this only starts Qt and VTK.
+#include <cstdio>
+#include <cstdlib>
+
 #include <QApplication>
 
 #include "main_window.h"
@@ -6,6 +9,15 @@
 #include "script.h"
 
 int main(int argc, char** argv) {
+  // Qt aborts without a display, and VTK here has no off-screen OpenGL: say so plainly instead.
+  const char* display = std::getenv("DISPLAY");
+  const char* platform = std::getenv("QT_QPA_PLATFORM");
+  if ((!display || !*display) && (!platform || !*platform)) {
+    std::fprintf(stderr,
+                 "error: raystep-gui needs an X server and DISPLAY is not set; run it on a desktop, or under "
+                 "xvfb-run -a raystep-gui ...\n");
+    return 2;
+  }
   raystep::viz::SceneView::prepareSurfaceFormat();  // before QApplication, or VTK has no OpenGL context
   QApplication app(argc, argv);
   QApplication::setApplicationName("raystep-gui");

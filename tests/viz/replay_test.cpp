@@ -3,8 +3,14 @@
 // (1) wins. Checks what the panels show at every step, and that the state depends on the step alone.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "raystep/accel/kdtree.h"
+#include "raystep/scene/ray_sets.h"
 #include "raystep/trace/grid_trace.h"
+#include "raystep/trace/record_trace.h"
 #include "replay.h"
+#include "test_scenes.h"
 
 namespace raystep::viz {
 namespace {
@@ -123,6 +129,74 @@ TEST(Replay, TreeStackFromPushAndPop) {
   EXPECT_TRUE(replayAt(ray, 4).stack.empty());
   EXPECT_FLOAT_EQ(replayAt(ray, 5).tMin, 3.f);
   EXPECT_EQ(replayAt(ray, 5).counters.pushes, 1u);
+}
+
+// The kd-tree panel's reading of a real walk: at every inner node, t* from the trace's split plane and the
+// children crossed agree with what the kernel did next (push, or the one child visited), and at a push the
+// inner node stays the current node while the stack grows by the far child.
+TEST(Replay, KdCrossingsAgreeWithTheWalk) {
+  Geometry g = test::make_soup(5, 200, 2);
+  KdTree tree;
+  tree.build(g);
+  std::vector<RayRequest> rays;
+  for (const Ray& r : random_rays(g.bounds(), 200, 9)) rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
+  Trace t = record_trace(g, tree, rays, "soup", "fnv1a64:0000000000000000");
+  int kinds[4] = {0, 0, 0, 0};
+  int stops = 0, walked = 0;
+  for (const TracedRay& ray : t.rays) {
+    if (!isTreeRay(ray)) continue;  // it misses the root's box
+    ++walked;
+    for (int i = 0; i < int(ray.events.size()); ++i) {
+      const Event& e = ray.events[size_t(i)];
+      ReplayState s = replayAt(ray, i);
+      if (e.type == EventType::push) {
+        ASSERT_GE(s.nodeEvent, 0);
+        EXPECT_EQ(ray.events[size_t(s.nodeEvent)].type, EventType::node);
+        EXPECT_EQ(s.nodeEvent, i - 1);
+        ASSERT_FALSE(s.stack.empty());
+        EXPECT_EQ(s.stack.back().node, e.node);
+        EXPECT_EQ(s.stack.back().pushEvent, i);
+        EXPECT_EQ(s.tMin, ray.events[size_t(i - 1)].t_min_node);  // the inner node's interval, not the far child's
+      }
+      if (e.type == EventType::hit_accepted && e.reason == AcceptReason::next_node_beyond) {
+        ++stops;
+        int pop = findEvent(ray, i, EventType::pop, false);
+        ASSERT_GE(pop, 0);
+        EXPECT_LT(e.t, ray.events[size_t(pop)].t_min_node);
+        std::string why = explainRule(&t, ray, s);
+        EXPECT_NE(why.find("tmin(next node) > tmax(ray)"), std::string::npos) << why;
+      }
+      if (e.type != EventType::node || ray.events[size_t(i + 1)].type == EventType::leaf) continue;
+      NodeCrossing c = nodeCrossing(t, ray, s);
+      ASSERT_TRUE(c.valid) << "node " << e.node;
+      const TraceNode* n = findNode(t, e.node);
+      ASSERT_NE(n, nullptr);
+      EXPECT_EQ(c.axis, n->axis);
+      const Event& next = ray.events[size_t(i + 1)];
+      kinds[int(c.crossing)]++;
+      switch (c.crossing) {
+        case Crossing::nearOnly: EXPECT_GT(c.tStar, c.tMax); break;
+        case Crossing::farOnly: EXPECT_LT(c.tStar, c.tMin); break;
+        case Crossing::both:
+          // The far child's interval starts at t*, clamped to the node's: the kernel's own numbers.
+          EXPECT_EQ(next.t_min_node, std::min(std::max(c.tStar, c.tMin), c.tMax));
+          EXPECT_EQ(ray.events[size_t(i + 2)].t_max_node, next.t_min_node);
+          EXPECT_EQ(c.nearChild, ray.events[size_t(i + 2)].node);
+          // The near child is the one on the origin's side: below the plane when the direction points up.
+          EXPECT_EQ(c.nearChild == e.node + 1, c.nearIsBelow);
+          break;
+        case Crossing::inPlane: EXPECT_TRUE(std::isnan(c.tStar)); break;
+      }
+      std::string why = explainRule(&t, ray, s);
+      EXPECT_NE(why.find("t* ="), std::string::npos) << why;
+    }
+  }
+  // The rays meet every kind of inner-node decision but the in-plane one, and the tree's stopping rule.
+  EXPECT_GT(kinds[int(Crossing::nearOnly)], 0);
+  EXPECT_GT(kinds[int(Crossing::farOnly)], 0);
+  EXPECT_GT(kinds[int(Crossing::both)], 0);
+  EXPECT_GT(stops, 0);
+  EXPECT_GT(walked, 50);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -29,10 +30,10 @@ struct GuiRun {
   std::string err;
 };
 
-// Runs raystep-gui with the arguments; stderr is captured.
-GuiRun gui(const std::string& args, const std::string& tag) {
+// Runs raystep-gui with the arguments (and environment variables `env`, "NAME=value ..."); stderr is captured.
+GuiRun gui(const std::string& args, const std::string& tag, const std::string& env = "") {
   std::string errFile = kOut + "/" + tag + ".stderr";
-  std::string cmd = "'" + kExe + "' " + args + " 2> '" + errFile + "'";
+  std::string cmd = (env.empty() ? "" : "env " + env + " ") + "'" + kExe + "' " + args + " 2> '" + errFile + "'";
   GuiRun r;
   int status = std::system(cmd.c_str());
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -149,11 +150,13 @@ TEST(Viz, KdScreenshotShowsCurrentNodeAndRay) {
   }
 }
 
-TEST(Viz, StepBackAndForthGivesTheSameState) {
-  const int k = 4, n = 9;
-  auto snap = [&](const std::string& tag, const std::string& steps) {
+// Back N and forward N give the identical panels, 3D view and screenshot, for the grid and the kd-tree.
+void checkBackAndForth(const std::string& accel, int k, int n) {
+  const std::string base = kPixel + " --accel " + accel;
+  auto snap = [&](const std::string& name, const std::string& steps) {
+    std::string tag = accel + "_" + name;
     std::string png = kOut + "/" + tag + ".png", st = kOut + "/" + tag + ".json";
-    GuiRun r = gui(kPixel + " " + steps + " --screenshot '" + png + "' --dump-state '" + st + "' --quit", tag);
+    GuiRun r = gui(base + " " + steps + " --screenshot '" + png + "' --dump-state '" + st + "' --quit", tag);
     EXPECT_EQ(r.code, 0) << r.err;
     json j = readJson(st);
     return std::make_pair(j, raystep::read_png_rgb8(png));
@@ -177,6 +180,43 @@ TEST(Viz, StepBackAndForthGivesTheSameState) {
   // And the state after k + n steps is really another one.
   auto d = snap("step_kn", "--step " + std::to_string(k + n));
   EXPECT_NE(a.first.dump(1), d.first.dump(1));
+  EXPECT_NE(a.first["panels"].dump(), d.first["panels"].dump());
+}
+
+TEST(Viz, StepBackAndForthGivesTheSameState) { checkBackAndForth("grid", 4, 9); }
+
+// In the kd-tree the stack table and the current node are part of the state: step 3 is inside the walk with a
+// node pushed, and the steps in between push and pop.
+TEST(Viz, KdStepBackAndForthGivesTheSameState) {
+  checkBackAndForth("kd", 3, 8);
+  json st = readJson(kOut + "/kd_step_k.json");
+  EXPECT_TRUE(st["panels"].contains("stack")) << st["panels"].dump();
+  EXPECT_TRUE(st["view"].contains("current_node")) << st["view"].dump();
+}
+
+// The 3D view keeps the scene's layer as an image while only the walk changes (BackdropCache): what it shows
+// is pixel for pixel what drawing everything gives, at a cell, at a node with its split plane, after steps
+// that kept the image and after a camera change (the fit at the start) that made it anew.
+TEST(Viz, BackdropImageDrawsLikeTheScene) {
+  for (const char* run : {"grid --step-to cell:3 --forward 3", "kd --step-to node:3", "kd --step-to leaf:2 --back 2"}) {
+    std::string tag = std::string("backdrop_") + std::to_string(std::hash<std::string>{}(run) % 1000);
+    std::string args = kPixel + " --accel " + run + " --screenshot-3d ";
+    std::string sa = kOut + "/" + tag + "_image.json", sb = kOut + "/" + tag + "_drawn.json";
+    GuiRun a = gui(args + "'" + kOut + "/" + tag + "_image.png' --dump-state '" + sa + "' --quit", tag + "_image");
+    GuiRun b = gui(args + "'" + kOut + "/" + tag + "_drawn.png' --dump-state '" + sb + "' --quit", tag + "_drawn",
+                   "RAYSTEP_GUI_NO_BACKDROP=1");
+    ASSERT_EQ(a.code, 0) << a.err;
+    ASSERT_EQ(b.code, 0) << b.err;
+    EXPECT_EQ(readJson(sa)["view"]["backdrop"], "image");
+    EXPECT_EQ(readJson(sb)["view"]["backdrop"], "drawn");
+    raystep::Rgb8Image ia = raystep::read_png_rgb8(kOut + "/" + tag + "_image.png");
+    raystep::Rgb8Image ib = raystep::read_png_rgb8(kOut + "/" + tag + "_drawn.png");
+    ASSERT_EQ(ia.width, ib.width);
+    ASSERT_EQ(ia.height, ib.height);
+    size_t differ = 0;
+    for (size_t i = 0; i < ia.rgb.size(); ++i) differ += ia.rgb[i] != ib.rgb[i];
+    EXPECT_EQ(differ, 0u) << run;
+  }
 }
 
 #ifdef RAYSTEP_CLI_EXE
@@ -191,21 +231,35 @@ TEST(Viz, ExportedTraceIsTheCommandLinesTrace) {
 }
 #endif
 
-TEST(Viz, TraceFileReplaysLikeTheScene) {
-  std::string tr = kOut + "/replay.trace.json", st1 = kOut + "/replay_scene.json", st2 = kOut + "/replay_trace.json";
-  std::string png = kOut + "/replay_trace.png";
-  GuiRun r1 = gui(kPixel + " --step-to cell:4 --export-trace '" + tr + "' --dump-state '" + st1 + "' --quit", "replay1");
+// A trace exported by the GUI, opened on its own, replays like the scene it came from.
+void checkTraceReplays(const std::string& accel, const std::string& stepTo, const std::string& box) {
+  std::string tag = "replay_" + accel;
+  std::string tr = kOut + "/" + tag + ".trace.json", st1 = kOut + "/" + tag + "_scene.json",
+              st2 = kOut + "/" + tag + "_trace.json", png = kOut + "/" + tag + "_trace.png";
+  GuiRun r1 = gui(kPixel + " --accel " + accel + " --step-to " + stepTo + " --export-trace '" + tr + "' --dump-state '" +
+                      st1 + "' --quit",
+                  tag + "1");
   ASSERT_EQ(r1.code, 0) << r1.err;
-  GuiRun r2 = gui("'" + tr + "' --window 1280x800 --step-to cell:4 --screenshot '" + png + "' --dump-state '" + st2 + "' --quit",
-               "replay2");
+  GuiRun r2 = gui("'" + tr + "' --window 1280x800 --step-to " + stepTo + " --screenshot '" + png + "' --dump-state '" +
+                      st2 + "' --quit",
+                  tag + "2");
   ASSERT_EQ(r2.code, 0) << r2.err;
   json a = readJson(st1), b = readJson(st2);
   EXPECT_EQ(a["step"], b["step"]);
   EXPECT_EQ(a["panels"], b["panels"]);
-  EXPECT_EQ(a["view"]["current_cell"]["cell"], b["view"]["current_cell"]["cell"]);
+  // The same cell or node (the camera fits what there is to show, so the projections differ).
+  json boxA = a["view"][box], boxB = b["view"][box];
+  boxA.erase("projected_corners");
+  boxB.erase("projected_corners");
+  EXPECT_EQ(boxA, boxB);
   EXPECT_EQ(a["view"]["visited_cells"], b["view"]["visited_cells"]);
-  checkScreenshot(png, b);
+  EXPECT_EQ(a["view"]["visited_nodes"], b["view"]["visited_nodes"]);
+  EXPECT_EQ(a["view"]["stack_nodes"], b["view"]["stack_nodes"]);
+  checkScreenshot(png, b, box);
 }
+
+TEST(Viz, TraceFileReplaysLikeTheScene) { checkTraceReplays("grid", "cell:4", "current_cell"); }
+TEST(Viz, KdTraceFileReplaysLikeTheScene) { checkTraceReplays("kd", "push:2", "current_node"); }
 
 void writeFile(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);

@@ -229,7 +229,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   heat_ = new QComboBox;
   heat_->setObjectName("heatCombo");
   heat_->addItem(tr("off"), "off");
-  heat_->addItem(tr("cells visited"), "cells");
+  heat_->addItem(tr("cells or nodes visited"), "cells");
   heat_->addItem(tr("primitive tests"), "tests");
   heat_->addItem(tr("mailbox hits"), "mailbox");
   row2->addWidget(heat_);

@@ -1,6 +1,7 @@
 #include "replay.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <unordered_map>
 
@@ -13,6 +14,16 @@ const char* primStateName(PrimState s) {
     case PrimState::hit: return "hit";
     case PrimState::missed: return "missed";
     case PrimState::skipped: return "skipped (mailbox)";
+  }
+  return "";
+}
+
+const char* crossingName(Crossing c) {
+  switch (c) {
+    case Crossing::nearOnly: return "near child only";
+    case Crossing::farOnly: return "far child only";
+    case Crossing::both: return "both children";
+    case Crossing::inPlane: return "both children (the ray lies in the plane)";
   }
   return "";
 }
@@ -58,7 +69,6 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         ++s.counters.cells;
         break;
       case EventType::node:
-      case EventType::push:
       case EventType::pop:
       case EventType::leaf:
         s.nodeEvent = i;
@@ -66,14 +76,14 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         s.tMin = e.t_min_node;
         s.tMax = e.t_max_node;
         if (e.type == EventType::node) ++s.counters.nodes;
-        if (e.type == EventType::push) {
-          ++s.counters.pushes;
-          s.stack.push_back(StackEntry{e.node, e.depth, e.t_min_node, e.t_max_node});
-        }
         if (e.type == EventType::pop) {
           ++s.counters.pops;
           if (!s.stack.empty()) s.stack.pop_back();
         }
+        break;
+      case EventType::push:  // the far child waits on the stack; the inner node stays the current one
+        ++s.counters.pushes;
+        s.stack.push_back(StackEntry{e.node, e.depth, e.t_min_node, e.t_max_node, i});
         break;
       case EventType::prim_test: {
         ++s.counters.prim_tests;
@@ -81,6 +91,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         m.prim = e.prim;
         m.testedInCellEvent = s.cellEvent;
         if (s.cellEvent >= 0) std::copy(ev[size_t(s.cellEvent)].cell, ev[size_t(s.cellEvent)].cell + 3, m.cell);
+        if (s.nodeEvent >= 0) m.leaf = ev[size_t(s.nodeEvent)].node;
         m.hit = e.hit;
         m.t = e.t;
         tested.emplace(e.prim, s.mailbox.size());
@@ -150,6 +161,58 @@ int nthEvent(const TracedRay& ray, EventType type, int k) {
   return -1;
 }
 
+bool isTreeRay(const TracedRay& ray) {
+  for (const Event& e : ray.events)
+    if (isTreeEvent(e.type)) return true;
+  return false;
+}
+
+const TraceNode* findNode(const Trace& trace, int32_t id) {
+  // The trace lists its nodes by id; fall back to a scan for a file written otherwise.
+  auto it = std::lower_bound(trace.nodes.begin(), trace.nodes.end(), id,
+                             [](const TraceNode& n, int32_t v) { return n.id < v; });
+  if (it != trace.nodes.end() && it->id == id) return &*it;
+  for (const TraceNode& n : trace.nodes)
+    if (n.id == id) return &n;
+  return nullptr;
+}
+
+NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const ReplayState& s) {
+  NodeCrossing c;
+  const std::vector<Event>& ev = ray.events;
+  if (s.nodeEvent < 0 || ev[size_t(s.nodeEvent)].type != EventType::node) return c;
+  const Event& e = ev[size_t(s.nodeEvent)];
+  const TraceNode* n = findNode(trace, e.node);
+  size_t next = size_t(s.nodeEvent) + 1;
+  if (!n || n->leaf || next >= ev.size()) return c;
+  c.nodeEvent = s.nodeEvent;
+  c.node = e.node;
+  c.axis = n->axis;
+  c.split = n->split;
+  c.tMin = e.t_min_node;
+  c.tMax = e.t_max_node;
+  // As the kernel computes it: by the direction's reciprocal; the sign bit picks the near side.
+  float o = ray.ray.origin[c.axis], d = ray.ray.direction[c.axis];
+  c.tStar = (c.split - o) * (1.f / d);
+  c.nearIsBelow = !std::signbit(d);
+  // Which children the walk visits from here, by the events that follow (the child below the plane is the node
+  // right after its parent in depth-first order).
+  if (ev[next].type == EventType::push) {
+    c.crossing = std::isnan(c.tStar) ? Crossing::inPlane : Crossing::both;
+    c.farChild = ev[next].node;
+    if (next + 1 < ev.size() && ev[next + 1].type == EventType::node) c.nearChild = ev[next + 1].node;
+  } else if (ev[next].type == EventType::node) {
+    bool below = ev[next].node == e.node + 1;
+    bool nearSide = below == c.nearIsBelow;
+    c.crossing = nearSide ? Crossing::nearOnly : Crossing::farOnly;
+    (nearSide ? c.nearChild : c.farChild) = ev[next].node;
+  } else {
+    return c;
+  }
+  c.valid = true;
+  return c;
+}
+
 std::string describeEvent(const Event& e) {
   std::string s = std::to_string(e.seq) + "  " + event_type_name(e.type);
   switch (e.type) {
@@ -161,7 +224,7 @@ std::string describeEvent(const Event& e) {
     case EventType::push:
     case EventType::pop:
     case EventType::leaf:
-      s += "  node " + std::to_string(e.node) + " depth " + std::to_string(e.depth) + "  t " + num(e.t_min_node) +
+      s += (e.type == EventType::node ? "  " : "  node ") + std::to_string(e.node) + " depth " + std::to_string(e.depth) + "  t " + num(e.t_min_node) +
            ".." + num(e.t_max_node);
       break;
     case EventType::prim_test:
@@ -182,8 +245,9 @@ std::string describeEvent(const Event& e) {
   return s;
 }
 
-std::string explainRule(const TracedRay& ray, const ReplayState& s) {
-  if (!s.event) return "";
+namespace {
+
+std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
   const Event* cell = s.cellEvent >= 0 ? &ray.events[size_t(s.cellEvent)] : nullptr;
   switch (e.type) {
@@ -230,6 +294,126 @@ std::string explainRule(const TracedRay& ray, const ReplayState& s) {
     }
     default: return "";
   }
+}
+
+std::string side(bool below) { return below ? "below the plane" : "above the plane"; }
+
+std::string nodeName(int32_t id) { return id >= 0 ? "node " + std::to_string(id) : std::string("the child"); }
+
+// The kd-tree's stack walk in the lecture's words.
+std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
+  const Event& e = *s.event;
+  const std::vector<Event>& ev = ray.events;
+  size_t next = size_t(s.step) + 1;
+  const Event* after = next < ev.size() ? &ev[next] : nullptr;
+  switch (e.type) {
+    case EventType::ray_begin: {
+      int first = findEvent(ray, 0, EventType::node, true);
+      if (first < 0) return "The ray misses the tree's box (slab test): no node to visit.";
+      const Event& root = ev[size_t(first)];
+      return "Slab test: the ray meets the root's box over [t_min, t_max] = [" + num(root.t_min_node) + ", " +
+             num(root.t_max_node) + "]; the walk starts at the root with that interval.";
+    }
+    case EventType::node: {
+      if (after && after->type == EventType::leaf)
+        return "Node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") is a leaf.";
+      NodeCrossing c = trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};
+      if (!c.valid) return "Inner node " + std::to_string(e.node) + ": the walk goes on in its children.";
+      std::string a = axisName(c.axis);
+      std::string head = "Inner node " + std::to_string(c.node) + " splits " + a + " at " + num(c.split) +
+                         ". t* = (split - o." + a + ") / d." + a + " = " + num(c.tStar) + ".\n";
+      std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
+      std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
+      switch (c.crossing) {
+        case Crossing::nearOnly:
+          return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
+                 " (or the plane is behind): the ray leaves the node before it reaches the plane.\nOnly the near "
+                 "child, " + nearName + ", is visited: Intersect(near, t_min, t_max).";
+        case Crossing::farOnly:
+          return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
+                 ": the ray crossed the plane before it entered the node.\nOnly the far child, " + farName +
+                 ", is visited: Intersect(far, t_min, t_max).";
+        case Crossing::both: {
+          bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;
+          return head + (inside ? "t_min = " + num(c.tMin) + " <= t* <= t_max = " + num(c.tMax)
+                                : "t* is at the edge of [" + num(c.tMin) + ", " + num(c.tMax) +
+                                      "] (within the walk's rounding margin)") +
+                 ": the ray crosses both children.\nIntersect(near = " + nearName + ", t_min, t*) now; push (far = " +
+                 farName + ", t*, t_max) for later.";
+        }
+        case Crossing::inPlane:
+          return head + "The ray lies in the split plane (t* = 0 * inf is undefined): it touches both children "
+                        "over the whole interval.\nVisit the near child, " + nearName + "; push the far child, " +
+                 farName + ", with all of [" + num(c.tMin) + ", " + num(c.tMax) + "].";
+      }
+      return head;
+    }
+    case EventType::push:
+      return "Push the far child, node " + std::to_string(e.node) + ", with its part of the ray [t*, t_max] = [" +
+             num(e.t_min_node) + ", " + num(e.t_max_node) + "]. The walk goes on in the near child; the stack holds " +
+             std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
+    case EventType::leaf: {
+      size_t k = s.prims.size();
+      std::string head = "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+      if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
+      return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
+             " against the ray (the mailbox skips any tested before).";
+    }
+    case EventType::pop: {
+      std::string head = "Pop node " + std::to_string(e.node) + " with [t_min, t_max] = [" + num(e.t_min_node) + ", " +
+                         num(e.t_max_node) + "]. ";
+      bool visited = after && after->type == EventType::node && after->node == e.node;
+      if (visited) {
+        if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
+        if (s.nearestT < e.t_min_node)
+          return head + "The nearest hit so far, t = " + num(s.nearestT) + ", lies before its t_min, but by less "
+                        "than the walk's safety margin (2^-12 of the ray's extent in the root box): visit it, so that "
+                        "no hit is lost to rounding.";
+        return head + "The nearest hit so far, t = " + num(s.nearestT) + ", is not before its t_min: a nearer hit may "
+                      "lie in it, so visit it.";
+      }
+      return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
+             ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it." +
+             (after && after->type == EventType::hit_accepted
+                  ? " Every node under it on the stack starts later still."
+                  : "");
+    }
+    case EventType::prim_test: {
+      std::string where = s.nodeEvent >= 0 ? " in leaf " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
+      if (e.hit)
+        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
+               ", nearer than any hit so far. It becomes the nearest hit.";
+      return "Primitive " + std::to_string(e.prim) + where + ": no hit nearer than the nearest so far.";
+    }
+    case EventType::mailbox_hit:
+      for (const MailboxEntry& m : s.mailbox)
+        if (m.prim == e.prim && m.leaf >= 0)
+          return "Primitive " + std::to_string(e.prim) + " was already tested in leaf " + std::to_string(m.leaf) +
+                 " for this ray (it lies in several leaves): the mailbox skips the test.";
+      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
+    case EventType::hit_accepted: {
+      if (e.reason == AcceptReason::any_hit) return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
+      if (e.reason == AcceptReason::next_node_beyond) {
+        int pop = findEvent(ray, s.step, EventType::pop, false);
+        std::string tmin = pop >= 0 ? num(ev[size_t(pop)].t_min_node) : "?";
+        return "Traverse until tmin(next node) > tmax(ray):\ntmin(popped node) = " + tmin + " > t(hit) = " + num(e.t) +
+               ", and every node below it on the stack starts later still  =>  stop, the hit is final.";
+      }
+      return "The stack is empty: every node the ray crosses has been visited. The nearest hit, t = " + num(e.t) +
+             ", is final.";
+    }
+    case EventType::ray_end:
+      if (e.prim < 0) return "Miss: the walk visited every node the ray crosses without a hit.";
+      return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
+    default: return "";
+  }
+}
+
+}  // namespace
+
+std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
+  if (!s.event) return "";
+  return isTreeRay(ray) ? explainTreeRule(trace, ray, s) : explainGridRule(ray, s);
 }
 
 }  // namespace raystep::viz

@@ -26,6 +26,7 @@ struct MailboxEntry {
   int32_t prim = -1;
   int testedInCellEvent = -1;  // index of the cell event during which it was tested
   int cell[3] = {0, 0, 0};
+  int32_t leaf = -1;  // trees: the leaf it was tested in
   bool hit = false;
   float t = 0.f;
   int skips = 0;  // mailbox hits so far
@@ -36,6 +37,25 @@ struct StackEntry {
   int32_t node = -1;
   int32_t depth = 0;
   float tMin = 0.f, tMax = 0.f;
+  int pushEvent = -1;  // index of the push event
+};
+
+// Trees: what the ray does at an inner node, in the lecture's words. t* is where the ray meets the split plane;
+// the near child is the side the ray starts on. Then either only one child is visited (t* beyond the node's
+// interval on one side), or both: Intersect(near, t_min, t*) now and the far child (t*, t_max) pushed.
+enum class Crossing { nearOnly, farOnly, both, inPlane };
+const char* crossingName(Crossing c);
+struct NodeCrossing {
+  bool valid = false;  // false: no inner node now, or its split plane is not in the trace
+  int nodeEvent = -1;
+  int32_t node = -1;
+  int axis = 0;
+  float split = 0.f;
+  float tStar = 0.f;  // NaN when the ray lies in the plane
+  float tMin = 0.f, tMax = 0.f;
+  bool nearIsBelow = true;  // the near child is the one below the plane
+  Crossing crossing = Crossing::nearOnly;
+  int32_t nearChild = -1, farChild = -1;  // -1: not visited from this node
 };
 
 struct ReplayState {
@@ -44,7 +64,8 @@ struct ReplayState {
   // Grid: the current cell event (index into events, -1: none yet) and the cells visited before it.
   int cellEvent = -1;
   std::vector<int> visitedCellEvents;
-  // The current tree node (kd-tree: node/push/pop/leaf), -1: none, and the stack: pushes not yet popped.
+  // The current tree node: the last node, leaf or pop event (at a push it is still the inner node being split),
+  // -1: none; and the stack: the pushes not yet popped, top last.
   int nodeEvent = -1;
   std::vector<StackEntry> stack;
   // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
@@ -58,12 +79,21 @@ struct ReplayState {
   float nearestT = 0.f;
   bool deferred = false, accepted = false, ended = false;
   AcceptReason reason = AcceptReason::inside_cell;
-  // The ray's current interval [tMin, tMax]: the cell's (grid) or the node's (tree); valid when hasInterval.
+  // The ray's current interval [tMin, tMax]: the cell's (grid) or the current node's (tree); valid when
+  // hasInterval.
   bool hasInterval = false;
   float tMin = 0.f, tMax = 0.f;
 };
 
 ReplayState replayAt(const TracedRay& ray, int step);
+
+// True when the ray walked a tree (node, push, pop or leaf events).
+bool isTreeRay(const TracedRay& ray);
+// The node of a trace's geometry with this id, or null.
+const TraceNode* findNode(const Trace& trace, int32_t id);
+// The crossing at the current inner node (the node event of s.nodeEvent), from the trace's split plane and the
+// events that follow it.
+NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const ReplayState& s);
 
 // Index of the next (forward) or previous event of `type` after/before `from`; -1 when there is none.
 int findEvent(const TracedRay& ray, int from, EventType type, bool forward);
@@ -72,8 +102,11 @@ int nthEvent(const TracedRay& ray, EventType type, int k);
 
 // One line describing an event, for the event list: "12  prim_test  prim 7: miss".
 std::string describeEvent(const Event& e);
-// The stopping rule explained with its numbers, when the current event is a hit_accepted or the walk's end.
-std::string explainRule(const TracedRay& ray, const ReplayState& s);
+// Why the walk does what the current event shows, with its numbers: the 3D-DDA's axis, the tree's t* and
+// children, the mailbox, and the stopping rule (grid: "tmin(cell) > tmax(ray)"; tree: the next node on the
+// stack starts beyond the hit). `trace` gives the nodes' split planes (null: t* is not shown).
+std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s);
+inline std::string explainRule(const TracedRay& ray, const ReplayState& s) { return explainRule(nullptr, ray, s); }
 
 const char* axisName(int axis);  // "x", "y", "z", or "none" for -1
 

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <memory>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
@@ -37,6 +39,7 @@
 #include <vtkSphereSource.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "backdrop_cache.h"
 #include "palette.h"
 #include "session.h"
 
@@ -121,7 +124,9 @@ struct SceneView::Impl {
   QCheckBox* followCheck = nullptr;
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkRenderer> base;     // scene and grid outline, depth-tested together
+  vtkNew<vtkRenderer> planes;   // the kd-tree's split plane, over the scene and under the walk
   vtkNew<vtkRenderer> overlay;  // the walk, drawn over the scene so that it is never hidden
+  std::unique_ptr<BackdropCache> backdrop;  // the base layer as an image while only the walk changes
 
   vtkNew<vtkPolyData> sceneData, outlineData, latticeData, visitedData, cellData, primData, rayData, aheadData,
       segmentData;
@@ -228,13 +233,18 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.widget->setMinimumSize(320, 240);
   d.window->SetMultiSamples(0);  // exact colours on lines (the tests look for them)
   d.widget->setRenderWindow(d.window);
-  d.window->SetNumberOfLayers(2);
+  d.window->SetNumberOfLayers(3);
   d.base->SetLayer(0);
-  d.overlay->SetLayer(1);
-  d.overlay->SetActiveCamera(d.base->GetActiveCamera());
-  d.overlay->InteractiveOff();
+  d.planes->SetLayer(1);
+  d.overlay->SetLayer(2);
+  for (vtkRenderer* r : {d.planes.Get(), d.overlay.Get()}) {
+    r->SetActiveCamera(d.base->GetActiveCamera());
+    r->InteractiveOff();
+  }
   d.window->AddRenderer(d.base);
+  d.window->AddRenderer(d.planes);
   d.window->AddRenderer(d.overlay);
+  d.backdrop = std::make_unique<BackdropCache>(d.window, d.base, std::vector<vtkRenderer*>{d.planes, d.overlay});
   const QColor& bg = palette::background;
   d.base->SetBackground(bg.redF(), bg.greenF(), bg.blueF());
   vtkNew<vtkInteractorStyleTrackballCamera> style;
@@ -286,7 +296,9 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.stackActor = unlitActor(d.stackData, palette::stackNode, 2.f);
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
-  d.base->AddActor(d.splitActor);  // under the walk: the translucent plane must not tint the ray
+  // On a layer of its own: over the scene (which stays the same from step to step, see BackdropCache) and under
+  // the walk, so that the translucent plane never tints the ray.
+  d.planes->AddActor(d.splitActor);
   d.selectedActor = unlitActor(d.selectedData, palette::selectedNode, 3.f);
   d.overlay->AddActor(d.selectedActor);
   // A click without a drag picks the scene (a drag still turns the camera).
@@ -796,6 +808,8 @@ void SceneView::fitCamera() {
 
 void SceneView::renderNow() {
   d_->base->ResetCameraClippingRange();
+  static const bool noBackdrop = std::getenv("RAYSTEP_GUI_NO_BACKDROP") != nullptr;  // for the tests' comparison
+  d_->backdrop->prepare(!noBackdrop && d_->widget->isValid() && d_->widget->isVisible());
   d_->window->Render();  // draws, and has the widget show the new frame
 }
 
@@ -898,6 +912,7 @@ QJsonObject SceneView::dumpState() const {
                            {"projected_samples", samples}};
   }
   o["hit_marker"] = d.hitActor->GetVisibility() ? (s.accepted ? "accepted" : "candidate") : "none";
+  o["backdrop"] = d.backdrop->cached() ? "image" : "drawn";  // the scene's layer kept as an image, or drawn
   return o;
 }
 

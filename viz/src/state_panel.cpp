@@ -1,5 +1,6 @@
 #include "state_panel.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <QAbstractTableModel>
@@ -9,6 +10,7 @@
 #include <QJsonArray>
 #include <QLabel>
 #include <QTableView>
+#include <QTableWidget>
 #include <QVBoxLayout>
 
 #include "replay.h"
@@ -50,7 +52,7 @@ class MailboxModel : public QAbstractTableModel {
   int columnCount(const QModelIndex& = {}) const override { return 4; }
   QVariant headerData(int section, Qt::Orientation o, int role) const override {
     if (role != Qt::DisplayRole || o != Qt::Horizontal) return {};
-    static const char* names[] = {"prim", "tested in cell", "result", "skips"};
+    static const char* names[] = {"prim", "tested in", "result", "skips"};
     return names[section];
   }
   QVariant data(const QModelIndex& index, int role) const override {
@@ -62,7 +64,8 @@ class MailboxModel : public QAbstractTableModel {
     switch (col) {
       case 0: return QString::number(m.prim);
       case 1:
-        return m.testedInCellEvent < 0 ? QString("-") : QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
+        if (m.testedInCellEvent >= 0) return QString("cell (%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
+        return m.leaf >= 0 ? QString("leaf %1").arg(m.leaf) : QString("-");
       case 2: return m.hit ? QString("hit t=%1").arg(num(m.t)) : QString("miss");
       default: return QString::number(m.skips);
     }
@@ -89,6 +92,13 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   layout->addWidget(ray_);
   layout->addWidget(event_);
 
+  auto* ruleBox = new QGroupBox(tr("Why"));
+  auto* ruleLayout = new QVBoxLayout(ruleBox);
+  rule_ = label("ruleLabel");
+  rule_->setTextFormat(Qt::PlainText);
+  ruleLayout->addWidget(rule_);
+  layout->addWidget(ruleBox);
+
   gridBox_ = new QGroupBox(tr("Grid: 3D-DDA"));
   auto* form = new QFormLayout(gridBox_);
   cell_ = label("cellLabel");
@@ -105,18 +115,23 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   treeBox_ = new QGroupBox(tr("Tree: stack traversal"));
   auto* treeForm = new QFormLayout(treeBox_);
   node_ = label("nodeLabel");
-  stack_ = label("stackLabel");
+  crossing_ = label("crossingLabel");
+  stack_ = new QTableWidget(0, 4);
+  stack_->setObjectName("stackTable");
+  stack_->setHorizontalHeaderLabels({tr("node"), tr("depth"), tr("t_min"), tr("t_max")});
+  stack_->verticalHeader()->hide();
+  stack_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  stack_->verticalHeader()->setDefaultSectionSize(18);
+  stack_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  stack_->setSelectionMode(QAbstractItemView::NoSelection);
+  stack_->setFocusPolicy(Qt::NoFocus);
+  stack_->setVerticalScrollBarPolicy(Qt::ScrollBarAsNeeded);
   treeForm->addRow(tr("node"), node_);
-  treeForm->addRow(tr("stack (top first)"), stack_);
+  treeForm->addRow(tr("t*"), crossing_);
+  treeForm->addRow(new QLabel(tr("stack (top first; pushed far children)")));
+  treeForm->addRow(stack_);
   treeBox_->hide();
   layout->addWidget(treeBox_);
-
-  auto* ruleBox = new QGroupBox(tr("Why"));
-  auto* ruleLayout = new QVBoxLayout(ruleBox);
-  rule_ = label("ruleLabel");
-  rule_->setTextFormat(Qt::PlainText);
-  ruleLayout->addWidget(rule_);
-  layout->addWidget(ruleBox);
 
   auto* counterBox = new QGroupBox(tr("Counters so far"));
   auto* counterLayout = new QVBoxLayout(counterBox);
@@ -150,7 +165,8 @@ void StatePanel::refresh() {
   mailbox_->setEntries(r ? &s.mailbox : nullptr);
   if (!r || !s.event) {
     ray_->setText(tr("<i>No ray yet. Click a pixel in the image, or open a trace.</i>"));
-    for (QLabel* l : {event_, cell_, interval_, dda_, nearest_, rule_, counters_, node_, stack_}) l->clear();
+    for (QLabel* l : {event_, cell_, interval_, dda_, nearest_, rule_, counters_, node_, crossing_}) l->clear();
+    stack_->setRowCount(0);
     return;
   }
   bool tree = false;
@@ -161,22 +177,7 @@ void StatePanel::refresh() {
     }
   treeBox_->setVisible(tree);
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
-  if (tree) {
-    if (s.nodeEvent >= 0) {
-      const Event& n = r->events[size_t(s.nodeEvent)];
-      node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]")
-                         .arg(n.node)
-                         .arg(event_type_name(n.type))
-                         .arg(n.depth)
-                         .arg(num(n.t_min_node), num(n.t_max_node)));
-    } else {
-      node_->setText(tr("<i>not in the tree yet</i>"));
-    }
-    QString st;
-    for (auto it = s.stack.rbegin(); it != s.stack.rend(); ++it)
-      st += tr("node %1 (depth %2) [%3, %4]<br>").arg(it->node).arg(it->depth).arg(num(it->tMin), num(it->tMax));
-    stack_->setText(st.isEmpty() ? tr("<i>empty</i>") : st);
-  }
+  if (tree) refreshTree(*r, s);
   ray_->setText(tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
                     .arg(ray_kind_name(r->kind))
                     .arg(r->depth)
@@ -211,24 +212,97 @@ void StatePanel::refresh() {
                           .arg(s.accepted ? tr("(accepted)") : s.deferred ? tr("(deferred: beyond the cell's exit)")
                                                                           : tr("(candidate)")));
   else nearest_->setText(s.ended ? tr("none: a miss") : tr("none yet"));
-  rule_->setText(QString::fromStdString(explainRule(*r, s)));
+  rule_->setText(QString::fromStdString(explainRule(session_->trace(), *r, s)));
   const RayCounters& k = s.counters;
-  counters_->setText(tr("cells %1 &nbsp; primitive tests %2 &nbsp; hits %3 &nbsp; mailbox hits %4")
-                         .arg(k.cells)
-                         .arg(k.prim_tests)
-                         .arg(k.prim_hits)
-                         .arg(k.mailbox_hits) +
-                     (k.nodes || k.pushes || k.pops
-                          ? tr("<br>nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
-                          : QString()));
+  QString walk = tree ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
+                      : tr("cells %1").arg(k.cells);
+  counters_->setText(walk + tr("<br>primitive tests %1 &nbsp; hits %2 &nbsp; mailbox hits %3")
+                                .arg(k.prim_tests)
+                                .arg(k.prim_hits)
+                                .arg(k.mailbox_hits));
   if (s.event->type == EventType::prim_test) mailboxView_->scrollToBottom();
+}
+
+void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
+  if (s.nodeEvent >= 0) {
+    const Event& n = r.events[size_t(s.nodeEvent)];
+    const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
+    QString what = !tn ? QString(event_type_name(n.type))
+                   : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
+                              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+    node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
+                       .arg(n.node)
+                       .arg(what)
+                       .arg(n.depth)
+                       .arg(num(n.t_min_node), num(n.t_max_node))
+                       .arg(n.type == EventType::pop ? tr(" <i>popped</i>") : QString()));
+  } else {
+    node_->setText(tr("<i>not in the tree yet</i>"));
+  }
+  NodeCrossing c = session_->trace() ? nodeCrossing(*session_->trace(), r, s) : NodeCrossing{};
+  if (c.valid) {
+    auto child = [](int32_t id) { return id >= 0 ? QString::number(id) : QString("-"); };
+    QString which;
+    switch (c.crossing) {
+      case Crossing::nearOnly:
+        which = tr("t* &gt; t_max: <b>near child only</b> (%1)").arg(child(c.nearChild));
+        break;
+      case Crossing::farOnly: which = tr("t* &lt; t_min: <b>far child only</b> (%1)").arg(child(c.farChild)); break;
+      case Crossing::both:
+        which = tr("t_min &le; t* &le; t_max: <b>both</b>: near %1 [t_min, t*], far %2 [t*, t_max] pushed")
+                    .arg(child(c.nearChild), child(c.farChild));
+        break;
+      case Crossing::inPlane:
+        which = tr("the ray lies in the plane: <b>both</b>, near %1, far %2 over the whole interval")
+                    .arg(child(c.nearChild), child(c.farChild));
+        break;
+    }
+    crossing_->setText(tr("<b>%1</b> (plane %2 = %3; near side %4)<br>%5")
+                           .arg(num(c.tStar))
+                           .arg(axisName(c.axis))
+                           .arg(num(c.split))
+                           .arg(c.nearIsBelow ? tr("below") : tr("above"))
+                           .arg(which));
+  } else {
+    crossing_->setText(tr("<i>- (the current node is not an inner node being split)</i>"));
+  }
+  // The stack, top first; the entry just pushed in bold.
+  int rows = int(s.stack.size());
+  stack_->setRowCount(rows);
+  // As tall as its rows (at least one, at most eight), so that the panel below it stays in view.
+  stack_->setFixedHeight(stack_->horizontalHeader()->height() + 18 * std::clamp(rows, 1, 8) + 4);
+  for (int row = 0; row < rows; ++row) {
+    const StackEntry& e = s.stack[size_t(rows - 1 - row)];
+    QString cells[4] = {QString::number(e.node), QString::number(e.depth), num(e.tMin), num(e.tMax)};
+    bool justPushed = e.pushEvent == s.step;
+    for (int col = 0; col < 4; ++col) {
+      auto* item = stack_->item(row, col);
+      if (!item) {
+        item = new QTableWidgetItem;
+        stack_->setItem(row, col, item);
+      }
+      item->setText(cells[col]);
+      QFont f = item->font();
+      f.setBold(justPushed);
+      item->setFont(f);
+    }
+  }
 }
 
 QJsonObject StatePanel::dumpState() const {
   QJsonObject o;
   for (QLabel* l : {ray_, event_, cell_, interval_, dda_, nearest_, rule_, counters_}) o[l->objectName()] = l->text();
   if (treeBox_->isVisibleTo(const_cast<StatePanel*>(this)))
-    for (QLabel* l : {node_, stack_}) o[l->objectName()] = l->text();
+  {
+    for (QLabel* l : {node_, crossing_}) o[l->objectName()] = l->text();
+    QJsonArray rows;
+    for (int r = 0; r < stack_->rowCount(); ++r) {
+      QJsonArray row;
+      for (int c = 0; c < 4; ++c) row.append(stack_->item(r, c) ? stack_->item(r, c)->text() : QString());
+      rows.append(row);
+    }
+    o["stack"] = rows;
+  }
   QJsonArray rows;
   for (int r = 0; r < mailbox_->rowCount(); ++r) {
     QJsonArray row;

@@ -1,7 +1,8 @@
 // The state panels, synced with the timeline. Grid: the current cell (i, j, k), its interval, tMax and
 // tDelta per axis with the axis stepped next, the nearest hit so far, and the stopping rule
-// "tmin(cell) > tmax(ray)" with its numbers when it ends the walk; the mailbox table; running counters.
-// A tree section (stack, t*, tree view) goes beside the grid section when the kd-tree arrives.
+// "tmin(cell) > tmax(ray)" with its numbers when it ends the walk. Tree (kd-tree): the current node, its t*
+// and which children the ray crosses, and the stack as a table (node, depth, t_min, t_max) that grows with
+// push and shrinks with pop. Both: the "Why" line, the mailbox table, running counters.
 #pragma once
 
 #include <QJsonObject>
@@ -9,10 +10,16 @@
 
 class QLabel;
 class QTableView;
+class QTableWidget;
 class QGroupBox;
+
+namespace raystep {
+struct TracedRay;
+}
 
 namespace raystep::viz {
 
+struct ReplayState;
 class Session;
 class MailboxModel;
 
@@ -27,6 +34,7 @@ class StatePanel : public QWidget {
 
  private:
   void refresh();
+  void refreshTree(const TracedRay& ray, const ReplayState& s);
   Session* session_;
   QLabel* ray_;
   QLabel* event_;
@@ -37,7 +45,8 @@ class StatePanel : public QWidget {
   QLabel* nearest_;
   QGroupBox* treeBox_;
   QLabel* node_;
-  QLabel* stack_;
+  QLabel* crossing_;  // t* and the children crossed
+  QTableWidget* stack_;
   QLabel* rule_;
   QLabel* counters_;
   QWidget* mailboxBox_;

@@ -57,6 +57,8 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   kind_ = new QComboBox;
   kind_->setObjectName("jumpKind");
   kind_->addItem(tr("cell"), "cell");
+  kind_->addItem(tr("node"), "node");
+  kind_->addItem(tr("leaf"), "leaf");
   kind_->addItem(tr("push / pop"), "pushpop");
   kind_->addItem(tr("primitive test"), "prim_test");
   kind_->addItem(tr("mailbox hit"), "mailbox_hit");
@@ -125,6 +127,13 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
         ray_->addItem(QString("%1: %2 (depth %3)").arg(i).arg(ray_kind_name(r.kind)).arg(r.depth));
       }
     ray_->setCurrentIndex(session_->rayIndex());
+    // Offer the walk's own unit first: the next cell in a grid, the next node in a tree.
+    if (const TracedRay* r = session_->ray()) {
+      QString k = kind_->currentData().toString();
+      bool tree = isTreeRay(*r);
+      if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
+      if (!tree && (k == "node" || k == "leaf" || k == "pushpop")) kind_->setCurrentIndex(kind_->findData("cell"));
+    }
     refresh();
   });
   connect(session_, &Session::stepChanged, this, &Timeline::refresh);
