@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <QAction>
+#include <QDockWidget>
 #include <QApplication>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -20,6 +21,9 @@
 
 #include "event_list.h"
 #include "image_view.h"
+#include "kd_tree_model.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "sah_chart.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
 #include "scene_view.h"
@@ -27,6 +31,7 @@
 #include "state_panel.h"
 #include "structure_panel.h"
 #include "timeline.h"
+#include "tree_view.h"
 
 namespace raystep::viz {
 namespace {
@@ -80,6 +85,23 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   layout->addWidget(columns, 1);
   layout->addWidget(timeline_);
   setCentralWidget(central);
+
+  // kd-tree: the nodes and the SAH inspector, in a dock below (shown when a kd-tree is built).
+  treeView_ = new TreeView(session_);
+  sahChart_ = new SahChart;
+  auto* kdSplit = new QSplitter(Qt::Horizontal);
+  kdSplit->addWidget(treeView_);
+  kdSplit->addWidget(sahChart_);
+  kdSplit->setStretchFactor(0, 0);
+  kdSplit->setStretchFactor(1, 1);
+  kdSplit->setSizes({440, 840});
+  kdDock_ = new QDockWidget(tr("kd-tree: nodes and SAH inspector"), this);
+  kdDock_->setObjectName("kdDock");
+  kdDock_->setWidget(kdSplit);
+  kdDock_->setFeatures(QDockWidget::DockWidgetClosable | QDockWidget::DockWidgetMovable |
+                       QDockWidget::DockWidgetFloatable);
+  addDockWidget(Qt::BottomDockWidgetArea, kdDock_);
+  kdDock_->hide();
   buildMenus();
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
@@ -92,6 +114,25 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     } catch (const std::exception& e) {
       showError(QString::fromStdString(e.what()));
     }
+  });
+  connect(structure_, &StructurePanel::kdCostsEdited, this, [this] {
+    if (session_->scene() && structure_->accelName() != "grid") buildStructure();
+  });
+  connect(treeView_, &TreeView::nodeChosen, session_, &Session::setSelectedNode);
+  connect(sceneView_, &SceneView::pointPicked, this, [this](float x, float y, float z) {
+    const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+    if (!kd) return;
+    int leaf = kdLeafContaining(kd->data(), glm::vec3(x, y, z));
+    if (leaf < 0) return;
+    showKdPanel();
+    session_->setSelectedNode(leaf);
+  });
+  connect(session_, &Session::selectedNodeChanged, this, &MainWindow::showSahCurve);
+  connect(session_, &Session::structureChanged, this, [this] {
+    const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+    if (kd) showKdPanel();
+    else kdDock_->hide();
+    showSahCurve();
   });
   connect(session_, &Session::stepChanged, this, [this] {
     if (session_->eventCount())
@@ -122,8 +163,68 @@ void MainWindow::buildMenus() {
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-3d.png", tr("PNG (*.png)"));
     if (!path.isEmpty() && !sceneView_->grabView().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
   });
+  file->addAction(tr("Export &SAH curve (CSV)..."), this, [this] {
+    if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
+    QString name = QString("sah-node%1.csv").arg(sahChart_->curve()->node);
+    QString path = QFileDialog::getSaveFileName(this, tr("Export SAH curve"), name, tr("CSV (*.csv)"));
+    if (!path.isEmpty()) exportSahCsv(path);
+  });
+  file->addAction(tr("Screenshot of the SAH &chart..."), this, [this] {
+    if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
+    QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-sah.png", tr("PNG (*.png)"));
+    if (!path.isEmpty() && !sahChart_->saveChart(path)) showError(tr("Cannot write %1").arg(path));
+  });
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  QAction* dock = kdDock_->toggleViewAction();
+  dock->setText(tr("kd-tree and SAH &inspector"));
+  view->addAction(dock);
+}
+
+void MainWindow::showKdPanel() {
+  if (kdDock_->isVisible()) return;
+  kdDock_->show();
+  resizeDocks({kdDock_}, {270}, Qt::Vertical);
+}
+
+void MainWindow::showSahCurve() {
+  auto structure = session_->structureShared();
+  const KdTree* kd = structure ? structure->kdTree() : nullptr;
+  int node = session_->selectedNode();
+  if (!kd || node < 0) {
+    sahChart_->showMessage(kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
+                                   "cost curve.")
+                              : tr("The SAH inspector shows kd-tree nodes: build a kd-tree."));
+    return;
+  }
+  sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
+  KdOptions options = kd->options();
+  QString path = QString::fromStdString(kdNodePath(kd->data(), uint32_t(node)));
+  // The builder runs again with a listener for this node alone: as long as a build, so off the GUI thread.
+  runTask("sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
+    auto t0 = std::chrono::steady_clock::now();
+    auto curve = std::make_shared<const SahCurve>(
+        record_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return std::function<void()>([this, structure, options, node, path, curve, ms] {
+      if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
+      sahChart_->setCurve(curve, path, options.t_i, options.t_t);
+      statusBar()->showMessage(tr("SAH curve of node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
+                               took(tr(", recorded"), ms));
+    });
+  });
+}
+
+void MainWindow::exportSahCsv(const QString& path) {
+  try {
+    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree node first");
+    write_sah_csv(path.toStdString(), *sahChart_->curve());
+    statusBar()->showMessage(tr("wrote %1").arg(path));
+  } catch (const std::exception& e) {
+    if (scripted_) throw;
+    showError(QString::fromStdString(e.what()));
+  }
 }
 
 QString MainWindow::took(const QString& what, double ms) const {
@@ -257,7 +358,25 @@ void MainWindow::buildStructure() {
       const Trace* old = session_->trace();
       bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
       int px = retrace ? old->rays[0].pixel[0] : 0, py = retrace ? old->rays[0].pixel[1] : 0;
+      // The selected node is kept by its path from the root (L/R): as deep as the new tree goes along it.
+      std::string selectedPath;
+      bool hadSelection = false;
+      if (const KdTree* oldKd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+          oldKd && session_->selectedNode() >= 0) {
+        selectedPath = kdNodePath(oldKd->data(), uint32_t(session_->selectedNode()));
+        hadSelection = true;
+      }
       session_->setStructure(built);
+      if (const KdTree* newKd = built->kdTree(); newKd && hadSelection) {
+        for (;; selectedPath.pop_back()) {
+          try {
+            session_->setSelectedNode(int(kd_node_by_path(newKd->data(), selectedPath)));
+            break;
+          } catch (const InputError&) {  // the new tree is shallower here: its deepest node on the path
+            if (selectedPath.empty()) break;
+          }
+        }
+      }
       size_t n = std::max<size_t>(1, built->scene->scene.geometry.size());
       if (const UniformGrid* grid = built->grid()) {
         auto r = grid->resolution();

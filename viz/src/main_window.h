@@ -1,5 +1,6 @@
 // The debugger's window: structure panel and image on the left, the 3D view in the middle, state panels and
-// the event list on the right, the timeline along the bottom. It owns the session and runs the heavy work
+// the event list on the right, the timeline along the bottom; for a kd-tree a dock below with the tree of
+// nodes and the SAH inspector of the selected node. It owns the session and runs the heavy work
 // (loading, structure build, render, heat map) on worker threads, so the window never freezes; in scripted mode
 // the same work runs in place, one step after the other.
 #pragma once
@@ -9,6 +10,8 @@
 #include <memory>
 
 #include <QMainWindow>
+
+class QDockWidget;
 
 #include <string>
 
@@ -27,6 +30,8 @@ class SceneView;
 class Timeline;
 class StatePanel;
 class EventList;
+class TreeView;
+class SahChart;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -49,6 +54,9 @@ class MainWindow : public QMainWindow {
   void computeHeat();
   void tracePixel(int x, int y);
   void exportTrace(const QString& path);
+  // The SAH inspector: the dock with the tree and the chart; the selected node's curve as CSV (core's columns).
+  void showKdPanel();
+  void exportSahCsv(const QString& path);
 
   Session* session() const { return session_; }
   SceneView* sceneView() const { return sceneView_; }
@@ -56,6 +64,9 @@ class MainWindow : public QMainWindow {
   Timeline* timeline() const { return timeline_; }
   StatePanel* statePanel() const { return statePanel_; }
   EventList* eventList() const { return eventList_; }
+  StructurePanel* structurePanel() const { return structure_; }
+  TreeView* treeView() const { return treeView_; }
+  SahChart* sahChart() const { return sahChart_; }
   QString lastError() const { return lastError_; }
 
  private:
@@ -69,6 +80,7 @@ class MainWindow : public QMainWindow {
   void openTrace(const QString& path);
   void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
   void buildMenus();
+  void showSahCurve();  // records the selected node's curve off the GUI thread
 
   Session* session_;
   StructurePanel* structure_;
@@ -77,6 +89,9 @@ class MainWindow : public QMainWindow {
   Timeline* timeline_;
   StatePanel* statePanel_;
   EventList* eventList_;
+  TreeView* treeView_;
+  SahChart* sahChart_;
+  QDockWidget* kdDock_;
   bool scripted_ = false;
   std::map<QString, int> generation_;  // per kind: results of superseded work are dropped
   int running_ = 0;

@@ -22,6 +22,14 @@ inline const QColor primTesting{255, 120, 0};    // being tested now
 inline const QColor primHit{40, 220, 60};        // tested: hit
 inline const QColor primMissed{230, 40, 40};     // tested: missed
 inline const QColor primSkipped{170, 90, 255};   // skipped: already tested (mailbox)
+inline const QColor selectedNode{0, 255, 140};   // kd-tree: the node chosen in the tree view / inspector: green
 inline const QColor background{28, 30, 36};
+
+// The SAH inspector's chart (drawn on white): the cost curves per split axis, the leaf cost, the chosen split.
+inline const QColor sahX{220, 40, 40};           // candidates on x: red
+inline const QColor sahY{30, 160, 50};           // candidates on y: green
+inline const QColor sahZ{40, 80, 230};           // candidates on z: blue
+inline const QColor sahLeafCost{110, 110, 110};  // N * t_i, the cost of not splitting: grey
+inline const QColor sahChosen{0, 0, 0};          // the chosen split plane: black
 
 }  // namespace raystep::viz::palette

@@ -2,13 +2,16 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
 
+#include <QApplication>
 #include <QCheckBox>
+#include <QMouseEvent>
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
@@ -19,6 +22,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellPicker.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkGenericOpenGLRenderWindow.h>
@@ -133,6 +137,16 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkActor> stackActor, splitActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
+  // The node selected in the tree view (its box, in the live kd-tree), and the click that picks the scene.
+  vtkNew<vtkPolyData> selectedData;
+  vtkSmartPointer<vtkActor> selectedActor;
+  int selectedDrawn = -1;
+  glm::vec3 selectedLo{0.f}, selectedHi{0.f};
+  vtkNew<vtkCellPicker> picker;
+  QPoint pressAt;
+  int pickCount = 0, missCount = 0;  // clicks that hit or missed the scene
+  bool havePicked = false;
+  glm::vec3 picked{0.f};
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
@@ -285,6 +299,14 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   // On a layer of its own: over the scene (which stays the same from step to step, see BackdropCache) and under
   // the walk, so that the translucent plane never tints the ray.
   d.planes->AddActor(d.splitActor);
+  d.selectedActor = unlitActor(d.selectedData, palette::selectedNode, 3.f);
+  d.overlay->AddActor(d.selectedActor);
+  // A click without a drag picks the scene (a drag still turns the camera).
+  d.picker->SetTolerance(0.0005);
+  d.picker->PickFromListOn();
+  d.picker->AddPickList(d.sceneActor);
+  // (Watched in Qt: once the camera's style has the mouse, VTK gives the release to the style alone.)
+  d.widget->installEventFilter(this);
   for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
@@ -314,6 +336,10 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     updateStep();
   });
   connect(session_, &Session::stepChanged, this, &SceneView::updateStep);
+  connect(session_, &Session::selectedNodeChanged, this, [this] {
+    updateSelected();
+    renderNow();
+  });
   rebuildGeometry();  // the legend
 }
 
@@ -449,11 +475,82 @@ void SceneView::rebuildGeometry() {
   if (d.haveTree)
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
-                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" + tr("Primitives of the current leaf: ") +
+                      swatch(palette::visitedCell, tr("visited")) + hits +
+                      (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
+                      "<br>" + tr("Primitives of the current leaf: ") +
                       primStates);
   else
     d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
                       hits + "<br>" + tr("Primitives of the current cell: ") + primStates);
+  updateSelected();
+}
+
+void SceneView::updateSelected() {
+  Impl& d = *d_;
+  vtkNew<vtkPoints> pts;
+  vtkNew<vtkCellArray> lines;
+  d.selectedDrawn = -1;
+  const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+  int n = session_->selectedNode();
+  if (kd && n >= 0 && size_t(n) < kd->data().info.size()) {
+    const Bounds3& b = kd->data().info[size_t(n)].box;
+    addBoxEdges(pts, lines, b.lo, b.hi);
+    d.selectedDrawn = n;
+    d.selectedLo = b.lo;
+    d.selectedHi = b.hi;
+  }
+  d.selectedData->SetPoints(pts);
+  d.selectedData->SetLines(lines);
+  d.selectedData->Modified();
+}
+
+bool SceneView::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == d_->widget) {
+    auto* m = static_cast<QMouseEvent*>(event);
+    if (event->type() == QEvent::MouseButtonPress && m->button() == Qt::LeftButton) {
+      d_->pressAt = m->pos();
+    } else if (event->type() == QEvent::MouseButtonRelease && m->button() == Qt::LeftButton &&
+               (m->pos() - d_->pressAt).manhattanLength() <= 3) {
+      double ratio = d_->widget->devicePixelRatioF();
+      pickDisplay(int(std::lround(m->pos().x() * ratio)), int(std::lround((d_->widget->height() - m->pos().y()) * ratio)));
+    }
+  }
+  return QWidget::eventFilter(watched, event);  // the camera still gets the mouse
+}
+
+bool SceneView::pickAt(const QPoint& at) {
+  // A click as the mouse makes it: through Qt and VTK's interactor to the click observer.
+  QPoint local = d_->widget->mapFrom(window(), at);
+  int before = d_->pickCount;
+  QMouseEvent press(QEvent::MouseButtonPress, local, d_->widget->mapToGlobal(local), Qt::LeftButton, Qt::LeftButton,
+                    Qt::NoModifier);
+  QMouseEvent release(QEvent::MouseButtonRelease, local, d_->widget->mapToGlobal(local), Qt::LeftButton, Qt::NoButton,
+                      Qt::NoModifier);
+  QApplication::sendEvent(d_->widget, &press);
+  QApplication::sendEvent(d_->widget, &release);
+  if (d_->pickCount != before) return true;
+  if (d_->missCount == 0) {  // the click did not reach the observer (no interactor yet): pick directly
+    std::fprintf(stderr, "note: 3D view picked without a click (the click did not reach VTK)\n");
+    double ratio = d_->widget->devicePixelRatioF();
+    return pickDisplay(int(std::lround(local.x() * ratio)), int(std::lround((d_->widget->height() - local.y()) * ratio)));
+  }
+  d_->missCount = 0;
+  return false;
+}
+
+bool SceneView::pickDisplay(int x, int y) {
+  Impl& d = *d_;
+  if (!d.picker->Pick(x, y, 0.0, d.base) || d.picker->GetCellId() < 0) {
+    ++d.missCount;
+    return false;
+  }
+  ++d.pickCount;
+  double p[3];
+  d.picker->GetPickPosition(p);
+  d.havePicked = true;
+  d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
+  Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
+  return true;
 }
 
 void SceneView::updateStep() {
@@ -743,7 +840,8 @@ QJsonObject SceneView::dumpState() const {
                             {"hit_final", jsonColor(palette::hitFinal)},
                             {"hit_candidate", jsonColor(palette::hitCandidate)},
                             {"stack_node", jsonColor(palette::stackNode)},
-                            {"split_plane", jsonColor(palette::splitPlane)}};
+                            {"split_plane", jsonColor(palette::splitPlane)},
+                            {"selected_node", jsonColor(palette::selectedNode)}};
   const TracedRay* ray = session_->ray();
   const ReplayState& s = session_->state();
   if (ray && s.cellEvent >= 0 && d.haveGrid) {
@@ -769,6 +867,12 @@ QJsonObject SceneView::dumpState() const {
     }
     return corners;
   };
+  if (d.selectedDrawn >= 0)
+    o["selected_node"] = QJsonObject{{"node", d.selectedDrawn},
+                                     {"min", QJsonArray{d.selectedLo.x, d.selectedLo.y, d.selectedLo.z}},
+                                     {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
+                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)}};
+  if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
     QJsonObject cn{{"node", n->id},
                    {"depth", n->depth},

@@ -1,6 +1,7 @@
 // The 3D view: the scene's geometry flat shaded (optionally translucent), the grid's outline, and on top of
 // it the replayed walk: the ray with its current [tmin, tmax] interval, the hit point, the current cell,
-// the cells already visited, and the current cell's primitives coloured by state. VTK stays inside
+// the cells already visited, and the current cell's primitives coloured by state; the kd-tree node selected
+// in the tree view. A click on the scene picks a point (the main window selects the leaf holding it). VTK stays inside
 // scene_view.cpp; actors are made once per scene or trace and only their data changes per step.
 #pragma once
 
@@ -31,10 +32,20 @@ class SceneView : public QWidget {
   QJsonObject dumpState() const;
   // Milliseconds the last step's update and render took.
   double lastUpdateMs() const;
+  // A click on the scene at window position `at` (as a user makes it, without dragging): the point picked on
+  // the geometry is reported by pointPicked; false when nothing was hit.
+  bool pickAt(const QPoint& at);
+
+ Q_SIGNALS:
+  // A click (without dragging) hit the scene at this world point.
+  void pointPicked(float x, float y, float z);
 
  private:
   void rebuildGeometry();
   void updateStep();
+  void updateSelected();  // the selected kd-tree node's box
+  bool pickDisplay(int x, int y);
+  bool eventFilter(QObject* watched, QEvent* event) override;  // a click without a drag picks  // VTK display coordinates (origin bottom left, device pixels)
   struct Impl;
   std::unique_ptr<Impl> d_;
   Session* session_;

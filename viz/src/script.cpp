@@ -11,7 +11,9 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QDoubleSpinBox>
 #include <QMouseEvent>
+#include <QTreeView>
 #include <QTest>
 #include <QThread>
 #include <map>
@@ -22,8 +24,13 @@
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
+#include "structure_panel.h"
 #include "image_view.h"
+#include "kd_tree_model.h"
+#include "sah_chart.h"
 #include "timeline.h"
+#include "tree_view.h"
+#include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/util/error.h"
@@ -85,6 +92,16 @@ QJsonObject dumpState(MainWindow& w) {
   o["event_list_row"] = w.eventList()->currentRow();
   o["panels"] = w.statePanel()->dumpState();
   o["view"] = w.sceneView()->dumpState();
+  o["sah"] = w.sahChart()->dumpState();
+  o["selected_node"] = s->selectedNode();
+  if (const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr) {
+    QJsonObject tree{{"nodes", int(kd->data().nodes.size())}, {"rows_made", w.treeView()->expandedCount()}};
+    QModelIndex cur = w.treeView()->view()->currentIndex();
+    tree["current_row_node"] = KdTreeModel::nodeOf(cur);
+    if (s->selectedNode() >= 0)
+      tree["selected_path"] = QString::fromStdString(kdNodePath(kd->data(), uint32_t(s->selectedNode())));
+    o["tree"] = tree;
+  }
   o["window"] = QJsonArray{w.width(), w.height()};
   o["last_error"] = w.lastError();
   return o;
@@ -126,6 +143,13 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
+  opt("panel", "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node).", "NAME");
+  opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
+  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.", "PATH");
+  opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).", "X,Y");
+  opt("edit-ti", "Then type t_i into the structure panel, as a user would (the kd-tree is rebuilt).", "T");
+  opt("export-sah", "Write the selected node's SAH curve as CSV (the columns of `raystep sah`).", "FILE");
+  opt("screenshot-sah", "Write a PNG of the SAH chart.", "FILE");
   opt("open-bad", "After the set-up, open FILE through the GUI path (errors go to a dialog).", "FILE");
   opt("export-trace", "Write the current trace (the JSON of `raystep trace`).", "FILE");
   opt("screenshot", "Write a PNG of the window.", "FILE");
@@ -142,7 +166,8 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   }
   const bool quit = p.isSet("quit");
   const QStringList scripted = {"pixel", "step", "step-to", "forward", "back", "screenshot", "screenshot-3d",
-                                "dump-state", "export-trace", "open-bad"};
+                                "dump-state", "export-trace", "open-bad", "panel", "node", "node-path",
+                                "pick-3d", "export-sah", "screenshot-sah", "edit-ti"};
   bool anyScript = quit;
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
@@ -318,8 +343,57 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       const Trace* t = s->trace();
       if (t && !t->rays.empty() && t->rays[0].has_pixel) canvas->centreOn(t->rays[0].pixel[0], t->rays[0].pixel[1]);
     }
+    // The kd-tree's inspector: a node by id or path, or the root for --panel sah; or a click in the 3D view.
+    if (p.isSet("panel") && p.value("panel") != "sah") fail("--panel '" + p.value("panel").toStdString() + "': expected sah");
+    if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
+    if (p.isSet("panel") || p.isSet("node") || p.isSet("node-path") || p.isSet("pick-3d")) {
+      const char* what = p.isSet("node") ? "--node" : p.isSet("node-path") ? "--node-path" : p.isSet("panel") ? "--panel sah" : "--pick-3d";
+      const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
+      if (!kd) fail(std::string(what) + ": no kd-tree (open a scene with --accel kd or kd-median)");
+      size_t count = kd->data().nodes.size();
+      int node = p.isSet("panel") ? 0 : -1;
+      if (p.isSet("node")) {
+        bool ok = false;
+        qlonglong id = p.value("node").toLongLong(&ok);
+        if (!ok || id < 0 || size_t(id) >= count)
+          fail("--node " + p.value("node").toStdString() + ": the kd-tree has " + std::to_string(count) + " nodes (0.." +
+               std::to_string(count - 1) + ")");
+        node = int(id);
+      }
+      if (p.isSet("node-path")) {
+        try {
+          node = int(kd_node_by_path(kd->data(), p.value("node-path").toStdString()));
+        } catch (const InputError& e) {
+          std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
+          if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos) why = why.substr(colon + 3);
+          fail("--node-path '" + p.value("node-path").toStdString() + "': " + why);
+        }
+      }
+      window.showKdPanel();
+      settle(window);  // the dock laid out before the chart draws
+      if (node >= 0) s->setSelectedNode(node);
+      if (p.isSet("pick-3d")) {
+        std::vector<int> at = parseInts("pick-3d", p.value("pick-3d"), 2, 0);
+        settle(window);
+        if (!window.sceneView()->pickAt(QPoint(at[0], at[1])))
+          fail("--pick-3d " + p.value("pick-3d").toStdString() + ": no geometry under that pixel of the 3D view");
+      }
+    }
+    if (p.isSet("edit-ti")) {  // through the spin box: the rebuild starts once the value has rested
+      double ti = number("edit-ti", 0.0, 1e4, true, false);
+      auto* spin = window.findChild<QDoubleSpinBox*>("kdTi");
+      if (!spin) fail("--edit-ti: no t_i box");
+      spin->setValue(ti);
+      for (int i = 0; i < 1000 && window.structurePanel()->costsEditPending(); ++i) {
+        QApplication::processEvents();
+        QThread::msleep(5);
+      }
+      QApplication::processEvents();
+    }
     if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
     settle(window);
+    window.sahChart()->renderNow();
+    QApplication::processEvents();
     if (getenv("RAYSTEP_GUI_PROFILE"))
       for (QWidget* w : window.findChildren<QWidget*>())
         if (w->minimumSizeHint().width() > 250)
@@ -333,6 +407,12 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       fail("cannot write " + p.value("screenshot").toStdString());
     if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
       fail("cannot write " + p.value("screenshot-3d").toStdString());
+    if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
+      fail("cannot write " + p.value("screenshot-sah").toStdString());
+    if (p.isSet("export-sah")) {
+      if (!window.sahChart()->curve()) fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
+      window.exportSahCsv(p.value("export-sah"));
+    }
     if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
     window.setScripted(false);
   } catch (const std::exception& e) {

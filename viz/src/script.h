@@ -2,6 +2,8 @@
 // step, then write a screenshot and the drawn state and quit, exactly as a user would have seen it.
 //   raystep-gui SCENE|TRACE [--grid-res NX,NY,NZ] [--grid-density D] [--grid-insert exact|bbox]
 //               [--pixel X,Y] [--step N | --step-to KIND:K] [--size WxH] --screenshot out.png --quit
+//   kd-tree: [--accel kd] [--panel sah] [--node ID | --node-path LRL] [--pick-3d X,Y] [--export-sah curve.csv]
+//            [--screenshot-sah chart.png]
 // Any error in scripted mode prints one line "error: FILE:LINE: what" and exits with code 2.
 #pragma once
 

@@ -74,6 +74,7 @@ Trace tracePixel(const StructureData& s, int width, int height, int px, int py, 
 void Session::setScene(std::shared_ptr<const SceneData> scene) {
   scene_ = std::move(scene);
   structure_.reset();
+  selectedNode_ = -1;
   picture_ = QImage();
   heat_.reset();
   trace_.reset();
@@ -94,6 +95,7 @@ void Session::setStructure(std::shared_ptr<const StructureData> structure) {
   trace_.reset();
   ray_ = step_ = 0;
   state_ = ReplayState{};
+  selectedNode_ = -1;
   Q_EMIT structureChanged();
   if (hadTrace) {
     Q_EMIT traceChanged();
@@ -162,6 +164,14 @@ bool Session::jumpTo(EventType type, bool forward) {
   if (i < 0) return false;
   setStep(i);
   return true;
+}
+
+void Session::setSelectedNode(int node) {
+  const KdTree* kd = structure_ ? structure_->kdTree() : nullptr;
+  if (node < -1 || (node >= 0 && (!kd || size_t(node) >= kd->data().nodes.size()))) return;
+  if (node == selectedNode_) return;
+  selectedNode_ = node;
+  Q_EMIT selectedNodeChanged();
 }
 
 }  // namespace raystep::viz

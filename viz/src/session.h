@@ -82,6 +82,11 @@ class Session : public QObject {
   // Jump to the next (or previous) event of a type; false (and no change) when there is none.
   bool jumpTo(EventType type, bool forward);
 
+  // The kd-tree node that the tree view, the SAH inspector and the 3D view show (-1: none). A new structure
+  // clears it (the main window selects the same path again in the new tree).
+  int selectedNode() const { return selectedNode_; }
+  void setSelectedNode(int node);  // -1, or a node of the current kd-tree (others are ignored)
+
  Q_SIGNALS:
   void sceneChanged();
   void structureChanged();
@@ -89,6 +94,7 @@ class Session : public QObject {
   void heatChanged();
   void traceChanged();  // a new trace, or another ray of it
   void stepChanged();
+  void selectedNodeChanged();
 
  private:
   std::shared_ptr<const SceneData> scene_;
@@ -100,6 +106,7 @@ class Session : public QObject {
   int imageWidth_ = 0, imageHeight_ = 0;
   int ray_ = 0, step_ = 0;
   ReplayState state_;
+  int selectedNode_ = -1;
 };
 
 }  // namespace raystep::viz

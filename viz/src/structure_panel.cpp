@@ -10,6 +10,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTimer>
 #include <QVBoxLayout>
 
 namespace raystep::viz {
@@ -142,6 +143,15 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   info_->setWordWrap(true);
   layout->addWidget(info_);
   connect(build_, &QPushButton::clicked, this, &StructurePanel::buildRequested);
+  // An edited cost rebuilds once the spin box rests (not once per arrow click while it is held).
+  costsTimer_ = new QTimer(this);
+  costsTimer_->setSingleShot(true);
+  costsTimer_->setInterval(400);
+  connect(costsTimer_, &QTimer::timeout, this, &StructurePanel::kdCostsEdited);
+  for (QDoubleSpinBox* s : {ti_, tt_, emptyBonus_})
+    connect(s, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this] {
+      if (!settingUp_) costsTimer_->start();
+    });
 }
 
 std::string StructurePanel::accelName() const {
@@ -166,6 +176,7 @@ StructureOptions StructurePanel::options() const {
 }
 
 void StructurePanel::setStructure(const std::string& accelName, const StructureOptions& so) {
+  settingUp_ = true;
   accel_->setCurrentIndex(accelName == "grid" ? 0 : 1);
   builder_->setCurrentIndex(accelName == "kd-median" ? 1 : 0);
   ti_->setValue(so.kd.t_i);
@@ -180,6 +191,7 @@ void StructurePanel::setStructure(const std::string& accelName, const StructureO
   if (o.resolution)
     for (int a = 0; a < 3; ++a) res_[a]->setValue((*o.resolution)[size_t(a)]);
   insert_->setCurrentIndex(o.exact_insert ? 0 : 1);
+  settingUp_ = false;
 }
 
 void StructurePanel::setBusy(bool busy) {
@@ -188,5 +200,7 @@ void StructurePanel::setBusy(bool busy) {
 }
 
 void StructurePanel::setInfo(const QString& text) { info_->setText(text); }
+
+bool StructurePanel::costsEditPending() const { return costsTimer_->isActive(); }
 
 }  // namespace raystep::viz

@@ -1,7 +1,8 @@
 // The structure panel: which acceleration structure and its build parameters. Grid: density d (in
 // max(nx, ny, nz) = d * cbrt(n)) or an explicit resolution, exact (triangle-box overlap) or bounding-box
 // insertion. kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0: the
-// pbrt rule), leaf size, mailboxes. The build itself runs off the GUI thread (the main window does it).
+// pbrt rule), leaf size, mailboxes; an edit of a kd cost rebuilds at once. The build itself runs off the GUI
+// thread (the main window does it).
 #pragma once
 
 #include <QWidget>
@@ -18,6 +19,7 @@ class QProgressBar;
 class QPushButton;
 class QComboBox;
 class QSpinBox;
+class QTimer;
 
 namespace raystep::viz {
 
@@ -31,9 +33,13 @@ class StructurePanel : public QWidget {
   void setStructure(const std::string& accelName, const StructureOptions& o);
   void setBusy(bool busy);  // a moving bar while work runs in the background
   void setInfo(const QString& text);
+  bool costsEditPending() const;  // an edited kd cost waits for the spin box to rest
 
  Q_SIGNALS:
   void buildRequested();
+  // The user changed t_i, t_t or the empty bonus (sent once the value has rested for a moment): the kd-tree
+  // is rebuilt with them, without a click on Build.
+  void kdCostsEdited();
 
  private:
   QComboBox* accel_;
@@ -53,6 +59,8 @@ class StructurePanel : public QWidget {
   QSpinBox* maxDepth_;
   QSpinBox* leafSize_;
   QCheckBox* mailboxes_;
+  QTimer* costsTimer_;
+  bool settingUp_ = false;  // setStructure: values set by the program, not edited
 };
 
 }  // namespace raystep::viz

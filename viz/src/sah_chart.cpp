@@ -1,0 +1,299 @@
+#include "sah_chart.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <QHBoxLayout>
+#include <QJsonArray>
+#include <QLabel>
+#include <QSaveFile>
+#include <QVBoxLayout>
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkAxis.h>
+#include <vtkChartLegend.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkNew.h>
+#include <vtkPen.h>
+#include <vtkPlot.h>
+#include <vtkPlotLine.h>
+#include <vtkPlotPoints.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+#include <vtkTable.h>
+#include <vtkTextProperty.h>
+
+#include "palette.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "replay.h"
+
+namespace raystep::viz {
+namespace {
+
+QJsonArray jsonColor(const QColor& c) {
+  return QJsonArray{c.red(), c.green(), c.blue()};
+}
+
+const QColor& axisColor(int axis) {
+  return axis == 0 ? palette::sahX : axis == 1 ? palette::sahY : palette::sahZ;
+}
+
+vtkSmartPointer<vtkTable> makeTable(const char* xName, const char* yName) {
+  auto t = vtkSmartPointer<vtkTable>::New();
+  vtkNew<vtkFloatArray> x, y;
+  x->SetName(xName);
+  y->SetName(yName);
+  t->AddColumn(x);
+  t->AddColumn(y);
+  return t;
+}
+
+void addRow(vtkTable* t, double x, double y) {
+  vtkIdType r = t->InsertNextBlankRow();
+  t->SetValue(r, 0, vtkVariant(float(x)));
+  t->SetValue(r, 1, vtkVariant(float(y)));
+}
+
+vtkPlot* addLine(vtkChartXY* chart, vtkTable* t, const QColor& c, float width, const std::string& label) {
+  // One point is no line (VTK complains): a marker alone.
+  vtkPlot* p = chart->AddPlot(t->GetNumberOfRows() >= 2 ? vtkChart::LINE : vtkChart::POINTS);
+  p->SetInputData(t, 0, 1);
+  p->SetColor((unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue(), 255);
+  p->SetWidth(width);
+  p->SetLabel(label);
+  return p;
+}
+
+QString fmt(double v) {
+  return QString::number(std::abs(v) < 1e-30 ? 0.0 : v, 'g', 5);
+}
+
+QString leafReasonText(LeafReason r) {
+  switch (r) {
+    case LeafReason::few_primitives:
+      return QObject::tr("N <= leaf size: no search");
+    case LeafReason::max_depth:
+      return QObject::tr("the depth limit");
+    case LeafReason::no_cheaper_split:
+      return QObject::tr("no split costs less than N t_i");
+    case LeafReason::no_candidate:
+      return QObject::tr("no plane strictly inside the node");
+    case LeafReason::budget:
+      return QObject::tr("the reference budget is spent");
+  }
+  return {};
+}
+
+}  // namespace
+
+struct SahChart::Impl {
+  QVTKOpenGLNativeWidget* widget = nullptr;
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  vtkNew<vtkContextView> view;
+  vtkNew<vtkChartXY> chart;
+  vtkSmartPointer<vtkTable> axisTable[3];  // the candidates per axis, as plotted
+  QString message;
+};
+
+SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
+  auto* layout = new QHBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  text_ = new QLabel;
+  text_->setObjectName("sahText");
+  text_->setWordWrap(true);
+  text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  text_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  text_->setFixedWidth(230);
+  layout->addWidget(text_);
+
+  Impl& d = *d_;
+  d.widget = new QVTKOpenGLNativeWidget(this);
+  d.widget->setMinimumSize(300, 180);
+  d.window->SetMultiSamples(0);  // exact colours (the tests look for the series' colours)
+  d.widget->setRenderWindow(d.window);
+  d.view->SetRenderWindow(d.window);
+  d.view->SetInteractor(d.widget->interactor());
+  d.view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+  d.view->GetScene()->AddItem(d.chart);
+  d.chart->SetShowLegend(true);
+  // Beside the plot, not over the curves.
+  d.chart->GetLegend()->SetInline(false);
+  d.chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  d.chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  d.chart->GetLegend()->GetLabelProperties()->SetFontSize(11);
+  vtkAxis* bottom = d.chart->GetAxis(vtkAxis::BOTTOM);
+  bottom->SetTitle("split position across the node (0 = box min, 1 = box max)");
+  bottom->SetBehavior(vtkAxis::FIXED);
+  bottom->SetRange(-0.02, 1.02);
+  d.chart->GetAxis(vtkAxis::LEFT)->SetTitle("SAH cost C");
+  for (vtkAxis* a : {bottom, d.chart->GetAxis(vtkAxis::LEFT)}) {
+    a->GetTitleProperties()->SetFontSize(11);
+    a->GetLabelProperties()->SetFontSize(10);
+  }
+  layout->addWidget(d.widget, 1);
+  showMessage(tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH cost curve."));
+}
+
+SahChart::~SahChart() = default;
+
+void SahChart::showMessage(const QString& text) {
+  curve_.reset();
+  d_->message = text;
+  d_->chart->ClearPlots();
+  for (auto& t : d_->axisTable) t = nullptr;
+  d_->chart->SetTitle("");
+  text_->setText(text);
+  renderNow();
+}
+
+void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t) {
+  Impl& d = *d_;
+  curve_ = std::move(curve);
+  d.message.clear();
+  d.chart->ClearPlots();
+  const SahCurve& c = *curve_;
+  const Bounds3& box = c.info.box;
+
+  // The candidates per axis, by position (the builder's order is per sweep event); one point each.
+  std::vector<const SahCandidate*> byAxis[3];
+  for (const SahCandidate& s : c.candidates)
+    if (s.axis >= 0 && s.axis < 3) byAxis[s.axis].push_back(&s);
+  auto across = [&](int axis, float pos) {
+    float extent = box.hi[axis] - box.lo[axis];
+    return extent > 0.f ? double(pos - box.lo[axis]) / double(extent) : 0.5;
+  };
+  double lo = c.leaf_cost, hi = c.leaf_cost;
+  for (int a = 0; a < 3; ++a) {
+    std::stable_sort(byAxis[a].begin(), byAxis[a].end(),
+                     [](const SahCandidate* x, const SahCandidate* y) { return x->position < y->position; });
+    d.axisTable[a] = makeTable("position", "cost");
+    for (const SahCandidate* s : byAxis[a]) {
+      addRow(d.axisTable[a], across(a, s->position), s->cost);
+      lo = std::min(lo, double(s->cost));
+      hi = std::max(hi, double(s->cost));
+    }
+    if (byAxis[a].empty()) continue;  // an empty series draws nothing, but warns
+    vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f,
+                         std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
+    if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
+      bool few = byAxis[a].size() <= 400;
+      points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE
+                                                                  : vtkPlotPoints::NONE);
+      points->SetMarkerSize(byAxis[a].size() == 1 ? 8.f : 5.f);
+    }
+  }
+  // The leaf cost: a split is made only below this line.
+  auto leaf = makeTable("position", "leaf cost");
+  addRow(leaf, 0.0, c.leaf_cost);
+  addRow(leaf, 1.0, c.leaf_cost);
+  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f, "leaf cost N t_i");
+  leafPlot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+  if (!c.leaf && c.axis >= 0) {
+    auto chosen = makeTable("position", "chosen");
+    double x = across(c.axis, c.position);
+    addRow(chosen, x, lo - 0.02 * (hi - lo));
+    addRow(chosen, x, hi);
+    addLine(d.chart, chosen, palette::sahChosen, 1.5f, std::string("chosen: ") + axisName(c.axis));
+  }
+  vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
+  double pad =
+      hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));  // a lone leaf cost: a plain range
+  left->SetBehavior(vtkAxis::FIXED);
+  left->SetRange(lo - pad, hi + pad);
+  d.chart->RecalculateBounds();
+
+  // The text: which node, what it holds, what the builder decided and why.
+  QString t =
+      tr("<b>node %1</b> (path \"%2\"), depth %3<br>N = %4 primitives<br>box (%5, %6, %7)<br>"
+         "&nbsp;&nbsp;.. (%8, %9, %10)<br>")
+          .arg(c.node)
+          .arg(path)
+          .arg(c.info.depth)
+          .arg(c.n_prims)
+          .arg(fmt(box.lo.x), fmt(box.lo.y), fmt(box.lo.z), fmt(box.hi.x), fmt(box.hi.y), fmt(box.hi.z));
+  t += tr("candidates: x %1, y %2, z %3<br>")
+           .arg(byAxis[0].size())
+           .arg(byAxis[1].size())
+           .arg(byAxis[2].size());
+  t += tr("leaf cost N t_i = %1 &times; %2 = %3<br>").arg(c.n_prims).arg(double(t_i)).arg(fmt(c.leaf_cost));
+  if (c.leaf) {
+    t += tr("<b>leaf</b>: %1 (%2)").arg(leaf_reason_name(c.leaf_reason)).arg(leafReasonText(c.leaf_reason));
+    if (!c.candidates.empty()) {
+      auto best =
+          std::min_element(c.candidates.begin(), c.candidates.end(),
+                           [](const SahCandidate& a, const SahCandidate& b) { return a.cost < b.cost; });
+      t += tr("; the cheapest plane (%1 = %2) costs %3")
+               .arg(axisName(best->axis))
+               .arg(fmt(best->position))
+               .arg(fmt(best->cost));
+    }
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": leaf (" + leaf_reason_name(c.leaf_reason) + ")");
+  } else {
+    t += tr("<b>split %1 = %2</b>, cost %3 = t_t + p_a N_a t_i + p_b N_b t_i (t_t = %4)")
+             .arg(axisName(c.axis))
+             .arg(fmt(c.position))
+             .arg(fmt(c.cost))
+             .arg(double(t_t));
+    if (c.chosen >= 0 && size_t(c.chosen) < c.candidates.size()) {
+      const SahCandidate& s = c.candidates[size_t(c.chosen)];
+      t += tr("<br>N below %1, above %2 (planar %3)").arg(s.n_below).arg(s.n_above).arg(s.n_planar);
+    }
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": split " + axisName(c.axis) + " = " +
+                      fmt(c.position).toStdString());
+  }
+  text_->setText(t);
+  renderNow();
+}
+
+void SahChart::renderNow() {
+  d_->window->Render();
+}
+
+QImage SahChart::grabChart() {
+  return d_->widget->grabFramebuffer();
+}
+
+bool SahChart::saveChart(const QString& path) {
+  QSaveFile file(path);
+  return file.open(QIODevice::WriteOnly) && grabChart().save(&file, "PNG") && file.commit();
+}
+
+QJsonObject SahChart::dumpState() const {
+  const Impl& d = *d_;
+  QJsonObject o;
+  QWidget* win = window();
+  QPoint off = d.widget->mapTo(win, QPoint(0, 0));
+  o["viewport"] = QJsonArray{off.x(), off.y(), d.widget->width(), d.widget->height()};
+  o["visible"] = d.widget->isVisible();
+  o["colors"] = QJsonObject{{"x", jsonColor(palette::sahX)},
+                            {"y", jsonColor(palette::sahY)},
+                            {"z", jsonColor(palette::sahZ)},
+                            {"leaf_cost", jsonColor(palette::sahLeafCost)},
+                            {"chosen", jsonColor(palette::sahChosen)}};
+  o["message"] = d.message;
+  if (!curve_) return o;
+  const SahCurve& c = *curve_;
+  o["node"] = int(c.node);
+  o["depth"] = c.info.depth;
+  o["n_prims"] = int(c.n_prims);
+  o["leaf_cost"] = c.leaf_cost;
+  o["leaf"] = c.leaf;
+  if (c.leaf)
+    o["leaf_reason"] = leaf_reason_name(c.leaf_reason);
+  else
+    o["chosen"] = QJsonObject{
+        {"axis", axisName(c.axis)}, {"position", c.position}, {"cost", c.cost}, {"index", c.chosen}};
+  QJsonObject points;
+  for (int a = 0; a < 3; ++a)
+    points[axisName(a)] = d.axisTable[a] ? int(d.axisTable[a]->GetNumberOfRows()) : 0;
+  o["points"] = points;  // as plotted: one per candidate
+  o["plots"] = int(d.chart->GetNumberOfPlots());
+  o["candidates"] = int(c.candidates.size());
+  return o;
+}
+
+}  // namespace raystep::viz

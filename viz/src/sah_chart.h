@@ -1,0 +1,51 @@
+// The SAH inspector (lecture: "kd-tree build by the Surface Area Heuristic"): for one kd-tree node, the cost
+// C = t_t + p_a N_a t_i + p_b N_b t_i of every candidate plane the builder evaluated, against the plane's
+// position across the node (0 = the box's min, 1 = its max) for x, y and z, one point per candidate; the leaf
+// cost N t_i as a dashed line (a split must come below it); the chosen split as a vertical line, or the
+// reason the node became a leaf. Beside it the node's id, path, depth, N, box and decision. The curve itself
+// is recorded by the main window off the GUI thread (core's record_sah_curve); VTK stays inside
+// sah_chart.cpp.
+#pragma once
+
+#include <memory>
+
+#include <QImage>
+#include <QJsonObject>
+#include <QString>
+#include <QWidget>
+
+class QLabel;
+
+namespace raystep {
+struct SahCurve;
+}
+
+namespace raystep::viz {
+
+class SahChart : public QWidget {
+  Q_OBJECT
+ public:
+  explicit SahChart(QWidget* parent = nullptr);
+  ~SahChart() override;
+
+  // The curve of a node (path: its "LRL" from the root), with the costs' t_i for the text.
+  void setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t);
+  // No curve: a message instead ("Select a node ...", "Recording node 5 ...").
+  void showMessage(const QString& text);
+  std::shared_ptr<const SahCurve> curve() const { return curve_; }
+
+  void renderNow();
+  QImage grabChart();
+  // The chart as PNG, atomically (a temporary file, then renamed); false when it cannot be written.
+  bool saveChart(const QString& path);
+  // What the chart shows: the node, points per axis, the chosen split, the colours and where it is on screen.
+  QJsonObject dumpState() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+  std::shared_ptr<const SahCurve> curve_;
+  QLabel* text_;
+};
+
+}  // namespace raystep::viz
