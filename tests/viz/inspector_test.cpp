@@ -127,7 +127,7 @@ TEST(Inspector, ScreenshotShowsTheThreeSeriesColours) {
   ASSERT_TRUE(sah["visible"].get<bool>());
   raystep::Rgb8Image img = raystep::read_png_rgb8(kOut + "/inspector_panel_sah.png");
   // The same window with no node selected: the chart is empty, so any colour it shows then is not a series'.
-  json empty = inspect("", "inspector_panel_empty");
+  json empty = inspect("--panel kd", "inspector_panel_empty");
   ASSERT_FALSE(empty["sah"].contains("points"));
   ASSERT_EQ(empty["sah"]["viewport"], sah["viewport"]);
   raystep::Rgb8Image blank = raystep::read_png_rgb8(kOut + "/inspector_panel_empty.png");

@@ -130,8 +130,12 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(session_, &Session::selectedNodeChanged, this, &MainWindow::showSahCurve);
   connect(session_, &Session::structureChanged, this, [this] {
     const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
-    if (kd) showKdPanel();
-    else kdDock_->hide();
+    // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
+    if (kd && height() >= 900) showKdPanel();
+    else if (kd && !kdDock_->isVisible())
+      statusBar()->showMessage(tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+                                  "3D view, shows its nodes and SAH curves"));
+    else if (!kd) kdDock_->hide();
     showSahCurve();
   });
   connect(session_, &Session::stepChanged, this, [this] {

@@ -143,7 +143,8 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
-  opt("panel", "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node).", "NAME");
+  opt("panel", "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node), or kd (the "
+               "same with no node selected).", "NAME");
   opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
   opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.", "PATH");
   opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).", "X,Y");
@@ -344,14 +345,15 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       if (t && !t->rays.empty() && t->rays[0].has_pixel) canvas->centreOn(t->rays[0].pixel[0], t->rays[0].pixel[1]);
     }
     // The kd-tree's inspector: a node by id or path, or the root for --panel sah; or a click in the 3D view.
-    if (p.isSet("panel") && p.value("panel") != "sah") fail("--panel '" + p.value("panel").toStdString() + "': expected sah");
+    if (p.isSet("panel") && p.value("panel") != "sah" && p.value("panel") != "kd")
+      fail("--panel '" + p.value("panel").toStdString() + "': expected sah or kd");
     if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
     if (p.isSet("panel") || p.isSet("node") || p.isSet("node-path") || p.isSet("pick-3d")) {
-      const char* what = p.isSet("node") ? "--node" : p.isSet("node-path") ? "--node-path" : p.isSet("panel") ? "--panel sah" : "--pick-3d";
+      const char* what = p.isSet("node") ? "--node" : p.isSet("node-path") ? "--node-path" : p.isSet("panel") ? "--panel" : "--pick-3d";
       const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
       if (!kd) fail(std::string(what) + ": no kd-tree (open a scene with --accel kd or kd-median)");
       size_t count = kd->data().nodes.size();
-      int node = p.isSet("panel") ? 0 : -1;
+      int node = p.isSet("panel") && p.value("panel") == "sah" ? 0 : -1;
       if (p.isSet("node")) {
         bool ok = false;
         qlonglong id = p.value("node").toLongLong(&ok);
