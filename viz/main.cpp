@@ -1,14 +1,22 @@
 // raystep-gui: the step-debugger. Everything lives in raystep_viz; this only starts Qt and VTK.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include <QApplication>
+#include <QCoreApplication>
 
 #include "main_window.h"
 #include "scene_view.h"
 #include "script.h"
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      QCoreApplication app(argc, argv);  // the usage needs no display
+      QCoreApplication::setApplicationName("raystep-gui");
+      if (raystep::viz::printHelpIfAsked(QCoreApplication::arguments())) return 0;
+    }
   // Qt aborts without a display, and VTK here has no off-screen OpenGL: say so plainly instead.
   const char* display = std::getenv("DISPLAY");
   const char* platform = std::getenv("QT_QPA_PLATFORM");

@@ -322,6 +322,21 @@ TEST(Viz, BadFileThroughTheGuiKeepsTheWindow) {
   checkScreenshot(png, after);
 }
 
+// Without a display: --help still prints the usage; anything else says what is missing and exits 2 (Qt alone
+// would abort).
+TEST(Viz, WithoutADisplayHelpWorksAndTheRestExits2) {
+  std::string out = kOut + "/nodisplay_help.txt";
+  GuiRun help = gui("--help > '" + out + "'", "nodisplay_help", "-u DISPLAY");
+  EXPECT_EQ(help.code, 0) << help.err;
+  std::string usage = slurp(out);
+  EXPECT_NE(usage.find("--accel"), std::string::npos) << usage;
+  EXPECT_NE(usage.find("--screenshot"), std::string::npos) << usage;
+  GuiRun run = gui("'" + kScene + "' --quit", "nodisplay_run", "-u DISPLAY");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(run.err.rfind("error: ", 0), 0u) << run.err;
+  EXPECT_NE(run.err.find("DISPLAY"), std::string::npos) << run.err;
+}
+
 TEST(Viz, BadOptionsExit2) {
   for (const char* args : {"--pixel 400,1", "--pixel 1", "--step 100000", "--step-to teleport:1", "--grid-res 0,1,1",
                            "--grid-insert fuzzy", "--aa sometimes", "--accel octree", "--size 0x3"}) {

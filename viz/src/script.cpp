@@ -107,10 +107,7 @@ QJsonObject dumpState(MainWindow& w) {
   return o;
 }
 
-}  // namespace
-
-int runCommandLine(MainWindow& window, const QStringList& arguments) {
-  QCommandLineParser p;
+void defineOptions(QCommandLineParser& p) {
   p.setApplicationDescription("raystep-gui: step through one ray's walk through an acceleration structure.");
   p.addHelpOption();
   p.addPositionalArgument("file", "A scene (.json), a mesh (.obj) or a trace written by `raystep trace`.");
@@ -157,6 +154,22 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   opt("screenshot-3d", "Write a PNG of the 3D view.", "FILE");
   opt("dump-state", "Write what the panels and the 3D view show (JSON).", "FILE");
   opt("quit", "Quit when done (scripted mode).");
+}
+
+}  // namespace
+
+bool printHelpIfAsked(const QStringList& arguments) {
+  QCommandLineParser p;
+  defineOptions(p);
+  p.parse(arguments);
+  if (!p.isSet("help")) return false;
+  std::printf("%s", p.helpText().toLocal8Bit().constData());
+  return true;
+}
+
+int runCommandLine(MainWindow& window, const QStringList& arguments) {
+  QCommandLineParser p;
+  defineOptions(p);
   if (!p.parse(arguments)) {
     std::fprintf(stderr, "error: %s\n", p.errorText().toLocal8Bit().constData());
     return 2;

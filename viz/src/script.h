@@ -13,6 +13,9 @@ namespace raystep::viz {
 
 class MainWindow;
 
+// With --help (or -h) among the arguments: prints the usage and returns true. Needs no display: a
+// QCoreApplication will do.
+bool printHelpIfAsked(const QStringList& arguments);
 // Parses the arguments and runs what they ask; returns -1 to go on interactively, else the exit code.
 int runCommandLine(MainWindow& window, const QStringList& arguments);
 
