@@ -64,7 +64,7 @@ class MailboxModel : public QAbstractTableModel {
     switch (col) {
       case 0: return QString::number(m.prim);
       case 1:
-        if (m.testedInCellEvent >= 0) return QString("cell (%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
+        if (m.testedInCellEvent >= 0) return QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
         return m.leaf >= 0 ? QString("leaf %1").arg(m.leaf) : QString("-");
       case 2: return m.hit ? QString("hit t=%1").arg(num(m.t)) : QString("miss");
       default: return QString::number(m.skips);
