@@ -140,7 +140,7 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     const uint32_t* prims = tree_.prim_index.data() + node.first_prim;
     const LeafTriangle* triangles = leaf_triangles + node.first_prim;
     for (uint32_t i = 0, n = node.prim_count(); i < n; ++i) {
-      uint32_t prim = prims[i];
+      uint32_t prim = leaf_triangles ? triangles[i].prim : prims[i];  // one array read, not two
       if (use_mailboxes_ && !mailbox.first_visit(prim)) {
         rec.mailbox_hit(prim);
         continue;
