@@ -220,35 +220,35 @@ class SweepBuilder {
     const float p = plane.position;
 
     // 1. Classify by one pass over the split axis's events: a start at or after p means above only, an end at
-    //    or before p below only, anything else both; planar ones by their position and the chosen side.
-    size_t most_straddlers = 0;  // the starts below p: the straddlers and those that end at or before p
+    //    or before p below only, anything else both; planar ones by their position and the chosen side. The
+    //    straddlers are collected in the same pass: an end after p of a primitive whose start was before it.
+    //    (Their order does not matter: their new events are sorted.)
     const uint32_t p_bits = Event::ordered_bits(p);  // p is an event's position: comparing bits is comparing floats
+    if (straddlers_.size() < ev.end[k] - ev.begin[k]) straddlers_.resize(ev.end[k] - ev.begin[k]);
+    size_t n_straddlers = 0;
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {  // selects, not branches: the types come in random order
       const Event& e = events_[k][i];
       const uint32_t x = e.position_bits();
       const EventType type = e.type();
-      Side& side = side_[e.prim()];
+      const uint32_t prim = e.prim();
+      Side& side = side_[prim];
       const Side start_side = x >= p_bits ? Side::above : Side::both;
       const Side planar_side = (x < p_bits || (x == p_bits && plane.planar_below)) ? Side::below : Side::above;
       const Side end_side = x <= p_bits ? Side::below : side;
+      straddlers_[n_straddlers] = prim;
+      n_straddlers += type == kEnd && x > p_bits && side == Side::both;
       side = type == kStart ? start_side : (type == kPlanar ? planar_side : end_side);
-      most_straddlers += type == kStart && x < p_bits;
     }
 
     // 2. The straddling primitives are clipped again to each child; their new events are sorted (few).
     Event *below_out[3], *above_out[3];
-    make_room(new_below_, most_straddlers, below_out);
-    make_room(new_above_, most_straddlers, above_out);
+    make_room(new_below_, n_straddlers, below_out);
+    make_room(new_above_, n_straddlers, above_out);
     Bounds3 box = below_box;
     box.hi[k] = above_box.hi[k];
-    straddlers_.clear();
-    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
-      const Event& e = events_[k][i];
-      if (e.type() == kStart && side_[e.prim()] == Side::both) straddlers_.push_back(e.prim());
-    }
-    for (size_t i = 0; i < straddlers_.size(); ++i) {
+    for (size_t i = 0; i < n_straddlers; ++i) {
       // The triangles are scattered in memory: ask for the vertices a few clips ahead.
-      if (i + kPrefetchAhead < straddlers_.size() && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
+      if (i + kPrefetchAhead < n_straddlers && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
         __builtin_prefetch(&geometry_.vertex(straddlers_[i + kPrefetchAhead], 0));
       const uint32_t prim = straddlers_[i];
       Bounds3 below_bounds, above_bounds;
