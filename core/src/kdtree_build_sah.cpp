@@ -129,11 +129,15 @@ class SweepBuilder {
  private:
   void make_leaf(uint32_t node, const NodeEvents& ev, float leaf_cost, LeafReason reason) {
     // Each primitive of the node has exactly one start or planar event on every axis: take them from x.
-    leaf_prims_.clear();
-    for (size_t i = ev.begin[0]; i < ev.end[0]; ++i)
-      if (events_[0][i].type() != kEnd) leaf_prims_.push_back(events_[0][i].prim());
-    std::sort(leaf_prims_.begin(), leaf_prims_.end());
-    out_.set_leaf(node, leaf_prims_.data(), uint32_t(leaf_prims_.size()), leaf_cost);
+    // (Written and counted without a branch: the types come in random order.)
+    if (leaf_prims_.size() < ev.end[0] - ev.begin[0]) leaf_prims_.resize(ev.end[0] - ev.begin[0]);
+    size_t n = 0;
+    for (size_t i = ev.begin[0]; i < ev.end[0]; ++i) {
+      leaf_prims_[n] = events_[0][i].prim();
+      n += events_[0][i].type() != kEnd;
+    }
+    std::sort(leaf_prims_.begin(), leaf_prims_.begin() + ptrdiff_t(n));
+    out_.set_leaf(node, leaf_prims_.data(), uint32_t(n), leaf_cost);
     rec_.leaf_made(node, out_.info(node), ev.n_prims, leaf_cost, reason);
   }
 
