@@ -2,7 +2,8 @@
 // At an inner node compute t* on the split plane; if the ray crosses only the near child go there, only the far
 // child go there, otherwise Intersect(near, tmin, t*) and push (far, t*, tmax). Pop when a leaf ends; stop when
 // the nearest hit lies before the popped node's tmin. After pbrt-v3's KdTreeAccel::Intersect, with mailboxes
-// for primitives that several leaves reference. Built by kdtree_build.h (SAH or spatial median).
+// for primitives that several leaves reference. Built by kdtree_build.h (SAH or spatial median). For speed, a
+// scene of triangles only gets a copy of each leaf's triangles in leaf order (the same test, one contiguous read).
 #pragma once
 
 #include <cmath>
