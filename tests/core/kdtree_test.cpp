@@ -72,8 +72,7 @@ using test::count_disagreements;
 const KdBuilder kBuilders[] = {KdBuilder::sah, KdBuilder::median};
 
 TEST(KdTree, AgreesWithBruteForceOnRandomRays) {
-  // With spheres the leaves test through the geometry; with triangles only, through the leaves' own copies of
-  // the vertices.
+  // A soup with spheres and one of triangles only.
   for (int spheres : {8, 0}) {
     Geometry g = make_soup(5, 400, spheres);
     BruteForce brute;

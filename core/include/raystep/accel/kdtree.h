@@ -2,12 +2,10 @@
 // At an inner node compute t* on the split plane; if the ray crosses only the near child go there, only the far
 // child go there, otherwise Intersect(near, tmin, t*) and push (far, t*, tmax). Pop when a leaf ends; stop when
 // the nearest hit lies before the popped node's tmin. After pbrt-v3's KdTreeAccel::Intersect, with mailboxes
-// for primitives that several leaves reference. Built by kdtree_build.h (SAH or spatial median). For speed, a
-// scene of triangles only gets a copy of each leaf's triangles in leaf order (the same test, one contiguous read).
+// for primitives that several leaves reference. Built by kdtree_build.h (SAH or spatial median).
 #pragma once
 
 #include <cmath>
-#include <vector>
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/kdtree_build.h"
@@ -45,15 +43,6 @@ class KdTree final : public Accelerator {
   const Geometry* geometry_ = nullptr;
   KdTreeData tree_;
   Mailboxes mailboxes_;
-  // A leaf's triangle as the traversal reads it: its vertices copied out of the geometry, one per prim_index
-  // entry in the same order, so that a leaf's tests read one contiguous run instead of going from the id to its
-  // type, its vertex index and then its vertices. Empty unless every primitive is a triangle.
-  struct LeafTriangle {
-    glm::vec3 p0, p1, p2;
-    uint32_t prim;
-  };
-  std::vector<LeafTriangle> leaf_triangles_;
-  void prepare_leaves();
 };
 
 template <class Recorder>
@@ -73,14 +62,12 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   const float margin = std::max(std::fabs(t_min), std::fabs(t_max)) * (1.f / 4096.f);
 
   // The stack of far children still to visit, with the part of the ray inside each.
-  struct Entry {  // 16 bytes
+  struct Entry {
     uint32_t node;
     int32_t depth;
     float t_min, t_max;
+    bool in_plane;  // pushed by a ray lying in the split plane, with the whole interval
   };
-  // An in-plane entry (pushed by a ray lying in the split plane, with the whole interval) is marked in the
-  // node's top bit: ids are below 2^30.
-  constexpr uint32_t kInPlane = 1u << 31;
   Entry stack[kKdMaxDepth + 1];
   int stack_size = 0;
   int in_plane_entries = 0;  // while one is on the stack, the entries are not ordered by t_min
@@ -93,7 +80,6 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   uint32_t node_id = 0;
   int32_t depth = 0;
   const KdNode* nodes = tree_.nodes.data();
-  const LeafTriangle* leaf_triangles = leaf_triangles_.empty() ? nullptr : leaf_triangles_.data();
   for (;;) {
     const KdNode& node = nodes[node_id];
     rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
@@ -120,15 +106,14 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       } else if (std::isnan(t_split)) {
         // The ray lies in the split plane (0 * inf): it touches both children over the whole interval.
         rec.push(TreeStep{int32_t(far_child), depth + 1, t_min, t_max});
-        stack[stack_size++] = Entry{far_child | kInPlane, depth + 1, t_min, t_max};
+        stack[stack_size++] = Entry{far_child, depth + 1, t_min, t_max, true};
         ++in_plane_entries;
         node_id = near_child;
       } else {
         // Both: Intersect(near, t_min, t*) now, push (far, t*, t_max) for later.
         float t_star = std::min(std::max(t_split, t_min), t_max);
         rec.push(TreeStep{int32_t(far_child), depth + 1, t_star, t_max});
-        stack[stack_size++] = Entry{far_child, depth + 1, t_star, t_max};
-        __builtin_prefetch(nodes + far_child);  // read again when popped: by then in the cache
+        stack[stack_size++] = Entry{far_child, depth + 1, t_star, t_max, false};
         node_id = near_child;
         t_max = t_star;
       }
@@ -139,27 +124,14 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     // Leaf: test its primitives, skipping those already tested for this ray (mailbox).
     rec.leaf(TreeStep{int32_t(node_id), depth, t_min, t_max});
     const uint32_t* prims = tree_.prim_index.data() + node.first_prim;
-    const LeafTriangle* triangles = leaf_triangles + node.first_prim;
     for (uint32_t i = 0, n = node.prim_count(); i < n; ++i) {
-      uint32_t prim = leaf_triangles ? triangles[i].prim : prims[i];  // one array read, not two
+      uint32_t prim = prims[i];
       if (use_mailboxes_ && !mailbox.first_visit(prim)) {
         rec.mailbox_hit(prim);
         continue;
       }
-      // The same test as Geometry::intersect, on the leaf's copy of the vertices when there is one.
       Hit candidate;
-      bool found;
-      if (leaf_triangles) {
-        const LeafTriangle& tri = triangles[i];
-        TriangleHit th;
-        found = intersect_triangle(wray, tri.p0, tri.p1, tri.p2, t_limit, &th);
-        candidate.prim = int32_t(prim);
-        candidate.t = th.t;
-        candidate.b1 = th.b1;
-        candidate.b2 = th.b2;
-      } else {
-        found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
-      }
+      bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
       rec.prim_test(prim, found, candidate.t);
       if (!found) continue;
       // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute force, so
@@ -183,15 +155,14 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     AcceptReason reason = AcceptReason::structure_done;
     while (stack_size > 0) {
       const Entry& e = stack[--stack_size];
-      const uint32_t e_node = e.node & ~kInPlane;
-      in_plane_entries -= (e.node & kInPlane) != 0;
-      rec.pop(TreeStep{int32_t(e_node), e.depth, e.t_min, e.t_max});
+      in_plane_entries -= e.in_plane;
+      rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
       if (nearest.found() && t_nearest < e.t_min - margin) {
         reason = AcceptReason::next_node_beyond;
         if (in_plane_entries == 0) break;
         continue;
       }
-      node_id = e_node;
+      node_id = e.node;
       depth = e.depth;
       t_min = e.t_min;
       t_max = e.t_max;
