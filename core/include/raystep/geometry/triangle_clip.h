@@ -139,12 +139,10 @@ struct Vertex {
   uint32_t exact;  // bit a: coordinate a is an exact float
 };
 
-// One Sutherland-Hodgman step of clip_triangle_bounds: poly[0, n) by the half-space x_a >= plane (kKeepAbove)
-// or x_a <= plane, into next; returns the new vertex count. The side is a template parameter: the test of
-// every vertex against the plane is then one comparison.
-template <bool kKeepAbove>
-inline int clip_polygon(const Vertex* poly, int n, int a, double plane, Vertex* next) {
-  auto inside = [&](const Vertex& v) { return kKeepAbove ? v.p[a] >= plane : v.p[a] <= plane; };
+// One Sutherland-Hodgman step of clip_triangle_bounds: poly[0, n) by the half-space x_a >= plane (keep_above)
+// or x_a <= plane, into next; returns the new vertex count.
+inline int clip_polygon(const Vertex* poly, int n, int a, bool keep_above, double plane, Vertex* next) {
+  auto inside = [&](const Vertex& v) { return keep_above ? v.p[a] >= plane : v.p[a] <= plane; };
   int m = 0;
   bool s_in = inside(poly[n - 1]);
   for (int i = 0, j = n - 1; i < n; j = i++) {  // the edge from s = poly[j] to e = poly[i]
@@ -189,8 +187,8 @@ struct Polygon {
       for (int side = 0; side < 2; ++side) {
         const bool keep_above = side == 0;
         if (keep_above ? tri.lo[a] >= box.lo[a] : tri.hi[a] <= box.hi[a]) continue;
-        n = keep_above ? clip_polygon<true>(buffer[current], n, a, box.lo[a], buffer[1 - current])
-                       : clip_polygon<false>(buffer[current], n, a, box.hi[a], buffer[1 - current]);
+        n = clip_polygon(buffer[current], n, a, keep_above, keep_above ? box.lo[a] : box.hi[a],
+                         buffer[1 - current]);
         current = 1 - current;
         if (n == 0) return false;
       }
