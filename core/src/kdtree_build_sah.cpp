@@ -25,7 +25,8 @@ struct Event {
   static Event make(float position, EventType type, uint32_t prim) {
     return Event{(uint64_t(ordered_bits(position)) << 32) | (uint64_t(type) << 30) | prim};
   }
-  float position() const { return from_ordered_bits(uint32_t(bits >> 32)); }
+  float position() const { return from_ordered_bits(position_bits()); }
+  uint32_t position_bits() const { return uint32_t(bits >> 32); }
   EventType type() const { return EventType((bits >> 30) & 3u); }
   uint32_t prim() const { return uint32_t(bits) & KdNode::kMaxIndex; }
   // (position, type): the same for all the events one step of the sweep counts together.
@@ -128,11 +129,15 @@ class SweepBuilder {
  private:
   void make_leaf(uint32_t node, const NodeEvents& ev, float leaf_cost, LeafReason reason) {
     // Each primitive of the node has exactly one start or planar event on every axis: take them from x.
-    leaf_prims_.clear();
-    for (size_t i = ev.begin[0]; i < ev.end[0]; ++i)
-      if (events_[0][i].type() != kEnd) leaf_prims_.push_back(events_[0][i].prim());
-    std::sort(leaf_prims_.begin(), leaf_prims_.end());
-    out_.set_leaf(node, leaf_prims_.data(), uint32_t(leaf_prims_.size()), leaf_cost);
+    // (Written and counted without a branch: the types come in random order.)
+    if (leaf_prims_.size() < ev.end[0] - ev.begin[0]) leaf_prims_.resize(ev.end[0] - ev.begin[0]);
+    size_t n = 0;
+    for (size_t i = ev.begin[0]; i < ev.end[0]; ++i) {
+      leaf_prims_[n] = events_[0][i].prim();
+      n += events_[0][i].type() != kEnd;
+    }
+    std::sort(leaf_prims_.begin(), leaf_prims_.begin() + ptrdiff_t(n));
+    out_.set_leaf(node, leaf_prims_.data(), uint32_t(n), leaf_cost);
     rec_.leaf_made(node, out_.info(node), ev.n_prims, leaf_cost, reason);
   }
 
@@ -144,33 +149,66 @@ class SweepBuilder {
     const SahModel& model = out_.model();
     const float area_node = box.surface_area();
     if (!(area_node > 0.f)) return false;  // a segment or a point: no ray can tell the children apart
+    // A lower bound on a candidate's cost, cheap to compute (a reciprocal for the divisions, and the largest
+    // bonus): a candidate whose bound is not below the best cost cannot be strictly cheaper, so its exact
+    // cost is not needed (unless the recorder wants it). The bound's slack of 2^-16 relative, and a little
+    // absolute, is far beyond the rounding of either computation, so the tree is the same.
+    const float inv_area_node = 1.f / area_node;
+    const float bound_scale = (1.f - model.empty_bonus) * model.t_i;
+    const bool packed_counts = ev.n_prims < (1u << 21);
+    constexpr uint64_t kCountMask = (uint64_t(1) << 21) - 1;
     bool found = false;
     for (int axis = 0; axis < 3; ++axis) {
       const SplitAreas areas(box, axis);
       const Event* e = events_[axis].data() + ev.begin[axis];
       const size_t count = ev.end[axis] - ev.begin[axis];
+      // The node's interior on this axis as ordered bits (positions are never -0; the box's faces are made +0
+      // so that comparing bits is comparing floats).
+      const uint32_t lo_bits = Event::ordered_bits(box.lo[axis] + 0.f), hi_bits = Event::ordered_bits(box.hi[axis] + 0.f);
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the type).
-        const float position = e[i].position();
-        const uint64_t at_position = e[i].group() >> 2;
+        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the type:
+        // in three 21-bit fields of one integer while fewer primitives than 2^21 cannot overflow them).
+        const uint32_t at_position = e[i].position_bits();
         uint32_t ends = 0, planars = 0, starts = 0;
-        do {
-          const EventType type = e[i].type();
-          ends += type == kEnd;
-          planars += type == kPlanar;
-          starts += type == kStart;
-          ++i;
-        } while (i < count && e[i].group() >> 2 == at_position);
+        if (packed_counts) {
+          uint64_t counts = 0;
+          do {
+            counts += uint64_t(1) << (21 * e[i].type());
+            ++i;
+          } while (i < count && e[i].position_bits() == at_position);
+          ends = uint32_t(counts & kCountMask);
+          planars = uint32_t((counts >> 21) & kCountMask);
+          starts = uint32_t(counts >> 42);
+        } else {
+          do {
+            const EventType type = e[i].type();
+            ends += type == kEnd;
+            planars += type == kPlanar;
+            starts += type == kStart;
+            ++i;
+          } while (i < count && e[i].position_bits() == at_position);
+        }
         // Move the plane onto p: N_P = p|, N_R -= p| + p-; evaluate; then N_L += p+ + p|.
         n_right -= planars + ends;
-        if (box.lo[axis] < position && position < box.hi[axis]) {
-          SahCandidate c = model.candidate(areas, position, n_left, n_right, planars);
-          if constexpr (Recorder::enabled)
-            if (record) rec_.sah_candidate(node, c);
-          if (!found || cheaper(c, *best)) {
-            *best = c;
-            found = true;
+        if (lo_bits < at_position && at_position < hi_bits) {
+          const float position = Event::from_ordered_bits(at_position);
+          bool evaluate = !found || record;
+          if (!evaluate) {
+            const float a_below = areas.below(position), a_above = areas.above(position);
+            const float weighted = (a_below * float(n_left) + a_above * float(n_right) +
+                                    std::min(a_below, a_above) * float(planars)) * inv_area_node;
+            const float bound = (model.t_t + bound_scale * weighted) * (1.f - 1.f / 65536.f) - 1e-30f;
+            evaluate = !(bound >= best->cost);
+          }
+          if (evaluate) {
+            SahCandidate c = model.candidate(areas, position, n_left, n_right, planars);
+            if constexpr (Recorder::enabled)
+              if (record) rec_.sah_candidate(node, c);
+            if (!found || cheaper(c, *best)) {
+              *best = c;
+              found = true;
+            }
           }
         }
         n_left += starts + planars;
@@ -186,34 +224,35 @@ class SweepBuilder {
     const float p = plane.position;
 
     // 1. Classify by one pass over the split axis's events: a start at or after p means above only, an end at
-    //    or before p below only, anything else both; planar ones by their position and the chosen side.
-    size_t most_straddlers = 0;  // the starts below p: the straddlers and those that end at or before p
+    //    or before p below only, anything else both; planar ones by their position and the chosen side. The
+    //    straddlers are collected in the same pass: an end after p of a primitive whose start was before it.
+    //    (Their order does not matter: their new events are sorted.)
+    const uint32_t p_bits = Event::ordered_bits(p);  // p is an event's position: comparing bits is comparing floats
+    if (straddlers_.size() < ev.end[k] - ev.begin[k]) straddlers_.resize(ev.end[k] - ev.begin[k]);
+    size_t n_straddlers = 0;
     for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {  // selects, not branches: the types come in random order
       const Event& e = events_[k][i];
-      const float x = e.position();
+      const uint32_t x = e.position_bits();
       const EventType type = e.type();
-      Side& side = side_[e.prim()];
-      const Side start_side = x >= p ? Side::above : Side::both;
-      const Side planar_side = (x < p || (x == p && plane.planar_below)) ? Side::below : Side::above;
-      const Side end_side = x <= p ? Side::below : side;
+      const uint32_t prim = e.prim();
+      Side& side = side_[prim];
+      const Side start_side = x >= p_bits ? Side::above : Side::both;
+      const Side planar_side = (x < p_bits || (x == p_bits && plane.planar_below)) ? Side::below : Side::above;
+      const Side end_side = x <= p_bits ? Side::below : side;
+      straddlers_[n_straddlers] = prim;
+      n_straddlers += type == kEnd && x > p_bits && side == Side::both;
       side = type == kStart ? start_side : (type == kPlanar ? planar_side : end_side);
-      most_straddlers += type == kStart && x < p;
     }
 
     // 2. The straddling primitives are clipped again to each child; their new events are sorted (few).
     Event *below_out[3], *above_out[3];
-    make_room(new_below_, most_straddlers, below_out);
-    make_room(new_above_, most_straddlers, above_out);
+    make_room(new_below_, n_straddlers, below_out);
+    make_room(new_above_, n_straddlers, above_out);
     Bounds3 box = below_box;
     box.hi[k] = above_box.hi[k];
-    straddlers_.clear();
-    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {
-      const Event& e = events_[k][i];
-      if (e.type() == kStart && side_[e.prim()] == Side::both) straddlers_.push_back(e.prim());
-    }
-    for (size_t i = 0; i < straddlers_.size(); ++i) {
+    for (size_t i = 0; i < n_straddlers; ++i) {
       // The triangles are scattered in memory: ask for the vertices a few clips ahead.
-      if (i + kPrefetchAhead < straddlers_.size() && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
+      if (i + kPrefetchAhead < n_straddlers && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
         __builtin_prefetch(&geometry_.vertex(straddlers_[i + kPrefetchAhead], 0));
       const uint32_t prim = straddlers_[i];
       Bounds3 below_bounds, above_bounds;

@@ -539,12 +539,16 @@ TEST(KdSweep, BuildsTheSameTreeAsTheReference) {
                  Case{15, 40, 0, 0, 60}, Case{16, 200, 3, 10, 40}, Case{17, 0, 0, 0, 100}}) {
     Geometry g = make_scene(c.seed, c.triangles, c.spheres, c.boxes, c.coplanar);
     for (KdOptions o : {KdOptions{}, [] { KdOptions k; k.empty_bonus = 0.5f; k.leaf_size = 3; return k; }(),
-                        [] { KdOptions k; k.t_i = 3.f; k.max_depth = 6; return k; }()}) {
+                        [] { KdOptions k; k.t_i = 3.f; k.max_depth = 6; return k; }(),
+                        [] { KdOptions k; k.t_t = 0.f; k.empty_bonus = 0.9f; return k; }()}) {
       SCOPED_TRACE("seed " + std::to_string(c.seed));
       BuildLog fast_log, ref_log;
       KdTreeData fast = build_kdtree(g, with_builder(KdBuilder::sah, o), fast_log);
       KdTreeData ref = build_kdtree(g, with_builder(KdBuilder::sah_reference, o), ref_log);
       expect_same_tree(fast, ref);
+      // Without a listener the sweep skips the exact cost of candidates that cannot be cheaper (a lower
+      // bound): still the same tree.
+      expect_same_tree(build_kdtree(g, with_builder(KdBuilder::sah, o)), ref);
       // The same curve at every node.
       ASSERT_EQ(fast_log.candidates.size(), ref_log.candidates.size());
       for (const auto& [node, cands] : fast_log.candidates) {

@@ -72,17 +72,28 @@ using test::count_disagreements;
 const KdBuilder kBuilders[] = {KdBuilder::sah, KdBuilder::median};
 
 TEST(KdTree, AgreesWithBruteForceOnRandomRays) {
-  Geometry g = make_soup(5, 400, 8);
-  BruteForce brute;
-  brute.build(g);
-  std::vector<Ray> rays = random_rays(g.bounds(), 100000, 9);
-  for (KdBuilder builder : kBuilders)
-    for (bool mailboxes : {true, false}) {
-      auto tree = make_tree(g, builder, mailboxes);
-      EXPECT_GT(tree->data().nodes.size(), 1u);
-      EXPECT_EQ(count_disagreements(*tree, brute, rays), 0)
-          << "builder " << int(builder) << " mailboxes " << mailboxes;
-    }
+  // A soup with spheres and one of triangles only.
+  for (int spheres : {8, 0}) {
+    Geometry g = make_soup(5, 400, spheres);
+    BruteForce brute;
+    brute.build(g);
+    std::vector<Ray> rays = random_rays(g.bounds(), 100000, 9);
+    for (KdBuilder builder : kBuilders)
+      for (bool mailboxes : {true, false}) {
+        auto tree = make_tree(g, builder, mailboxes);
+        EXPECT_GT(tree->data().nodes.size(), 1u);
+        EXPECT_EQ(count_disagreements(*tree, brute, rays), 0)
+            << "builder " << int(builder) << " mailboxes " << mailboxes << " spheres " << spheres;
+        // The barycentrics too, bit for bit.
+        for (size_t i = 0; i < rays.size(); i += 7) {
+          Hit a, b;
+          if (!brute.intersect(rays[i], &a)) continue;
+          tree->intersect(rays[i], &b);
+          EXPECT_EQ(a.b1, b.b1);
+          EXPECT_EQ(a.b2, b.b2);
+        }
+      }
+  }
 }
 
 TEST(KdTree, AgreesWithBruteForceUnderEveryOption) {
