@@ -83,9 +83,9 @@ struct SaxToTape {
 };
 
 // The fast path: a scanner for the plain JSON that raystep writes. It accepts a strict subset of JSON whose
-// values are unambiguous (strings of printable ASCII without escapes; numbers that convert without overflow,
-// underflow or subnormals) and gives up on anything else, so that nlohmann's parser decides: the result is then
-// the same on every text, and so is every error.
+// values are unambiguous (strings without \u escapes; numbers that convert without overflow, underflow or
+// subnormals) and gives up on anything else, so that nlohmann's parser decides: the result is then the same on
+// every text, and so is every error.
 class FastScanner {
  public:
   FastScanner(std::string_view text, JsonTapeBuilder* b) : t_(text), b_(b) {}
@@ -153,20 +153,74 @@ class FastScanner {
     while (p_ < t_.size() && (t_[p_] == ' ' || t_[p_] == '\n' || t_[p_] == '\r' || t_[p_] == '\t')) ++p_;
   }
 
-  // At '"': printable ASCII up to the closing quote; escapes, control and non-ASCII bytes give up.
+  // At '"': the string up to the closing quote, as nlohmann decodes it: UTF-8 checked by RFC 3629's table and
+  // kept as it is, the two-character escapes decoded. \u escapes and control characters give up.
   bool string() {
     size_t start = ++p_;
-    while (p_ < t_.size()) {
+    while (p_ < t_.size()) {  // the common case: nothing to decode, the bytes are the string
       unsigned char c = static_cast<unsigned char>(t_[p_]);
       if (c == '"') {
         b_->add_string(t_.substr(start, p_ - start));
         ++p_;
         return true;
       }
-      if (c < 0x20 || c > 0x7e || c == '\\') return false;
-      ++p_;
+      if (c == '\\') break;
+      if (c < 0x20) return false;
+      size_t n = c < 0x80 ? 1 : utf8_length();
+      if (n == 0) return false;
+      p_ += n;
+    }
+    decoded_.assign(t_.data() + start, p_ - start);
+    while (p_ < t_.size()) {
+      unsigned char c = static_cast<unsigned char>(t_[p_]);
+      if (c == '"') {
+        b_->add_string(decoded_);
+        ++p_;
+        return true;
+      }
+      if (c == '\\') {
+        if (p_ + 1 >= t_.size()) return false;
+        char e;
+        switch (t_[p_ + 1]) {
+          case '"': e = '"'; break;
+          case '\\': e = '\\'; break;
+          case '/': e = '/'; break;
+          case 'b': e = '\b'; break;
+          case 'f': e = '\f'; break;
+          case 'n': e = '\n'; break;
+          case 'r': e = '\r'; break;
+          case 't': e = '\t'; break;
+          default: return false;  // \u (surrogates and all) and invalid escapes: nlohmann decides
+        }
+        decoded_ += e;
+        p_ += 2;
+        continue;
+      }
+      if (c < 0x20) return false;
+      size_t n = c < 0x80 ? 1 : utf8_length();
+      if (n == 0) return false;
+      decoded_.append(t_.data() + p_, n);
+      p_ += n;
     }
     return false;
+  }
+
+  // The length of the well-formed UTF-8 sequence at p_ (its first byte >= 0x80), 0 if it is not one.
+  size_t utf8_length() const {
+    auto in = [&](size_t i, unsigned lo, unsigned hi) {
+      if (p_ + i >= t_.size()) return false;
+      unsigned char c = static_cast<unsigned char>(t_[p_ + i]);
+      return c >= lo && c <= hi;
+    };
+    unsigned char c = static_cast<unsigned char>(t_[p_]);
+    if (c >= 0xC2 && c <= 0xDF) return in(1, 0x80, 0xBF) ? 2 : 0;
+    if (c == 0xE0) return in(1, 0xA0, 0xBF) && in(2, 0x80, 0xBF) ? 3 : 0;
+    if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF) return in(1, 0x80, 0xBF) && in(2, 0x80, 0xBF) ? 3 : 0;
+    if (c == 0xED) return in(1, 0x80, 0x9F) && in(2, 0x80, 0xBF) ? 3 : 0;  // no surrogates
+    if (c == 0xF0) return in(1, 0x90, 0xBF) && in(2, 0x80, 0xBF) && in(3, 0x80, 0xBF) ? 4 : 0;
+    if (c >= 0xF1 && c <= 0xF3) return in(1, 0x80, 0xBF) && in(2, 0x80, 0xBF) && in(3, 0x80, 0xBF) ? 4 : 0;
+    if (c == 0xF4) return in(1, 0x80, 0x8F) && in(2, 0x80, 0xBF) && in(3, 0x80, 0xBF) ? 4 : 0;  // <= U+10FFFF
+    return 0;
   }
 
   bool literal() {
@@ -233,6 +287,7 @@ class FastScanner {
   std::string_view t_;
   JsonTapeBuilder* b_;
   size_t p_ = 0;
+  std::string decoded_;  // a string with escapes, decoded
 };
 
 }  // namespace

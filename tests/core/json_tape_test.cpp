@@ -137,6 +137,9 @@ TEST(JsonTape, EdgeCasesReadAsNlohmannReadsThem) {
       // strings: escapes, unicode, control characters, invalid UTF-8
       "\"\"", "\"abc\"", "\"a\\\"b\"", "\"\\u0041\\n\\t\\/\"", "\"\\ud83d\\ude00\"", "\"\\ud83d\"", "\"\\x\"",
       "\"caf\xc3\xa9\"", "\"\xff\"", "\"\xc3\"", "\"a\tb\"", "\"a\x01\"", "\"\x7f\"", "\"abc", "\"",
+      "\"\xc0\x80\"", "\"\xc1\xbf\"", "\"\xe0\x80\x80\"", "\"\xe0\xa0\x80\"", "\"\xed\xa0\x80\"", "\"\xed\x9f\xbf\"",
+      "\"\xf0\x8f\xbf\xbf\"", "\"\xf0\x90\x80\x80\"", "\"\xf4\x8f\xbf\xbf\"", "\"\xf4\x90\x80\x80\"", "\"\xf5\x80\x80\x80\"",
+      "\"\xe2\x82\"", "\"\xe2\x82", "\"\x80\"", "\"\\", "\"\\\"", "\"a\\qb\"", "\"\\u12\"", "\"\\ud800\\udc00\"",
       // containers, nesting, duplicate keys, key order, whitespace, BOM, trailing text
       "{}", "[]", "[[]]", "{\"a\":{}}", "{\"b\":1,\"a\":2}", "{\"a\":1,\"a\":2}", "{\"a\":1,\"b\":2,\"a\":[3]}",
       "{\"\":0}", "{\"a\"}", "{\"a\":}", "{\"a\" 1}", "{1:2}", "{\"a\":1,}", "{,}", "[", "]", "{", "}", "",
@@ -147,12 +150,15 @@ TEST(JsonTape, EdgeCasesReadAsNlohmannReadsThem) {
   // What raystep writes is read by the plain scanner.
   for (const char* c : {"0", "-0", "-1", "0.0", "-0.0", "1E+2", "1e-2", "0.36198219656944275", "18446744073709551615",
                         "-9223372036854775808", "2.2250738585072014e-308", "1.7976931348623157e308", "true", "null",
-                        "\"\"", "\"abc\"", "{}", "[]", "[[]]", "{\"a\":1,\"b\":2,\"a\":[3]}",
+                        "\"\"", "\"abc\"", "{}", "[]", "[[]]", "{\"a\":1,\"b\":2,\"a\":[3]}", "\"\x7f\"",
+                        "\"a\\\"b\"", "\"\\\\\\/\\b\\f\\n\\r\\t\"", "\"caf\xc3\xa9\"", "\"\xe2\x82\xac \xf0\x9f\x98\x80\"",
+                        "{\"\xc3\xa9\":1,\"z\":2,\"a\":3}", "\"\xed\x9f\xbf \xee\x80\x80 \xf4\x8f\xbf\xbf\"",
                         " \t\r\n[ 1 , { \"k\" : [ ] } ] \n", "[1,2,3,\"inf\",\"-inf\",-1.5e-7]"})
     EXPECT_TRUE(expect_same(c)) << c;
   // And it leaves the rest to nlohmann.
   for (const char* c : {"1e400", "1e-400", "4.9e-324", "18446744073709551616", "-9223372036854775809",
-                        "\"a\\\"b\"", "\"caf\xc3\xa9\"", "\xef\xbb\xbf[1]", "[1,]", "01", ""})
+                        "\"\\u0041\"", "\"\\x\"", "\"\xc0\x80\"", "\"\xed\xa0\x80\"", "\"\xf4\x90\x80\x80\"",
+                        "\"\xe0\x80\x80\"", "\"\xc3\"", "\"\xff\"", "\"a\x01\"", "\xef\xbb\xbf[1]", "[1,]", "01", ""})
     EXPECT_FALSE(expect_same(c)) << c;
   expect_same(std::string("[1]\0", 4));
   expect_same(std::string("\"a\0b\"", 5));
@@ -184,7 +190,7 @@ TEST(JsonTape, RandomMutationsOfATraceReadAsNlohmannReadsThem) {
       " \"geometry\": {\"cells\": [], \"primitives\": [{\"id\":0,\"type\":\"triangle\",\"vertices\":[[0.0,-1.0,0.0],"
       "[0.0,2.0,0.0],[3.0,0.5,0.6000000238418579]]}]}\n}\n";
   EXPECT_TRUE(expect_same(base));
-  const std::string alphabet = "{}[],:\"\\ 0123456789.-+eE\ntrufalsn\x01\xc3\xa9u";
+  const std::string alphabet = "{}[],:\"\\ 0123456789.-+eE\ntrufalsnbu/\x01\x7f\xc3\xa9\xe2\x82\xac\xed\xa0\xf0\x9f\xff";
   std::mt19937 rng(12345);
   int plain_read = 0;
   const int trials = 4000;

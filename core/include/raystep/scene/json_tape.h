@@ -60,9 +60,9 @@ class JsonTape {
   // Parses the whole text as one JSON value (RFC 8259, whitespace around it). On a bad text throws exactly the
   // nlohmann::json::parse_error or out_of_range (number overflow) that nlohmann::json::parse(text) throws.
   static JsonTape parse(std::string_view text);
-  // The two ways parse() reads: first a fast scanner for the plain JSON that raystep writes (printable ASCII
-  // strings without escapes, numbers that convert exactly), which returns false on anything outside that subset,
-  // valid or not; then nlohmann's SAX parser, which decides every other text.
+  // The two ways parse() reads: first a fast scanner for the plain JSON that raystep writes (strings without \u
+  // escapes, numbers that convert exactly), which returns false on anything outside that subset, valid or not;
+  // then nlohmann's SAX parser, which decides every other text.
   static bool parse_plain(std::string_view text, JsonTape* tape);
   static JsonTape parse_with_nlohmann(std::string_view text);
 
