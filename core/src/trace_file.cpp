@@ -8,12 +8,14 @@
 #include <functional>
 #include <fstream>
 #include <map>
-#include <set>
 #include <sstream>
+#include <string_view>
+#include <unordered_set>
 
 #include <nlohmann/json.hpp>
 
 #include "raystep/scene/json_locate.h"
+#include "raystep/scene/json_tape.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
@@ -387,58 +389,90 @@ void write_trace_csv(const std::string& path, const Trace& t) {
 
 namespace {
 
+// A JSON path in display form ("rays[0].events[3].prim"), spelled out only when an error names it: a chain
+// of a root, member keys and array indices on the stack of the reader.
+class Path {
+ public:
+  Path(const char* root) : root_(root) {}  // NOLINT: "scene", "trace", ... are paths
+  // The parent must outlive the child: keep each level in a named local.
+  Path key(std::string_view k) const { return Path(this, k, 0, false); }
+  Path at(size_t index) const { return Path(this, {}, index, true); }
+  std::string str() const {
+    if (!parent_) return std::string(root_);
+    std::string s = parent_->str();
+    if (is_index_) s += "[" + std::to_string(index_) + "]";
+    else (s += ".") += key_;
+    return s;
+  }
+
+ private:
+  Path(const Path* parent, std::string_view k, size_t index, bool is_index)
+      : parent_(parent), key_(k), index_(index), is_index_(is_index) {}
+  const Path* parent_ = nullptr;
+  const char* root_ = nullptr;
+  std::string_view key_;
+  size_t index_ = 0;
+  bool is_index_ = false;
+};
+
+using Value = JsonValue;
+
 // Walks a parsed document with the JSON path of every value, so that errors say where.
 class Reader {
  public:
   Reader(const std::string& name, const std::string& text) : name_(name), text_(text) {}
 
-  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
-    throw InputError(name_, line_of(path), path + ": " + what);
+  [[noreturn]] void fail(const Path& path, const std::string& what) const {
+    std::string p = path.str();
+    throw InputError(name_, line_of(p), p + ": " + what);
   }
 
-  const json& member(const json& obj, const std::string& path, const char* key) const {
+  Value member(const Value& obj, const Path& path, const char* key) const {
     if (!obj.is_object()) fail(path, "expected an object");
-    auto it = obj.find(key);
-    if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
-    return *it;
+    Value v = obj.find(key);
+    if (!v.exists()) fail(path, std::string("missing \"") + key + "\"");
+    return v;
   }
-  float real(const json& v, const std::string& path) const {
+  float real(const Value& v, const Path& path) const {
     if (v.is_string()) {
       if (v == "inf") return kInfinity;
       if (v == "-inf") return -kInfinity;
     }
     if (!v.is_number()) fail(path, v.is_null() ? "expected a number, found null (NaN?)" : "expected a number");
-    double d = v.get<double>();
+    double d = v.get_double();
     if (!std::isfinite(d) || std::fabs(d) > 3.4028234663852886e38) fail(path, "number out of float range");
     return float(d);
   }
-  float real_at(const json& obj, const std::string& path, const char* key) const {
-    return real(member(obj, path, key), path + "." + key);
+  float real_at(const Value& obj, const Path& path, const char* key) const {
+    return real(member(obj, path, key), path.key(key));
   }
-  int64_t integer(const json& v, const std::string& path, int64_t lo, int64_t hi) const {
+  int64_t integer(const Value& v, const Path& path, int64_t lo, int64_t hi) const {
     if (!v.is_number_integer()) fail(path, "expected an integer");
-    int64_t i = v.get<int64_t>();
+    int64_t i = v.get_int64();
     if (i < lo || i > hi)
       fail(path, "value " + std::to_string(i) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi));
     return i;
   }
-  int64_t integer_at(const json& obj, const std::string& path, const char* key, int64_t lo, int64_t hi) const {
-    return integer(member(obj, path, key), path + "." + key, lo, hi);
+  int64_t integer_at(const Value& obj, const Path& path, const char* key, int64_t lo, int64_t hi) const {
+    return integer(member(obj, path, key), path.key(key), lo, hi);
   }
-  std::string text_at(const json& obj, const std::string& path, const char* key) const {
-    const json& v = member(obj, path, key);
-    if (!v.is_string()) fail(path + "." + key, "expected a string");
-    return v.get<std::string>();
+  std::string text_at(const Value& obj, const Path& path, const char* key) const {
+    return std::string(view_at(obj, path, key));
   }
-  glm::vec3 vec_at(const json& obj, const std::string& path, const char* key) const {
-    const json& v = member(obj, path, key);
-    std::string p = path + "." + key;
+  std::string_view view_at(const Value& obj, const Path& path, const char* key) const {
+    Value v = member(obj, path, key);
+    if (!v.is_string()) fail(path.key(key), "expected a string");
+    return v.get_string();
+  }
+  glm::vec3 vec_at(const Value& obj, const Path& path, const char* key) const {
+    Value v = member(obj, path, key);
+    Path p = path.key(key);
     if (!v.is_array() || v.size() != 3) fail(p, "expected an array of 3 numbers");
-    return glm::vec3(real(v[0], p + "[0]"), real(v[1], p + "[1]"), real(v[2], p + "[2]"));
+    return glm::vec3(real(v[0], p.at(0)), real(v[1], p.at(1)), real(v[2], p.at(2)));
   }
-  const json& array_at(const json& obj, const std::string& path, const char* key) const {
-    const json& v = member(obj, path, key);
-    if (!v.is_array()) fail(path + "." + key, "expected an array");
+  Value array_at(const Value& obj, const Path& path, const char* key) const {
+    Value v = member(obj, path, key);
+    if (!v.is_array()) fail(path.key(key), "expected an array");
     return v;
   }
 
@@ -462,22 +496,32 @@ int Reader::line_of(const std::string& path) const {
   return json_line_of(text_, pointer);
 }
 
+// Names to enums without building strings (the names are in the tables at the top).
+template <size_t N>
+int name_index(std::string_view name, const char* const (&names)[N]) {
+  for (size_t i = 0; i < N; ++i)
+    if (name == names[i]) return int(i);
+  return -1;
+}
+
 }  // namespace
 
 Trace parse_trace_json(const std::string& text, const std::string& name) {
-  json doc;
+  JsonTape tape;
   try {
-    doc = json::parse(text);
+    tape = JsonTape::parse(text);
   } catch (const json::parse_error& e) {
     int line = json_line_at_byte(text, e.byte);
     bool truncated = e.byte >= text.size();
     throw InputError(name, line, truncated ? "the trace is truncated (unexpected end of the file)"
                                            : std::string("malformed JSON: ") + e.what());
   }
+  const Value doc = tape.root();
   Reader rd(name, text);
-  const std::string root = "trace";
+  const Path root = "trace";
   if (!doc.is_object()) rd.fail(root, "expected a JSON object");
-  std::string format = doc.contains("format") && doc["format"].is_string() ? doc["format"].get<std::string>() : "";
+  Value format_value = doc.find("format");
+  std::string_view format = format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
   if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
   int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
   if (version != kTraceVersion)
@@ -485,32 +529,32 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
                            std::to_string(kTraceVersion) + ")");
 
   Trace t;
-  const json& scene = rd.member(doc, root, "scene");
+  const Value scene = rd.member(doc, root, "scene");
   t.scene_path = rd.text_at(scene, "scene", "path");
   t.scene_hash = rd.text_at(scene, "scene", "hash");
   t.scene_primitives = uint64_t(rd.integer_at(scene, "scene", "primitives", 0, int64_t(1) << 40));
 
-  const json& st = rd.member(doc, root, "structure");
-  t.structure.kind = rd.text_at(st, "structure", "kind");
-  t.structure.bounds.lo = rd.vec_at(st, "structure", "bounds_min");
-  t.structure.bounds.hi = rd.vec_at(st, "structure", "bounds_max");
+  const Value st = rd.member(doc, root, "structure");
+  const Path sp = "structure";
+  t.structure.kind = rd.text_at(st, sp, "kind");
+  t.structure.bounds.lo = rd.vec_at(st, sp, "bounds_min");
+  t.structure.bounds.hi = rd.vec_at(st, sp, "bounds_max");
   bool grid = t.structure.kind == "grid";
   if (grid) {
-    const json& res = rd.array_at(st, "structure", "resolution");
-    if (res.size() != 3) rd.fail("structure.resolution", "expected [nx, ny, nz]");
-    for (int a = 0; a < 3; ++a)
-      t.structure.resolution[a] = int(rd.integer(res[a], "structure.resolution[" + std::to_string(a) + "]", 1, 4096));
+    const Value res = rd.array_at(st, sp, "resolution");
+    const Path rp = sp.key("resolution");
+    if (res.size() != 3) rd.fail(rp, "expected [nx, ny, nz]");
+    for (int a = 0; a < 3; ++a) t.structure.resolution[a] = int(rd.integer(res[a], rp.at(a), 1, 4096));
   }
-  for (auto it = st.begin(); it != st.end(); ++it) {
-    if (it.key() == "kind" || it.key() == "bounds_min" || it.key() == "bounds_max" || it.key() == "resolution")
-      continue;
+  for (const auto& [key, value] : st.members()) {
+    if (key == "kind" || key == "bounds_min" || key == "bounds_max" || key == "resolution") continue;
     TraceParam p;
-    p.key = it.key();
-    if (it->is_string()) {
+    p.key = std::string(key);
+    if (value.is_string()) {
       p.is_text = true;
-      p.text = it->get<std::string>();
+      p.text = std::string(value.get_string());
     } else {
-      p.number = rd.real(*it, "structure." + it.key());
+      p.number = rd.real(value, sp.key(key));
     }
     t.structure.params.push_back(p);
   }
@@ -519,59 +563,62 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   int64_t max_node = INT32_MAX;  // trees: ids below the structure's node count, when it gives one
   for (const TraceParam& p : t.structure.params)
     if (p.key == "nodes" && !p.is_text) max_node = std::min<int64_t>(int64_t(p.number) - 1, INT32_MAX);
-  auto axis_index = [&](const json& v, const std::string& path) {
+  auto axis_index = [&](const Value& v, const Path& path) {
     if (v.is_null()) return -1;
-    for (int a = 0; a < 3; ++a)
-      if (v == kAxes[a]) return a;
-    rd.fail(path, "expected \"x\", \"y\", \"z\" or null");
+    int a = v.is_string() ? name_index(v.get_string(), kAxes) : -1;
+    if (a < 0) rd.fail(path, "expected \"x\", \"y\", \"z\" or null");
+    return a;
   };
 
-  const json& rays = rd.array_at(doc, root, "rays");
+  const Value rays = rd.array_at(doc, root, "rays");
+  t.rays.reserve(rays.size());
+  const Path rays_path = "rays";
   for (size_t r = 0; r < rays.size(); ++r) {
-    std::string rp = "rays[" + std::to_string(r) + "]";
-    const json& jr = rays[r];
+    const Path rp = rays_path.at(r);
+    const Value jr = rays[r];
     TracedRay tr;
     tr.ray.origin = rd.vec_at(jr, rp, "origin");
     tr.ray.direction = rd.vec_at(jr, rp, "direction");
     tr.ray.tmin = rd.real_at(jr, rp, "tmin");
     tr.ray.tmax = rd.real_at(jr, rp, "tmax");
-    std::string kind = rd.text_at(jr, rp, "kind");
-    bool known_kind = false;
-    for (int k = 0; k < 4; ++k)
-      if (kind == kRayKinds[k]) {
-        tr.kind = RayKind(k);
-        known_kind = true;
-      }
-    if (!known_kind) rd.fail(rp + ".kind", "unknown ray kind \"" + kind + "\"");
+    std::string_view kind = rd.view_at(jr, rp, "kind");
+    int k = name_index(kind, kRayKinds);
+    if (k < 0) rd.fail(rp.key("kind"), "unknown ray kind \"" + std::string(kind) + "\"");
+    tr.kind = RayKind(k);
     tr.depth = int(rd.integer_at(jr, rp, "depth", 0, 1000));
     if (jr.contains("pixel")) {
-      const json& px = jr["pixel"];
-      if (!px.is_array() || px.size() != 2) rd.fail(rp + ".pixel", "expected [x, y]");
+      const Value px = jr.find("pixel");
+      const Path pp = rp.key("pixel");
+      if (!px.is_array() || px.size() != 2) rd.fail(pp, "expected [x, y]");
       tr.has_pixel = true;
-      tr.pixel[0] = int(rd.integer(px[0], rp + ".pixel[0]", 0, 1 << 20));
-      tr.pixel[1] = int(rd.integer(px[1], rp + ".pixel[1]", 0, 1 << 20));
+      tr.pixel[0] = int(rd.integer(px[0], pp.at(0), 0, 1 << 20));
+      tr.pixel[1] = int(rd.integer(px[1], pp.at(1), 0, 1 << 20));
     }
-    const json& events = rd.array_at(jr, rp, "events");
+    const Value events = rd.array_at(jr, rp, "events");
+    const Path events_path = rp.key("events");
+    tr.events.reserve(events.size());
     for (size_t i = 0; i < events.size(); ++i) {
-      std::string ep = rp + ".events[" + std::to_string(i) + "]";
-      const json& je = events[i];
+      const Path ep = events_path.at(i);
+      const Value je = events[i];
       Event e;
       e.seq = uint32_t(rd.integer_at(je, ep, "seq", 0, 1ll << 32));
-      if (e.seq != i) rd.fail(ep + ".seq", "expected " + std::to_string(i) + " (events are numbered in order)");
-      std::string type = rd.text_at(je, ep, "type");
-      if (!parse_event_type(type, &e.type)) rd.fail(ep + ".type", "unknown event type \"" + type + "\"");
+      if (e.seq != i) rd.fail(ep.key("seq"), "expected " + std::to_string(i) + " (events are numbered in order)");
+      std::string_view type = rd.view_at(je, ep, "type");
+      int type_index = name_index(type, kEventNames);
+      if (type_index < 0) rd.fail(ep.key("type"), "unknown event type \"" + std::string(type) + "\"");
+      e.type = EventType(type_index);
       switch (e.type) {
         case EventType::cell: {
-          const json& c = rd.array_at(je, ep, "cell");
-          if (c.size() != 3) rd.fail(ep + ".cell", "expected [i, j, k]");
+          const Value c = rd.array_at(je, ep, "cell");
+          const Path cp = ep.key("cell");
+          if (c.size() != 3) rd.fail(cp, "expected [i, j, k]");
           for (int a = 0; a < 3; ++a)
-            e.cell[a] = int(rd.integer(c[a], ep + ".cell[" + std::to_string(a) + "]", 0,
-                                       grid ? t.structure.resolution[a] - 1 : (1 << 20)));
+            e.cell[a] = int(rd.integer(c[a], cp.at(a), 0, grid ? t.structure.resolution[a] - 1 : (1 << 20)));
           e.t_enter = rd.real_at(je, ep, "t_enter");
           e.t_exit = rd.real_at(je, ep, "t_exit");
           e.t_max = rd.vec_at(je, ep, "t_max");
           e.t_delta = rd.vec_at(je, ep, "t_delta");
-          e.next_axis = axis_index(rd.member(je, ep, "next_axis"), ep + ".next_axis");
+          e.next_axis = axis_index(rd.member(je, ep, "next_axis"), ep.key("next_axis"));
           break;
         }
         case EventType::node:
@@ -585,9 +632,9 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
           break;
         case EventType::prim_test: {
           e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
-          const json& h = rd.member(je, ep, "hit");
-          if (!h.is_boolean()) rd.fail(ep + ".hit", "expected true or false");
-          e.hit = h.get<bool>();
+          const Value h = rd.member(je, ep, "hit");
+          if (!h.is_boolean()) rd.fail(ep.key("hit"), "expected true or false");
+          e.hit = h.get_bool();
           if (e.hit) e.t = rd.real_at(je, ep, "t");
           break;
         }
@@ -602,8 +649,10 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         case EventType::hit_accepted: {
           e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
           e.t = rd.real_at(je, ep, "t");
-          std::string reason = rd.text_at(je, ep, "reason");
-          if (!parse_accept_reason(reason, &e.reason)) rd.fail(ep + ".reason", "unknown reason \"" + reason + "\"");
+          std::string_view reason = rd.view_at(je, ep, "reason");
+          int reason_index = name_index(reason, kReasonNames);
+          if (reason_index < 0) rd.fail(ep.key("reason"), "unknown reason \"" + std::string(reason) + "\"");
+          e.reason = AcceptReason(reason_index);
           break;
         }
         case EventType::ray_end:
@@ -618,48 +667,55 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     }
     if (tr.events.empty() || tr.events.front().type != EventType::ray_begin ||
         tr.events.back().type != EventType::ray_end)
-      rd.fail(rp + ".events", "a ray's events start with ray_begin and end with ray_end");
+      rd.fail(events_path, "a ray's events start with ray_begin and end with ray_end");
     t.rays.push_back(std::move(tr));
   }
 
-  const json& geo = rd.member(doc, root, "geometry");
-  const json& cells = rd.array_at(geo, "geometry", "cells");
+  const Value geo = rd.member(doc, root, "geometry");
+  const Path gp = "geometry";
+  const Value cells = rd.array_at(geo, gp, "cells");
+  const Path cells_path = gp.key("cells");
+  t.cells.reserve(cells.size());
   for (size_t i = 0; i < cells.size(); ++i) {
-    std::string cp = "geometry.cells[" + std::to_string(i) + "]";
+    const Path cp = cells_path.at(i);
     TraceCell c;
-    const json& idx = rd.array_at(cells[i], cp, "cell");
-    if (idx.size() != 3) rd.fail(cp + ".cell", "expected [i, j, k]");
+    const Value idx = rd.array_at(cells[i], cp, "cell");
+    const Path ip = cp.key("cell");
+    if (idx.size() != 3) rd.fail(ip, "expected [i, j, k]");
     for (int a = 0; a < 3; ++a)
-      c.cell[a] = int(rd.integer(idx[a], cp + ".cell[" + std::to_string(a) + "]", 0,
-                                 grid ? t.structure.resolution[a] - 1 : (1 << 20)));
+      c.cell[a] = int(rd.integer(idx[a], ip.at(a), 0, grid ? t.structure.resolution[a] - 1 : (1 << 20)));
     c.box.lo = rd.vec_at(cells[i], cp, "min");
     c.box.hi = rd.vec_at(cells[i], cp, "max");
     t.cells.push_back(c);
   }
   // Tree nodes: ids below the structure's node count, each listed once, every node an event names listed.
-  std::set<int32_t> listed;
+  std::unordered_set<int32_t> listed;
   if (geo.contains("nodes")) {
-    const json& nodes = rd.array_at(geo, "geometry", "nodes");
+    const Value nodes = rd.array_at(geo, gp, "nodes");
+    const Path nodes_path = gp.key("nodes");
+    t.nodes.reserve(nodes.size());
+    listed.reserve(nodes.size());
     for (size_t i = 0; i < nodes.size(); ++i) {
-      std::string np = "geometry.nodes[" + std::to_string(i) + "]";
-      const json& jn = nodes[i];
+      const Path np = nodes_path.at(i);
+      const Value jn = nodes[i];
       TraceNode n;
       n.id = int32_t(rd.integer_at(jn, np, "id", 0, max_node));
-      if (!listed.insert(n.id).second) rd.fail(np + ".id", "node " + std::to_string(n.id) + " is listed twice");
+      if (!listed.insert(n.id).second) rd.fail(np.key("id"), "node " + std::to_string(n.id) + " is listed twice");
       n.parent = int32_t(rd.integer_at(jn, np, "parent", -1, max_node));
       n.depth = int32_t(rd.integer_at(jn, np, "depth", 0, 1 << 16));
       n.box.lo = rd.vec_at(jn, np, "min");
       n.box.hi = rd.vec_at(jn, np, "max");
-      const json& leaf = rd.member(jn, np, "leaf");
-      if (!leaf.is_boolean()) rd.fail(np + ".leaf", "expected true or false");
-      n.leaf = leaf.get<bool>();
+      const Value leaf = rd.member(jn, np, "leaf");
+      if (!leaf.is_boolean()) rd.fail(np.key("leaf"), "expected true or false");
+      n.leaf = leaf.get_bool();
       if (n.leaf) {
-        const json& ids = rd.array_at(jn, np, "prims");
-        for (size_t k = 0; k < ids.size(); ++k)
-          n.prims.push_back(int32_t(rd.integer(ids[k], np + ".prims[" + std::to_string(k) + "]", 0, max_prim)));
+        const Value ids = rd.array_at(jn, np, "prims");
+        const Path pp = np.key("prims");
+        n.prims.reserve(ids.size());
+        for (size_t k = 0; k < ids.size(); ++k) n.prims.push_back(int32_t(rd.integer(ids[k], pp.at(k), 0, max_prim)));
       } else {
-        n.axis = axis_index(rd.member(jn, np, "axis"), np + ".axis");
-        if (n.axis < 0) rd.fail(np + ".axis", "an inner node has a split axis");
+        n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
+        if (n.axis < 0) rd.fail(np.key("axis"), "an inner node has a split axis");
         n.split = rd.real_at(jn, np, "split");
       }
       t.nodes.push_back(std::move(n));
@@ -672,28 +728,33 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         bool tree_event = e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop ||
                           e.type == EventType::leaf;
         if (tree_event && !listed.count(e.node))
-          rd.fail("rays[" + std::to_string(r) + "].events[" + std::to_string(i) + "].node",
+          rd.fail(rays_path.at(r).key("events").at(i).key("node"),
                   "node " + std::to_string(e.node) + " is not in geometry.nodes");
       }
   }
 
   if (doc.contains("build")) {
-    const json& build = rd.array_at(doc, root, "build");
+    const Value build = rd.array_at(doc, root, "build");
+    t.build.reserve(build.size());
+    const Path build_path = "build";
     for (size_t i = 0; i < build.size(); ++i) {
-      std::string bp = "build[" + std::to_string(i) + "]";
-      const json& jb = build[i];
+      const Path bp = build_path.at(i);
+      const Value jb = build[i];
       TraceBuildEvent b;
       if (rd.integer_at(jb, bp, "seq", 0, 1ll << 40) != int64_t(i))
-        rd.fail(bp + ".seq", "expected " + std::to_string(i) + " (build events are numbered in order)");
-      std::string type = rd.text_at(jb, bp, "type");
-      if (!parse_event_type(type, &b.type) ||
+        rd.fail(bp.key("seq"), "expected " + std::to_string(i) + " (build events are numbered in order)");
+      std::string_view type = rd.view_at(jb, bp, "type");
+      int type_index = name_index(type, kEventNames);
+      if (type_index >= 0) b.type = EventType(type_index);
+      if (type_index < 0 ||
           (b.type != EventType::sah_candidate && b.type != EventType::split && b.type != EventType::leaf_made))
-        rd.fail(bp + ".type", "unknown build event type \"" + type + "\" (sah_candidate, split, leaf_made)");
+        rd.fail(bp.key("type"),
+                "unknown build event type \"" + std::string(type) + "\" (sah_candidate, split, leaf_made)");
       b.node = uint32_t(rd.integer_at(jb, bp, "node", 0, std::max<int64_t>(max_node, 0)));
       if (b.type == EventType::sah_candidate) {
         SahCandidate& c = b.candidate;
-        c.axis = axis_index(rd.member(jb, bp, "axis"), bp + ".axis");
-        if (c.axis < 0) rd.fail(bp + ".axis", "expected \"x\", \"y\" or \"z\"");
+        c.axis = axis_index(rd.member(jb, bp, "axis"), bp.key("axis"));
+        if (c.axis < 0) rd.fail(bp.key("axis"), "expected \"x\", \"y\" or \"z\"");
         c.position = rd.real_at(jb, bp, "position");
         c.n_below = uint32_t(rd.integer_at(jb, bp, "n_below", 0, UINT32_MAX));
         c.n_above = uint32_t(rd.integer_at(jb, bp, "n_above", 0, UINT32_MAX));
@@ -702,8 +763,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         c.area_above = rd.real_at(jb, bp, "area_above");
         c.area_node = rd.real_at(jb, bp, "area_node");
         c.cost = rd.real_at(jb, bp, "cost");
-        std::string side = rd.text_at(jb, bp, "planar_side");
-        if (side != "below" && side != "above") rd.fail(bp + ".planar_side", "expected \"below\" or \"above\"");
+        std::string_view side = rd.view_at(jb, bp, "planar_side");
+        if (side != "below" && side != "above") rd.fail(bp.key("planar_side"), "expected \"below\" or \"above\"");
         c.planar_below = side == "below";
       } else {
         b.depth = int32_t(rd.integer_at(jb, bp, "depth", 0, 1 << 16));
@@ -712,39 +773,43 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         b.prims = uint32_t(rd.integer_at(jb, bp, "prims", 0, UINT32_MAX));
         b.leaf_cost = rd.real_at(jb, bp, "leaf_cost");
         if (b.type == EventType::split) {
-          b.axis = axis_index(rd.member(jb, bp, "axis"), bp + ".axis");
-          if (b.axis < 0) rd.fail(bp + ".axis", "expected \"x\", \"y\" or \"z\"");
+          b.axis = axis_index(rd.member(jb, bp, "axis"), bp.key("axis"));
+          if (b.axis < 0) rd.fail(bp.key("axis"), "expected \"x\", \"y\" or \"z\"");
           b.position = rd.real_at(jb, bp, "position");
           b.cost = rd.real_at(jb, bp, "cost");
         } else {
           std::string reason = rd.text_at(jb, bp, "reason");
-          if (!parse_leaf_reason(reason, &b.reason)) rd.fail(bp + ".reason", "unknown leaf reason \"" + reason + "\"");
+          if (!parse_leaf_reason(reason, &b.reason))
+            rd.fail(bp.key("reason"), "unknown leaf reason \"" + reason + "\"");
         }
       }
       t.build.push_back(b);
     }
   }
 
-  const json& prims = rd.array_at(geo, "geometry", "primitives");
+  const Value prims = rd.array_at(geo, gp, "primitives");
+  const Path prims_path = gp.key("primitives");
+  t.primitives.reserve(prims.size());
   for (size_t i = 0; i < prims.size(); ++i) {
-    std::string pp = "geometry.primitives[" + std::to_string(i) + "]";
+    const Path pp = prims_path.at(i);
     TracePrimitive p;
     p.id = int32_t(rd.integer_at(prims[i], pp, "id", 0, max_prim));
-    std::string type = rd.text_at(prims[i], pp, "type");
+    std::string_view type = rd.view_at(prims[i], pp, "type");
     if (type == "triangle") {
-      const json& v = rd.array_at(prims[i], pp, "vertices");
-      if (v.size() != 3) rd.fail(pp + ".vertices", "expected 3 vertices");
+      const Value v = rd.array_at(prims[i], pp, "vertices");
+      const Path vsp = pp.key("vertices");
+      if (v.size() != 3) rd.fail(vsp, "expected 3 vertices");
       for (int k = 0; k < 3; ++k) {
-        std::string vp = pp + ".vertices[" + std::to_string(k) + "]";
+        const Path vp = vsp.at(k);
         if (!v[k].is_array() || v[k].size() != 3) rd.fail(vp, "expected an array of 3 numbers");
-        p.v[k] = glm::vec3(rd.real(v[k][0], vp + "[0]"), rd.real(v[k][1], vp + "[1]"), rd.real(v[k][2], vp + "[2]"));
+        p.v[k] = glm::vec3(rd.real(v[k][0], vp.at(0)), rd.real(v[k][1], vp.at(1)), rd.real(v[k][2], vp.at(2)));
       }
     } else if (type == "sphere") {
       p.type = PrimType::sphere;
       p.v[0] = rd.vec_at(prims[i], pp, "center");
       p.radius = rd.real_at(prims[i], pp, "radius");
     } else {
-      rd.fail(pp + ".type", "unknown primitive type \"" + type + "\"");
+      rd.fail(pp.key("type"), "unknown primitive type \"" + std::string(type) + "\"");
     }
     t.primitives.push_back(p);
   }
@@ -754,9 +819,20 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
 Trace read_trace_json(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot read the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_trace_json(ss.str(), path);
+  std::string text;
+  in.seekg(0, std::ios::end);
+  std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0 && in) {  // a regular file: read it in one go
+    text.resize(size_t(size));
+    in.read(text.data(), size);
+    text.resize(size_t(in.gcount()));
+  }
+  in.clear();
+  std::ostringstream rest;  // whatever is left (a file that grew, or a stream that cannot seek)
+  rest << in.rdbuf();
+  text += rest.str();
+  return parse_trace_json(text, path);
 }
 
 std::string trace_summary(const Trace& t) {

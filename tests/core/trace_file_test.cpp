@@ -4,10 +4,17 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
+#include "raystep/accel/kdtree.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/trace/build_event_writer.h"
 #include "raystep/trace/grid_trace.h"
+#include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "test_scenes.h"
+#include "trace_reader_reference.h"
 
 namespace raystep {
 namespace {
@@ -166,6 +173,130 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
     }
   }
   EXPECT_THROW(read_trace_json(::testing::TempDir() + "/no_such_trace.json"), InputError);
+}
+
+// ---- the reader against the one it replaced (tests/core/trace_reader_reference.h) ----
+
+// What a reader makes of a text, in words: the trace written back, or the error with its file and line.
+template <class Read>
+std::string outcome(Read read, const std::string& text) {
+  try {
+    return "trace " + trace_to_json(read(text, "x.json"));
+  } catch (const InputError& e) {
+    return "error " + e.file() + "|" + std::to_string(e.line()) + "|" + e.what();
+  } catch (const nlohmann::json::exception& e) {
+    return std::string("json exception ") + e.what();
+  } catch (const std::exception& e) {
+    return std::string("exception ") + e.what();
+  }
+}
+
+std::string new_reader(const std::string& text) {
+  return outcome([](const std::string& t, const std::string& n) { return parse_trace_json(t, n); }, text);
+}
+std::string old_reader(const std::string& text) {
+  return outcome([](const std::string& t, const std::string& n) { return reference::parse_trace_json(t, n); }, text);
+}
+
+// A kd trace with every kind of tree event, the nodes, and the build events.
+std::string kd_trace_text() {
+  Geometry g = test::make_soup(5, 5, 1);
+  KdTree tree;
+  BuildEventCollector build;
+  tree.build(g, build);
+  std::vector<RayRequest> rays;
+  for (const Ray& r : random_rays(g.bounds(), 3, 4)) rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
+  rays[1].kind = RayKind::shadow;
+  Trace t = record_trace(g, tree, rays, "soup", "fnv1a64:0000000000000000");
+  t.build = build.events;
+  return trace_to_json(t);
+}
+
+// Random damage to a trace: a token replaced by another value, a token deleted, a member repeated with another
+// value (the last one counts), or bytes changed, cut or inserted. Both readers must make the same of it.
+void expect_readers_agree(const std::string& text, int trials, uint32_t seed) {
+  std::vector<std::pair<size_t, size_t>> tokens;  // [begin, end) of strings, numbers, literals
+  std::vector<size_t> keys;                        // where a member's key starts
+  for (size_t i = 0; i < text.size();) {
+    char c = text[i];
+    size_t j = i + 1;
+    if (c == '"') {
+      while (j < text.size() && text[j] != '"') ++j;
+      ++j;
+      if (j < text.size() && text[j] == ':') keys.push_back(i);
+    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '-') {
+      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '.' ||
+                                 text[j] == '-' || text[j] == '+'))
+        ++j;
+    } else {
+      ++i;
+      continue;
+    }
+    tokens.emplace_back(i, j);
+    i = j;
+  }
+  const char* values[] = {"0", "1", "2", "-1", "3", "99", "4096", "4097", "1e400", "-0", "0.5", "4294967296",
+                          "18446744073709551615", "9223372036854775808", "-9223372036854775809", "1e39", "3.5e38",
+                          "1e-50", "null", "true", "false", "\"inf\"", "\"-inf\"", "\"x\"", "\"w\"", "\"cell\"",
+                          "\"node\"", "\"split\"", "\"leaf_made\"", "\"prim_test\"", "\"ray_begin\"", "\"ray_end\"",
+                          "\"grid\"", "\"kd\"", "\"sphere\"", "\"triangle\"", "\"below\"", "\"budget\"",
+                          "\"any_hit\"", "\"shadow\"", "[]", "{}", "[0,0,0]", "[1,2]", "[1,2,3,4]", "\"caf\\u00e9\"",
+                          "\"\\\"\"", "\"trace\"", "\"\""};
+  const std::string bytes = "{}[],:\"\\ 0123456789.-+eE\ntrufalsnx";
+  std::mt19937 rng(seed);
+  int accepted = 0;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::string bad = text;
+    switch (rng() % 4) {
+      case 0: {
+        auto [b, e] = tokens[rng() % tokens.size()];
+        bad.replace(b, e - b, values[rng() % std::size(values)]);
+        break;
+      }
+      case 1: {
+        auto [b, e] = tokens[rng() % tokens.size()];
+        bad.erase(b, e - b);
+        break;
+      }
+      case 2: {
+        size_t k = keys[rng() % keys.size()];
+        size_t colon = bad.find(':', k);
+        bad.insert(k, bad.substr(k, colon + 1 - k) + values[rng() % std::size(values)] + ",");
+        break;
+      }
+      case 3: {
+        size_t at = rng() % bad.size();
+        char c = bytes[rng() % bytes.size()];
+        switch (rng() % 3) {
+          case 0: bad[at] = c; break;
+          case 1: bad.erase(at, 1 + rng() % 3); break;
+          case 2: bad.resize(at); break;
+        }
+        break;
+      }
+    }
+    std::string got = new_reader(bad), expected = old_reader(bad);
+    ASSERT_EQ(got, expected) << bad;
+    accepted += got.rfind("trace ", 0) == 0;
+  }
+  EXPECT_GT(accepted, 0);  // some damage is harmless (a repeated key, a number changed within its range)
+}
+
+TEST(TraceFile, TheReaderReadsEveryTraceAsTheReaderItReplacedDid) {
+  TrapScene s;
+  std::string grid = trace_to_json(s.trace());
+  std::string kd = kd_trace_text();
+  for (const char* part : {"\"type\":\"push\"", "\"type\":\"pop\"", "\"type\":\"leaf\"", "\"type\":\"prim_test\"",
+                           "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"",
+                           "\"nodes\": ["})
+    EXPECT_NE(kd.find(part), std::string::npos) << part;
+  for (const char* part : {"\"type\":\"mailbox_hit\"", "\"type\":\"hit_deferred\"", "\"type\":\"sphere\"", "\"pixel\""})
+    EXPECT_NE(grid.find(part), std::string::npos) << part;
+  EXPECT_EQ(new_reader(grid), old_reader(grid));
+  EXPECT_EQ(new_reader(kd), old_reader(kd));
+  EXPECT_EQ(new_reader(kd).rfind("trace ", 0), 0u);
+  expect_readers_agree(grid, 3000, 1);
+  expect_readers_agree(kd, 1500, 2);
 }
 
 }  // namespace
