@@ -151,6 +151,33 @@ void classify_prim_refs(const Geometry& geometry, const std::vector<PrimRef>& pr
                         bool planar_below, const Bounds3& below_box, const Bounds3& above_box,
                         std::vector<PrimRef>* below, std::vector<PrimRef>* above);
 
+// What the list-based builders share: the tree being written, the recorder, the root's call, and a leaf made
+// of a PrimRef list. Derived provides build_node(box, parent, depth, budget, prims) (CRTP: no virtual call).
+template <class Derived, class Recorder>
+class PrimRefBuilder {
+ public:
+  PrimRefBuilder(const Geometry& geometry, const KdOptions& options, Recorder& rec)
+      : geometry_(geometry), out_(geometry, options), rec_(rec) {}
+
+  KdTreeData build() {
+    static_cast<Derived*>(this)->build_node(geometry_.bounds(), -1, 0, out_.root_budget(), root_prim_refs(geometry_));
+    return out_.finish();
+  }
+
+ protected:
+  void make_leaf(uint32_t node, const std::vector<PrimRef>& prims, float leaf_cost, LeafReason reason) {
+    std::vector<uint32_t> ids;
+    ids.reserve(prims.size());
+    for (const PrimRef& r : prims) ids.push_back(r.prim);  // already in increasing id order
+    out_.set_leaf(node, ids.data(), uint32_t(ids.size()), leaf_cost);
+    rec_.leaf_made(node, out_.info(node), uint32_t(prims.size()), leaf_cost, reason);
+  }
+
+  const Geometry& geometry_;
+  TreeWriter out_;
+  Recorder& rec_;
+};
+
 // The builder kernels, explicitly instantiated for NullBuildRecorder and BuildListenerRecorder.
 template <class Recorder>
 KdTreeData build_sah(const Geometry& geometry, const KdOptions& options, Recorder& rec);

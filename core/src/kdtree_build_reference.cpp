@@ -11,24 +11,18 @@ namespace raystep::kd {
 namespace {
 
 template <class Recorder>
-class ReferenceBuilder {
- public:
-  ReferenceBuilder(const Geometry& geometry, const KdOptions& options, Recorder& rec)
-      : geometry_(geometry), out_(geometry, options), rec_(rec) {}
+class ReferenceBuilder : public PrimRefBuilder<ReferenceBuilder<Recorder>, Recorder> {
+  using Base = PrimRefBuilder<ReferenceBuilder<Recorder>, Recorder>;
+  friend Base;
+  using Base::geometry_;
+  using Base::make_leaf;
+  using Base::out_;
+  using Base::rec_;
 
-  KdTreeData build() {
-    build_node(geometry_.bounds(), -1, 0, out_.root_budget(), root_prim_refs(geometry_));
-    return out_.finish();
-  }
+ public:
+  using Base::Base;
 
  private:
-  void make_leaf(uint32_t node, const std::vector<PrimRef>& prims, float leaf_cost, LeafReason reason) {
-    std::vector<uint32_t> ids;
-    for (const PrimRef& r : prims) ids.push_back(r.prim);  // already in increasing id order
-    out_.set_leaf(node, ids.data(), uint32_t(ids.size()), leaf_cost);
-    rec_.leaf_made(node, out_.info(node), uint32_t(prims.size()), leaf_cost, reason);
-  }
-
   void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, std::vector<PrimRef> prims) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const SahModel& model = out_.model();
@@ -95,9 +89,6 @@ class ReferenceBuilder {
     out_.set_inner(node, best.axis, best.position, above_child);
   }
 
-  const Geometry& geometry_;
-  TreeWriter out_;
-  Recorder& rec_;
 };
 
 }  // namespace
