@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
@@ -121,23 +122,17 @@ size_t agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
+  std::string mesh = bench::bunny_path();
   std::string accels = "grid";
   int size = 512, reps = 5;
   size_t random_count = 262144;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "error: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--accel") accels = next();
-    else if (a == "--size") size = std::stoi(next());
-    else if (a == "--random") random_count = std::stoul(next());
-    else if (a == "--reps") reps = std::stoi(next());
+  bench::Args args(argc, argv);
+  for (std::string a; args.next(&a);) {
+    if (a == "--accel") accels = args.value();
+    else if (a == "--size") size = int(args.number(1));
+    else if (a == "--random") random_count = size_t(args.number(1));
+    else if (a == "--reps") reps = int(args.number(1));
+    else if (a.rfind("--", 0) == 0) bench::Args::fail("unknown option " + a + " (--accel a,b --size N --random N --reps N)");
     else mesh = a;
   }
   if (!std::filesystem::exists(mesh)) {

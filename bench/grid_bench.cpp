@@ -4,10 +4,10 @@
 // otherwise a generated sphere of small triangles, so the benchmark always runs.
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
 #include <memory>
 #include <random>
 
+#include "bench_util.h"
 #include "grid_hookfree.h"
 #include "raystep/accel/grid.h"
 #include "raystep/render/camera.h"
@@ -23,24 +23,7 @@ struct Fixture {
   std::vector<Ray> rays;
 
   Fixture() {
-    std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
-    if (std::filesystem::exists(mesh)) {
-      scene = load_scene(mesh);
-    } else {
-      // A sphere of 80,000 small triangles: a stand-in with a mesh's structure.
-      scene.geometry.begin_object("sphere", 0);
-      const int rings = 200, segments = 200;
-      auto p = [&](int i, int j) {
-        float th = 3.14159265f * i / rings, ph = 6.2831853f * j / segments;
-        return glm::vec3(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-      };
-      for (int i = 0; i < rings; ++i)
-        for (int j = 0; j < segments; ++j) {
-          scene.geometry.add_triangle(p(i, j), p(i + 1, j), p(i + 1, j + 1));
-          scene.geometry.add_triangle(p(i, j), p(i + 1, j + 1), p(i, j + 1));
-        }
-      scene.camera.eye = glm::vec3(0.f, 0.5f, 3.5f);
-    }
+    scene = bench::bench_scene();
     grid = std::make_unique<UniformGrid>();
     grid->build(scene.geometry);
     rays = camera_rays(scene.camera, 256, 256);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "raystep/accel/kdtree_build.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/util/error.h"
@@ -80,21 +81,15 @@ double median_ms(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
+  std::string mesh = bench::bunny_path();
   int reps = 5, levels = 2;
   std::string builders = "sah,median";
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "error: %s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--reps") reps = std::max(1, std::stoi(next()));
-    else if (a == "--levels") levels = std::max(0, std::stoi(next()));
-    else if (a == "--builders") builders = next();
+  bench::Args args(argc, argv);
+  for (std::string a; args.next(&a);) {
+    if (a == "--reps") reps = int(args.number(1));
+    else if (a == "--levels") levels = int(args.number(0));
+    else if (a == "--builders") builders = args.value();
+    else if (a.rfind("--", 0) == 0) bench::Args::fail("unknown option " + a + " (--reps N --levels L --builders a,b)");
     else mesh = a;
   }
   if (!std::filesystem::exists(mesh)) {

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <memory>
 
+#include "bench_util.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/render/camera.h"
@@ -27,25 +28,6 @@
 
 namespace raystep {
 namespace {
-
-Scene bench_scene() {
-  std::string mesh = std::string(RAYSTEP_SOURCE_DIR) + "/../shared/meshes/stanford-bunny.obj";
-  if (std::filesystem::exists(mesh)) return load_scene(mesh);
-  Scene scene;
-  scene.geometry.begin_object("sphere", 0);
-  const int rings = 200, segments = 200;
-  auto p = [&](int i, int j) {
-    float th = 3.14159265f * i / rings, ph = 6.2831853f * j / segments;
-    return glm::vec3(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-  };
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < segments; ++j) {
-      scene.geometry.add_triangle(p(i, j), p(i + 1, j), p(i + 1, j + 1));
-      scene.geometry.add_triangle(p(i, j), p(i + 1, j + 1), p(i, j + 1));
-    }
-  scene.camera.eye = glm::vec3(0.f, 0.5f, 3.5f);
-  return scene;
-}
 
 size_t event_count(const Trace& t) {
   size_t n = 0;
@@ -80,7 +62,7 @@ Trace camera_trace(const Scene& scene, const Accelerator& accel, size_t target) 
 struct TraceFiles {
   std::vector<std::pair<std::string, std::string>> files;  // name, path
   TraceFiles() {
-    Scene scene = bench_scene();
+    Scene scene = bench::bench_scene();
     std::string dir = std::filesystem::temp_directory_path().string();
     auto write = [&](const std::string& name, const Trace& t) {
       std::string path = dir + "/raystep_bench_" + name + ".json";
