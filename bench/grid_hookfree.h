@@ -17,7 +17,7 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
   std::array<int, 3> n = grid.resolution();
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
-  glm::vec3 t_max, t_delta;
+  float t_max[3], t_delta[3];
   for (int a = 0; a < 3; ++a) {
     cell[a] = grid.cell_of(start[a], a);
     float d = ray.direction[a];
@@ -38,6 +38,9 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
       t_delta[a] = kInfinity;
     }
   }
+  const ptrdiff_t stride[3] = {1, ptrdiff_t(n[0]), ptrdiff_t(n[0]) * n[1]};
+  const ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
+  size_t id = grid.cell_id(cell[0], cell[1], cell[2]);
   MailboxStamp mailbox = grid.mailboxes().begin_ray();
   WatertightRay wray(ray);
   const Geometry& geometry = grid.geometry();
@@ -45,7 +48,6 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
   for (;;) {
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
-    size_t id = grid.cell_id(cell[0], cell[1], cell[2]);
     uint32_t first = 0, last = 0;
     if (grid.occupied(id)) first = grid.cell_start(id), last = grid.cell_start(id + 1);
     for (uint32_t r = first; r < last; ++r) {
@@ -62,6 +64,7 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
     if (t_max[axis] > t_exit) break;
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) break;
+    id += size_t(id_step[axis]);
     t_max[axis] += t_delta[axis];
   }
   return hit->found();

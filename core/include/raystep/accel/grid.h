@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -98,7 +99,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   // Set up the 3D-DDA: the start cell (clamped), and per axis stepX, tMaxX (t of the next boundary), tDeltaX.
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
-  glm::vec3 t_max, t_delta;
+  float t_max[3], t_delta[3];  // plain arrays: indexed by a run-time axis without glm's switch
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
@@ -120,6 +121,11 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     }
   }
 
+  // The cell's index in the arrays, stepped like the cell itself: one addition per step.
+  const ptrdiff_t stride[3] = {1, ptrdiff_t(n_[0]), ptrdiff_t(n_[0]) * n_[1]};
+  const ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
+  size_t id = cell_id(cell[0], cell[1], cell[2]);
+
   MailboxStamp mailbox = mailboxes_.begin_ray();
   WatertightRay wray(ray);
   float t_nearest = ray.tmax;
@@ -131,13 +137,13 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
     if constexpr (Recorder::enabled)
-      rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit, t_max, t_delta,
+      rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit,
+                            glm::vec3(t_max[0], t_max[1], t_max[2]), glm::vec3(t_delta[0], t_delta[1], t_delta[2]),
                             t_max[axis] <= t_exit ? axis : -1});
     else
       rec.cell(GridCellStep{});
 
     // Test the cell's primitives, skipping those already tested for this ray (mailbox).
-    size_t id = cell_id(cell[0], cell[1], cell[2]);
     uint32_t first = 0, last = 0;  // an empty cell's offsets are never read
     if (occupied(id)) first = cell_start_[id], last = cell_start_[id + 1];
     for (uint32_t r = first; r < last; ++r) {
@@ -182,6 +188,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
       if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
       break;
     }
+    id += size_t(id_step[axis]);
     t_cell_enter = t_max[axis];
     t_max[axis] += t_delta[axis];
   }
