@@ -493,11 +493,14 @@ void SceneView::updateSelected() {
   const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
   int n = session_->selectedNode();
   if (kd && n >= 0 && size_t(n) < kd->data().info.size()) {
+    // Drawn a little outside the node's box, so that it stays in view when the node is also the walk's current
+    // one (whose yellow box lies on the same edges).
     const Bounds3& b = kd->data().info[size_t(n)].box;
-    addBoxEdges(pts, lines, b.lo, b.hi);
+    glm::vec3 pad(0.006f * glm::length(b.hi - b.lo));
     d.selectedDrawn = n;
-    d.selectedLo = b.lo;
-    d.selectedHi = b.hi;
+    d.selectedLo = b.lo - pad;
+    d.selectedHi = b.hi + pad;
+    addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
   }
   d.selectedData->SetPoints(pts);
   d.selectedData->SetLines(lines);
