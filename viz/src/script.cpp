@@ -201,7 +201,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       return v;
     };
     if (p.isSet("ti")) so.kd.t_i = float(number("ti", 0.0, 1e4, true, false));
-    if (p.isSet("tt")) so.kd.t_t = float(number("tt", 0.0, 1e4, true, false));
+    if (p.isSet("tt")) so.kd.t_t = float(number("tt", 0.0, 1e4, false, false));  // t_t >= 0, as in core
     if (p.isSet("empty-bonus")) so.kd.empty_bonus = float(number("empty-bonus", 0.0, 1.0, false, true));
     if (p.isSet("max-depth")) so.kd.max_depth = int(number("max-depth", 0, kKdMaxDepth, false, false));
     if (p.isSet("leaf-size")) so.kd.leaf_size = int(number("leaf-size", 1, 1e6, false, false));

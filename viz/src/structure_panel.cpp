@@ -86,7 +86,7 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   };
   ti_ = spin("kdTi", 0.01, 10000.0, 1.0, 2, def.t_i);
   ti_->setToolTip(tr("t_i: the cost of one ray-primitive test (lecture: t_i = 80 t_t)"));
-  tt_ = spin("kdTt", 0.01, 10000.0, 0.5, 2, def.t_t);
+  tt_ = spin("kdTt", 0.0, 10000.0, 0.5, 2, def.t_t);  // 0: free traversal steps, as core allows
   tt_->setToolTip(tr("t_t: the cost of one traversal step"));
   emptyBonus_ = spin("kdEmptyBonus", 0.0, 0.99, 0.05, 2, def.empty_bonus);
   emptyBonus_->setToolTip(tr("b in [0, 1): a split with an empty child costs t_t + (1 - b) t_i (...)"));
