@@ -515,6 +515,14 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     bool truncated = e.byte >= text.size();
     throw InputError(name, line, truncated ? "the trace is truncated (unexpected end of the file)"
                                            : std::string("malformed JSON: ") + e.what());
+  } catch (const json::out_of_range& e) {
+    // "number overflow parsing '1e400'" comes without a position: the line of that literal.
+    std::string what = e.what();
+    size_t q = what.find('\'');
+    std::string literal = q == std::string::npos ? "" : what.substr(q + 1, what.rfind('\'') - q - 1);
+    throw InputError(name, json_line_of_number(text, literal), "malformed JSON: " + what);
+  } catch (const json::exception& e) {
+    throw InputError(name, 0, std::string("malformed JSON: ") + e.what());
   }
   const Value doc = tape.root();
   Reader rd(name, text);

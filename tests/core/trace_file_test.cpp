@@ -2,6 +2,8 @@
 // identical), CSV, and every malformed case rejected with the file, the line and the JSON path.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -14,7 +16,6 @@
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"
-#include "trace_reader_reference.h"
 
 namespace raystep {
 namespace {
@@ -162,6 +163,9 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   expect_rejected(text, "\"t_enter\":1.0", "\"t_enter\":null", "t_enter: expected a number, found null");
   expect_rejected(text, "\"seq\":2", "\"seq\":5", "expected 2");
   expect_rejected(text, "\"kind\":\"primary\"", "\"kind\":\"sideways\"", "unknown ray kind");
+  // A number too large for a double: nlohmann's overflow, as an InputError on the literal's line.
+  expect_rejected(text, "\"t_enter\":1.0", "\"t_enter\":1e400", "number overflow parsing '1e400'",
+                  line_of(text, "\"t_enter\":1.0"));
   // Truncation anywhere.
   for (size_t cut : {size_t(10), text.size() / 2, text.size() - 3}) {
     try {
@@ -175,13 +179,12 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   EXPECT_THROW(read_trace_json(::testing::TempDir() + "/no_such_trace.json"), InputError);
 }
 
-// ---- the reader against the one it replaced (tests/core/trace_reader_reference.h) ----
+// ---- the reader on damaged traces ----
 
-// What a reader makes of a text, in words: the trace written back, or the error with its file and line.
-template <class Read>
-std::string outcome(Read read, const std::string& text) {
+// What the reader makes of a text, in words: the trace written back, or the error with its file and line.
+std::string new_reader(const std::string& text) {
   try {
-    return "trace " + trace_to_json(read(text, "x.json"));
+    return "trace " + trace_to_json(parse_trace_json(text, "x.json"));
   } catch (const InputError& e) {
     return "error " + e.file() + "|" + std::to_string(e.line()) + "|" + e.what();
   } catch (const nlohmann::json::exception& e) {
@@ -191,12 +194,6 @@ std::string outcome(Read read, const std::string& text) {
   }
 }
 
-std::string new_reader(const std::string& text) {
-  return outcome([](const std::string& t, const std::string& n) { return parse_trace_json(t, n); }, text);
-}
-std::string old_reader(const std::string& text) {
-  return outcome([](const std::string& t, const std::string& n) { return reference::parse_trace_json(t, n); }, text);
-}
 
 // A kd trace with every kind of tree event, the nodes, and the build events.
 std::string kd_trace_text() {
@@ -213,8 +210,11 @@ std::string kd_trace_text() {
 }
 
 // Random damage to a trace: a token replaced by another value, a token deleted, a member repeated with another
-// value (the last one counts), or bytes changed, cut or inserted. Both readers must make the same of it.
-void expect_readers_agree(const std::string& text, int trials, uint32_t seed) {
+// value (the last one counts), or bytes changed, cut or inserted. The reader either reads a trace, which then
+// reads back the same, or refuses it with an InputError naming the file (a line where there is one): never
+// another exception, a crash or a hang. (When the reader moved from nlohmann's DOM to the tape, this test also
+// held it to the old reader's exact messages on 4,500 damaged traces, and once on 80,000.)
+void expect_reader_survives_damage(const std::string& text, int trials, uint32_t seed) {
   std::vector<std::pair<size_t, size_t>> tokens;  // [begin, end) of strings, numbers, literals
   std::vector<size_t> keys;                        // where a member's key starts
   for (size_t i = 0; i < text.size();) {
@@ -275,14 +275,18 @@ void expect_readers_agree(const std::string& text, int trials, uint32_t seed) {
         break;
       }
     }
-    std::string got = new_reader(bad), expected = old_reader(bad);
-    ASSERT_EQ(got, expected) << bad;
-    accepted += got.rfind("trace ", 0) == 0;
+    std::string got = new_reader(bad);
+    if (got.rfind("trace ", 0) == 0) {
+      ++accepted;
+      ASSERT_EQ(new_reader(got.substr(6)), got) << bad;  // what it read writes back and reads the same
+    } else {
+      ASSERT_EQ(got.rfind("error x.json|", 0), 0u) << got << "\n" << bad;
+    }
   }
   EXPECT_GT(accepted, 0);  // some damage is harmless (a repeated key, a number changed within its range)
 }
 
-TEST(TraceFile, TheReaderReadsEveryTraceAsTheReaderItReplacedDid) {
+TEST(TraceFile, DamagedTracesAreReadOrRefusedWithTheFileNamed) {
   TrapScene s;
   std::string grid = trace_to_json(s.trace());
   std::string kd = kd_trace_text();
@@ -292,11 +296,10 @@ TEST(TraceFile, TheReaderReadsEveryTraceAsTheReaderItReplacedDid) {
     EXPECT_NE(kd.find(part), std::string::npos) << part;
   for (const char* part : {"\"type\":\"mailbox_hit\"", "\"type\":\"hit_deferred\"", "\"type\":\"sphere\"", "\"pixel\""})
     EXPECT_NE(grid.find(part), std::string::npos) << part;
-  EXPECT_EQ(new_reader(grid), old_reader(grid));
-  EXPECT_EQ(new_reader(kd), old_reader(kd));
-  EXPECT_EQ(new_reader(kd).rfind("trace ", 0), 0u);
-  expect_readers_agree(grid, 3000, 1);
-  expect_readers_agree(kd, 1500, 2);
+  EXPECT_EQ(new_reader(grid), "trace " + grid);
+  EXPECT_EQ(new_reader(kd), "trace " + kd);
+  expect_reader_survives_damage(grid, 3000, 1);
+  expect_reader_survives_damage(kd, 1500, 2);
 }
 
 }  // namespace
