@@ -38,8 +38,8 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
       t_delta[a] = kInfinity;
     }
   }
-  const ptrdiff_t stride[3] = {1, ptrdiff_t(n[0]), ptrdiff_t(n[0]) * n[1]};
-  const ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
+  const std::ptrdiff_t stride[3] = {1, std::ptrdiff_t(n[0]), std::ptrdiff_t(n[0]) * n[1]};
+  const std::ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
   size_t id = grid.cell_id(cell[0], cell[1], cell[2]);
   MailboxStamp mailbox = grid.mailboxes().begin_ray();
   WatertightRay wray(ray);

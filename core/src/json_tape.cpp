@@ -95,7 +95,7 @@ JsonTape JsonTape::parse(std::string_view text) {
 
 // ---- reading ----
 
-Kind JsonValue::kind() const { return tape_->nodes_[id_].kind; }
+Kind JsonValue::kind() const { return tape_ ? tape_->nodes_[id_].kind : Kind::null; }  // absent: null
 
 bool JsonValue::get_bool() const { return tape_->nodes_[id_].bits != 0; }
 
@@ -120,6 +120,7 @@ int64_t JsonValue::get_int64() const {
 }
 
 std::string_view JsonValue::get_string() const {
+  if (!is_string()) return {};
   const JsonTape::Node& n = tape_->nodes_[id_];
   return std::string_view(tape_->strings_).substr(n.bits, n.count);
 }
@@ -136,6 +137,7 @@ JsonValue JsonValue::operator[](size_t i) const {
 }
 
 JsonValue JsonValue::find(std::string_view key) const {
+  if (!is_object()) return JsonValue();
   const JsonTape::Node& n = tape_->nodes_[id_];
   const uint32_t* entries = tape_->children_.data() + n.bits;
   for (uint32_t m = n.count; m-- > 0;)  // from the end: the last of duplicate keys wins
@@ -144,6 +146,7 @@ JsonValue JsonValue::find(std::string_view key) const {
 }
 
 std::vector<std::pair<std::string_view, JsonValue>> JsonValue::members() const {
+  if (!is_object()) return {};
   const JsonTape::Node& n = tape_->nodes_[id_];
   const uint32_t* entries = tape_->children_.data() + n.bits;
   std::vector<std::pair<std::string_view, JsonValue>> out;

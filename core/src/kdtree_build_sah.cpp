@@ -155,6 +155,9 @@ class SweepBuilder {
     // absolute, is far beyond the rounding of either computation, so the tree is the same.
     const float inv_area_node = 1.f / area_node;
     const float bound_scale = (1.f - model.empty_bonus) * model.t_i;
+    // Only where the bound's products stay finite (neither huge boxes times many primitives nor boxes so small
+    // that 1 / area overflows): else every candidate is evaluated exactly.
+    const bool may_skip = std::isfinite(inv_area_node) && area_node * float(ev.n_prims) < 1e37f;
     const bool packed_counts = ev.n_prims < (1u << 21);
     constexpr uint64_t kCountMask = (uint64_t(1) << 21) - 1;
     bool found = false;
@@ -193,7 +196,7 @@ class SweepBuilder {
         n_right -= planars + ends;
         if (lo_bits < at_position && at_position < hi_bits) {
           const float position = Event::from_ordered_bits(at_position);
-          bool evaluate = !found || record;
+          bool evaluate = !found || record || !may_skip;
           if (!evaluate) {
             const float a_below = areas.below(position), a_above = areas.above(position);
             const float weighted = (a_below * float(n_left) + a_above * float(n_right) +

@@ -8,7 +8,9 @@
 #include <functional>
 #include <fstream>
 #include <map>
+#include <new>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <unordered_set>
 
@@ -507,9 +509,17 @@ int name_index(std::string_view name, const char* const (&names)[N]) {
 }  // namespace
 
 Trace parse_trace_json(const std::string& text, const std::string& name) {
+  // A count read from the file reserves at most what its text could hold (an element takes a few bytes of text
+  // and up to ~100 bytes of memory): a hostile "[0,0,0,...]" cannot make the reader ask for many times the size
+  // of the file before its first element is checked.
+  auto capped = [&](size_t n) { return std::min(n, text.size() / 64); };
   JsonTape tape;
   try {
     tape = JsonTape::parse(text);
+  } catch (const std::length_error& e) {
+    throw InputError(name, 0, std::string("too large to read: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    throw InputError(name, 0, "not enough memory to read it");
   } catch (const json::parse_error& e) {
     int line = json_line_at_byte(text, e.byte);
     bool truncated = e.byte >= text.size();
@@ -579,7 +589,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   };
 
   const Value rays = rd.array_at(doc, root, "rays");
-  t.rays.reserve(rays.size());
+  t.rays.reserve(capped(rays.size()));
   const Path rays_path = "rays";
   for (size_t r = 0; r < rays.size(); ++r) {
     const Path rp = rays_path.at(r);
@@ -604,7 +614,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     }
     const Value events = rd.array_at(jr, rp, "events");
     const Path events_path = rp.key("events");
-    tr.events.reserve(events.size());
+    tr.events.reserve(capped(events.size()));
     for (size_t i = 0; i < events.size(); ++i) {
       const Path ep = events_path.at(i);
       const Value je = events[i];
@@ -683,7 +693,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   const Path gp = "geometry";
   const Value cells = rd.array_at(geo, gp, "cells");
   const Path cells_path = gp.key("cells");
-  t.cells.reserve(cells.size());
+  t.cells.reserve(capped(cells.size()));
   for (size_t i = 0; i < cells.size(); ++i) {
     const Path cp = cells_path.at(i);
     TraceCell c;
@@ -701,8 +711,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   if (geo.contains("nodes")) {
     const Value nodes = rd.array_at(geo, gp, "nodes");
     const Path nodes_path = gp.key("nodes");
-    t.nodes.reserve(nodes.size());
-    listed.reserve(nodes.size());
+    t.nodes.reserve(capped(nodes.size()));
+    listed.reserve(capped(nodes.size()));
     for (size_t i = 0; i < nodes.size(); ++i) {
       const Path np = nodes_path.at(i);
       const Value jn = nodes[i];
@@ -719,7 +729,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       if (n.leaf) {
         const Value ids = rd.array_at(jn, np, "prims");
         const Path pp = np.key("prims");
-        n.prims.reserve(ids.size());
+        n.prims.reserve(capped(ids.size()));
         for (size_t k = 0; k < ids.size(); ++k) n.prims.push_back(int32_t(rd.integer(ids[k], pp.at(k), 0, max_prim)));
       } else {
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
@@ -743,7 +753,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
 
   if (doc.contains("build")) {
     const Value build = rd.array_at(doc, root, "build");
-    t.build.reserve(build.size());
+    t.build.reserve(capped(build.size()));
     const Path build_path = "build";
     for (size_t i = 0; i < build.size(); ++i) {
       const Path bp = build_path.at(i);
@@ -797,7 +807,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
 
   const Value prims = rd.array_at(geo, gp, "primitives");
   const Path prims_path = gp.key("primitives");
-  t.primitives.reserve(prims.size());
+  t.primitives.reserve(capped(prims.size()));
   for (size_t i = 0; i < prims.size(); ++i) {
     const Path pp = prims_path.at(i);
     TracePrimitive p;

@@ -572,6 +572,27 @@ TEST(KdSweep, BuildsTheSameTreeAsTheReference) {
   expect_same_tree(build_kdtree(ico, KdOptions{}), build_kdtree(ico, with_builder(KdBuilder::sah_reference)));
 }
 
+// Scenes scaled far up and far down: the sweep's cheap lower bound (areas times counts over the node's area)
+// would overflow to infinity and skip every candidate; where it cannot be trusted, candidates are evaluated
+// exactly, and the tree is still the reference's.
+TEST(KdSweep, HugeAndTinyScenesBuildTheReferenceTree) {
+  for (float scale : {3e17f, 1e-21f}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(-2.f, 2.f), s(-0.3f, 0.3f);
+    Geometry g;
+    g.begin_object("soup", 0);
+    for (int i = 0; i < 150; ++i) {
+      glm::vec3 c(u(rng), u(rng), u(rng));
+      g.add_triangle(scale * (c + glm::vec3(s(rng), s(rng), s(rng))), scale * (c + glm::vec3(s(rng), s(rng), s(rng))),
+                     scale * (c + glm::vec3(s(rng), s(rng), s(rng))));
+    }
+    KdTreeData ref = build_kdtree(g, with_builder(KdBuilder::sah_reference, KdOptions{}));
+    ASSERT_GT(ref.nodes.size(), 20u);  // a real tree, not one leaf
+    expect_same_tree(build_kdtree(g, KdOptions{}), ref);
+  }
+}
+
 TEST(KdSweep, BoxesOnALatticeSplitOnExactPlanes) {
   // Clipping box faces at lattice planes is exact arithmetic: no plane one ulp off a face, no sliver nodes.
   Geometry g = make_scene(14, 0, 0, 30, 0);

@@ -182,7 +182,7 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
           EXPECT_EQ(next.t_min_node, std::min(std::max(c.tStar, c.tMin), c.tMax));
           EXPECT_EQ(ray.events[size_t(i + 2)].t_max_node, next.t_min_node);
           EXPECT_EQ(c.nearChild, ray.events[size_t(i + 2)].node);
-          // The near child is the one on the origin's side: below the plane when the direction points up.
+          // The near child is the side the ray comes from along its direction: below when it points up the axis.
           EXPECT_EQ(c.nearChild == e.node + 1, c.nearIsBelow);
           break;
         case Crossing::inPlane: EXPECT_TRUE(std::isnan(c.tStar)); break;
@@ -197,6 +197,67 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
   EXPECT_GT(kinds[int(Crossing::both)], 0);
   EXPECT_GT(stops, 0);
   EXPECT_GT(walked, 50);
+}
+
+// Rays parallel to split planes (direction components +0 and -0): t* is infinite, the walk stays on the
+// origin's side of each plane it runs along, and the explanation says the ray runs parallel.
+TEST(Replay, KdRaysParallelToAPlaneStayOnTheirSide) {
+  Geometry g = test::make_soup(7, 200, 0);
+  KdTree tree;
+  tree.build(g);
+  Bounds3 b = g.bounds();
+  std::vector<RayRequest> rays;
+  for (int i = 0; i < 40; ++i) {
+    float u = (i % 8 + 0.5f) / 8.f, v = (i / 8 + 0.5f) / 5.f;
+    glm::vec3 o(b.lo.x + u * (b.hi.x - b.lo.x), b.lo.y + v * (b.hi.y - b.lo.y), b.hi.z + 1.f);
+    Ray r;
+    r.origin = o;
+    r.direction = glm::vec3(i % 2 ? 0.f : -0.f, i % 3 ? -0.f : 0.f, -1.f);
+    rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
+  }
+  Trace t = record_trace(g, tree, rays, "soup", "fnv1a64:0000000000000000");
+  int parallel = 0;
+  for (const TracedRay& ray : t.rays)
+    for (int i = 0; i + 1 < int(ray.events.size()); ++i) {
+      const Event& e = ray.events[size_t(i)];
+      if (e.type != EventType::node || ray.events[size_t(i + 1)].type == EventType::leaf) continue;
+      ReplayState s = replayAt(ray, i);
+      NodeCrossing c = nodeCrossing(t, ray, s);
+      ASSERT_TRUE(c.valid);
+      if (!std::isinf(c.tStar)) continue;
+      ++parallel;
+      ASSERT_NE(c.crossing, Crossing::both);
+      int32_t visited = c.nearChild >= 0 ? c.nearChild : c.farChild;
+      bool originBelow = ray.ray.origin[c.axis] < c.split;
+      if (ray.ray.origin[c.axis] != c.split) EXPECT_EQ(visited == e.node + 1, originBelow) << "node " << e.node;
+      std::string why = explainRule(&t, ray, s);
+      EXPECT_NE(why.find("parallel"), std::string::npos) << why;
+    }
+  EXPECT_GT(parallel, 20);
+}
+
+// Ties: a primitive hit at the same t as the nearest so far, with a higher id, does not become the nearest.
+TEST(Replay, ATieGoesToTheLowerPrimitiveId) {
+  TracedRay ray;
+  auto add = [&](EventType type, int prim, bool hit, float t) {
+    Event e;
+    e.seq = uint32_t(ray.events.size());
+    e.type = type;
+    e.prim = prim;
+    e.hit = hit;
+    e.t = t;
+    ray.events.push_back(e);
+  };
+  add(EventType::ray_begin, -1, false, 0.f);
+  add(EventType::prim_test, 3, true, 2.f);
+  add(EventType::prim_test, 5, true, 2.f);
+  add(EventType::prim_test, 1, true, 2.f);
+  add(EventType::ray_end, 1, true, 2.f);
+  ReplayState s2 = replayAt(ray, 2);
+  EXPECT_EQ(s2.nearestPrim, 3);
+  EXPECT_NE(explainRule(ray, s2).find("tie goes to the lower id"), std::string::npos) << explainRule(ray, s2);
+  EXPECT_EQ(replayAt(ray, 3).nearestPrim, 1);
+  EXPECT_NE(explainRule(ray, replayAt(ray, 3)).find("It becomes the nearest hit"), std::string::npos);
 }
 
 }  // namespace

@@ -196,9 +196,12 @@ TEST(Viz, KdStepBackAndForthGivesTheSameState) {
 
 // The 3D view keeps the scene's layer as an image while only the walk changes (BackdropCache): what it shows
 // is pixel for pixel what drawing everything gives, at a cell, at a node with its split plane, after steps
-// that kept the image and after a camera change (the fit at the start) that made it anew.
+// that kept the image, after a camera change (the fit at the start) that made it anew, and after changes of
+// what the image shows (a rebuilt tree).
 TEST(Viz, BackdropImageDrawsLikeTheScene) {
-  for (const char* run : {"grid --step-to cell:3 --forward 3", "kd --step-to node:3", "kd --step-to leaf:2 --back 2"}) {
+  // Also after the image was taken: a node selected, the tree rebuilt with another t_i.
+  for (const char* run : {"grid --step-to cell:3 --forward 3", "kd --step-to node:3", "kd --step-to leaf:2 --back 2",
+                          "kd --step-to leaf:2 --node 1", "kd --step-to node:3 --edit-ti 40"}) {
     std::string tag = std::string("backdrop_") + std::to_string(std::hash<std::string>{}(run) % 1000);
     std::string args = kPixel + " --accel " + run + " --screenshot-3d ";
     std::string sa = kOut + "/" + tag + "_image.json", sb = kOut + "/" + tag + "_drawn.json";

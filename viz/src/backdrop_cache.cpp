@@ -30,10 +30,11 @@ struct Key {
   std::vector<double> camera;
   int size[2] = {0, 0};
   double background[3] = {0, 0, 0};
+  std::vector<const void*> propList;  // which props (one removed or added back changes no time)
   vtkMTimeType props = 0;
   bool operator==(const Key& o) const {
     return camera == o.camera && size[0] == o.size[0] && size[1] == o.size[1] &&
-           std::equal(background, background + 3, o.background) && props == o.props;
+           std::equal(background, background + 3, o.background) && props == o.props && propList == o.propList;
   }
 };
 
@@ -60,6 +61,7 @@ Key keyOf(vtkRenderWindow* window, vtkRenderer* base) {
   vtkPropCollection* props = base->GetViewProps();
   props->InitTraversal();
   while (vtkProp* p = props->GetNextProp()) {
+    k.propList.push_back(p);
     k.props = std::max(k.props, p->GetMTime());
     if (auto* a = vtkActor::SafeDownCast(p); a && a->GetMapper()) {
       k.props = std::max(k.props, a->GetMapper()->GetMTime());
@@ -78,7 +80,8 @@ struct BackdropCache::Impl {
   vtkNew<vtkRenderer> backdrop;  // shows the image as its background, on the base's layer
   vtkNew<vtkTexture> texture;
   vtkNew<vtkImageData> image;
-  vtkNew<vtkCallbackCommand> onStart;
+  vtkNew<vtkCallbackCommand> onStart, onEnd;
+  int drawn = 0;  // renders that reached the end: a window not ready for rendering returns without drawing
   Key key;   // of the image
   Key seen;  // at the last prepare()
   bool cached = false;
@@ -88,6 +91,7 @@ struct BackdropCache::Impl {
     backdrop->DrawOff();
     base->DrawOn();
   }
+  static void ended(vtkObject*, unsigned long, void* self, void*) { ++static_cast<Impl*>(self)->drawn; }
   // Before any render: an interactive one (the camera turned) draws the base layer itself.
   static void started(vtkObject*, unsigned long, void* self, void*) {
     auto* d = static_cast<Impl*>(self);
@@ -113,10 +117,14 @@ BackdropCache::BackdropCache(vtkRenderWindow* window, vtkRenderer* base, std::ve
   d.onStart->SetCallback(&Impl::started);
   d.onStart->SetClientData(&d);
   window->AddObserver(vtkCommand::StartEvent, d.onStart);
+  d.onEnd->SetCallback(&Impl::ended);
+  d.onEnd->SetClientData(&d);
+  window->AddObserver(vtkCommand::EndEvent, d.onEnd);
 }
 
 BackdropCache::~BackdropCache() {
   d_->window->RemoveObserver(d_->onStart);
+  d_->window->RemoveObserver(d_->onEnd);
   d_->window->RemoveRenderer(d_->backdrop);
 }
 
@@ -147,7 +155,12 @@ void BackdropCache::prepare(bool ready) {
     draw.push_back(r->GetDraw());
     r->DrawOff();
   }
+  int before = d.drawn;
   d.window->Render();
+  if (d.drawn == before) {  // nothing was drawn: the pixels would be an older frame's
+    for (size_t i = 0; i < d.above.size(); ++i) d.above[i]->SetDraw(draw[i]);
+    return;
+  }
   vtkNew<vtkUnsignedCharArray> pixels;
   int w = size[0], h = size[1];
   d.window->GetPixelData(0, 0, w - 1, h - 1, 0, pixels, 0);

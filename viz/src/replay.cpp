@@ -98,9 +98,13 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         s.mailbox.push_back(m);
         if (e.hit) {
           ++s.counters.prim_hits;
-          s.nearestPrim = e.prim;
-          s.nearestT = e.t;
-          s.deferred = false;
+          // A tie (the same t) goes to the lower primitive id, as in the kernels.
+          bool lostTie = s.nearestPrim >= 0 && e.t == s.nearestT && e.prim > s.nearestPrim;
+          if (!lostTie) {
+            s.nearestPrim = e.prim;
+            s.nearestT = e.t;
+            s.deferred = false;
+          }
         }
         break;
       }
@@ -279,6 +283,10 @@ std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
       std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," + std::to_string(cell->cell[1]) +
                                      "," + std::to_string(cell->cell[2]) + ")"
                                : "";
+      if (e.hit && s.nearestPrim != e.prim)
+        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
+               ", the same t as the nearest hit so far, primitive " + std::to_string(s.nearestPrim) +
+               ": a tie goes to the lower id, which stays the nearest.";
       if (e.hit)
         return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
                ", nearer than any hit so far. It becomes the nearest hit.";
@@ -326,12 +334,19 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
       switch (c.crossing) {
         case Crossing::nearOnly:
+          if (std::isinf(c.tStar))
+            return head + "The ray runs parallel to the plane (d." + a + " = 0): it stays on one side.\nOnly " +
+                   nearName + " is visited: Intersect(near, t_min, t_max).";
           return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
-                 " (or the plane is behind): the ray leaves the node before it reaches the plane.\nOnly the near "
-                 "child, " + nearName + ", is visited: Intersect(near, t_min, t_max).";
+                 ": the ray leaves the node before it reaches the plane.\nOnly the near child, " + nearName +
+                 ", is visited: Intersect(near, t_min, t_max).";
         case Crossing::farOnly:
+          if (std::isinf(c.tStar))
+            return head + "The ray runs parallel to the plane (d." + a + " = 0): it stays on one side.\nOnly " +
+                   farName + " is visited: Intersect(far, t_min, t_max).";
           return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
-                 ": the ray crossed the plane before it entered the node.\nOnly the far child, " + farName +
+                 ": the node's part of the ray lies beyond the plane (the plane is behind the ray's origin, or "
+                 "the ray crossed it before it entered the node).\nOnly the far child, " + farName +
                  ", is visited: Intersect(far, t_min, t_max).";
         case Crossing::both: {
           bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;
@@ -348,10 +363,14 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       }
       return head;
     }
-    case EventType::push:
-      return "Push the far child, node " + std::to_string(e.node) + ", with its part of the ray [t*, t_max] = [" +
+    case EventType::push: {
+      NodeCrossing c = trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};  // of the inner node being split
+      bool inPlane = c.valid && c.crossing == Crossing::inPlane;
+      return "Push the far child, node " + std::to_string(e.node) +
+             (inPlane ? ", with the whole interval [t_min, t_max] = [" : ", with its part of the ray [t*, t_max] = [") +
              num(e.t_min_node) + ", " + num(e.t_max_node) + "]. The walk goes on in the near child; the stack holds " +
              std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
+    }
     case EventType::leaf: {
       size_t k = s.prims.size();
       std::string head = "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
@@ -367,8 +386,8 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
         if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
         if (s.nearestT < e.t_min_node)
           return head + "The nearest hit so far, t = " + num(s.nearestT) + ", lies before its t_min, but by less "
-                        "than the walk's safety margin (2^-12 of the ray's extent in the root box): visit it, so that "
-                        "no hit is lost to rounding.";
+                        "than the walk's safety margin (2^-12 of the larger of |t_min| and |t_max| in the root): visit it, "
+                        "so that no hit is lost to rounding.";
         return head + "The nearest hit so far, t = " + num(s.nearestT) + ", is not before its t_min: a nearer hit may "
                       "lie in it, so visit it.";
       }
@@ -380,6 +399,10 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
     }
     case EventType::prim_test: {
       std::string where = s.nodeEvent >= 0 ? " in leaf " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
+      if (e.hit && s.nearestPrim != e.prim)
+        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
+               ", the same t as the nearest hit so far, primitive " + std::to_string(s.nearestPrim) +
+               ": a tie goes to the lower id, which stays the nearest.";
       if (e.hit)
         return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
                ", nearer than any hit so far. It becomes the nearest hit.";

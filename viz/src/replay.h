@@ -41,8 +41,10 @@ struct StackEntry {
 };
 
 // Trees: what the ray does at an inner node, in the lecture's words. t* is where the ray meets the split plane;
-// the near child is the side the ray starts on. Then either only one child is visited (t* beyond the node's
-// interval on one side), or both: Intersect(near, t_min, t*) now and the far child (t*, t_max) pushed.
+// the near child is the side the ray comes from as it moves along its direction (below the plane when the
+// direction points up the axis, by the sign bit, as the kernel decides). Then only the near child is visited
+// (t* > t_max: the ray leaves the node first), only the far one (t* < t_min: the node's part of the ray lies
+// beyond the plane), or both: Intersect(near, t_min, t*) now and the far child (t*, t_max) pushed.
 enum class Crossing { nearOnly, farOnly, both, inPlane };
 const char* crossingName(Crossing c);
 struct NodeCrossing {
@@ -51,7 +53,7 @@ struct NodeCrossing {
   int32_t node = -1;
   int axis = 0;
   float split = 0.f;
-  float tStar = 0.f;  // NaN when the ray lies in the plane
+  float tStar = 0.f;  // NaN when the ray lies in the plane, +-inf when it runs parallel to it
   float tMin = 0.f, tMax = 0.f;
   bool nearIsBelow = true;  // the near child is the one below the plane
   Crossing crossing = Crossing::nearOnly;

@@ -245,12 +245,17 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     QString which;
     switch (c.crossing) {
       case Crossing::nearOnly:
-        which = tr("t* &gt; t_max: <b>near child only</b> (%1)").arg(child(c.nearChild));
+        which = (std::isinf(c.tStar) ? tr("parallel to the plane") : tr("t* &gt; t_max")) +
+                tr(": <b>near child only</b> (%1)").arg(child(c.nearChild));
         break;
-      case Crossing::farOnly: which = tr("t* &lt; t_min: <b>far child only</b> (%1)").arg(child(c.farChild)); break;
+      case Crossing::farOnly:
+        which = (std::isinf(c.tStar) ? tr("parallel to the plane") : tr("t* &lt; t_min")) +
+                tr(": <b>far child only</b> (%1)").arg(child(c.farChild));
+        break;
       case Crossing::both:
-        which = tr("t_min &le; t* &le; t_max: <b>both</b>: near %1 [t_min, t*], far %2 [t*, t_max] pushed")
-                    .arg(child(c.nearChild), child(c.farChild));
+        which = (c.tStar >= c.tMin && c.tStar <= c.tMax ? tr("t_min &le; t* &le; t_max")
+                                                         : tr("t* at the interval's edge (within the margin)")) +
+                tr(": <b>both</b>: near %1 [t_min, t*], far %2 [t*, t_max] pushed").arg(child(c.nearChild), child(c.farChild));
         break;
       case Crossing::inPlane:
         which = tr("the ray lies in the plane: <b>both</b>, near %1, far %2 over the whole interval")

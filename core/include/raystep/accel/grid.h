@@ -122,8 +122,8 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   }
 
   // The cell's index in the arrays, stepped like the cell itself: one addition per step.
-  const ptrdiff_t stride[3] = {1, ptrdiff_t(n_[0]), ptrdiff_t(n_[0]) * n_[1]};
-  const ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
+  const std::ptrdiff_t stride[3] = {1, std::ptrdiff_t(n_[0]), std::ptrdiff_t(n_[0]) * n_[1]};
+  const std::ptrdiff_t id_step[3] = {step[0] * stride[0], step[1] * stride[1], step[2] * stride[2]};
   size_t id = cell_id(cell[0], cell[1], cell[2]);
 
   MailboxStamp mailbox = mailboxes_.begin_ray();

@@ -44,10 +44,11 @@ class JsonValue {
   // Arrays: element count and element i (i < size()).
   size_t size() const;
   JsonValue operator[](size_t i) const;
-  // Objects: the member named key (the last, if the key repeats), or an absent value.
+  // Objects: the member named key (the last, if the key repeats), or an absent value (also for a non-object).
   JsonValue find(std::string_view key) const;
   bool contains(std::string_view key) const { return find(key).exists(); }
-  // Objects: the members in key order, each key once (its last value), as nlohmann's object iteration.
+  // Objects: the members in key order, each key once (its last value), as nlohmann's object iteration; none
+  // for a non-object.
   std::vector<std::pair<std::string_view, JsonValue>> members() const;
 
  private:
