@@ -240,13 +240,12 @@ TEST(Replay, KdRaysParallelToAPlaneStayOnTheirSide) {
 TEST(Replay, ATieGoesToTheLowerPrimitiveId) {
   TracedRay ray;
   auto add = [&](EventType type, int prim, bool hit, float t) {
-    Event e;
-    e.seq = uint32_t(ray.events.size());
+    Event& e = ray.events.emplace_back();
+    e.seq = uint32_t(ray.events.size() - 1);
     e.type = type;
     e.prim = prim;
     e.hit = hit;
     e.t = t;
-    ray.events.push_back(e);
   };
   add(EventType::ray_begin, -1, false, 0.f);
   add(EventType::prim_test, 3, true, 2.f);

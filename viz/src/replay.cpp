@@ -251,6 +251,16 @@ std::string describeEvent(const Event& e) {
 
 namespace {
 
+// A primitive test in a cell or leaf (`where`): a nearer hit, a tie lost to a lower id, or no nearer hit.
+std::string explainPrimTest(const Event& e, const ReplayState& s, const std::string& where) {
+  std::string head = "Primitive " + std::to_string(e.prim) + where;
+  if (e.hit && s.nearestPrim != e.prim)
+    return head + ": hit at t = " + num(e.t) + ", the same t as the nearest hit so far, primitive " +
+           std::to_string(s.nearestPrim) + ": a tie goes to the lower id, which stays the nearest.";
+  if (e.hit) return head + ": hit at t = " + num(e.t) + ", nearer than any hit so far. It becomes the nearest hit.";
+  return head + ": no hit nearer than the nearest so far.";
+}
+
 std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
   const Event* cell = s.cellEvent >= 0 ? &ray.events[size_t(s.cellEvent)] : nullptr;
@@ -283,14 +293,7 @@ std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
       std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," + std::to_string(cell->cell[1]) +
                                      "," + std::to_string(cell->cell[2]) + ")"
                                : "";
-      if (e.hit && s.nearestPrim != e.prim)
-        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
-               ", the same t as the nearest hit so far, primitive " + std::to_string(s.nearestPrim) +
-               ": a tie goes to the lower id, which stays the nearest.";
-      if (e.hit)
-        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
-               ", nearer than any hit so far. It becomes the nearest hit.";
-      return "Primitive " + std::to_string(e.prim) + where + ": no hit nearer than the nearest so far.";
+      return explainPrimTest(e, s, where);
     }
     case EventType::mailbox_hit: {
       for (const MailboxEntry& m : s.mailbox)
@@ -399,14 +402,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
     }
     case EventType::prim_test: {
       std::string where = s.nodeEvent >= 0 ? " in leaf " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
-      if (e.hit && s.nearestPrim != e.prim)
-        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
-               ", the same t as the nearest hit so far, primitive " + std::to_string(s.nearestPrim) +
-               ": a tie goes to the lower id, which stays the nearest.";
-      if (e.hit)
-        return "Primitive " + std::to_string(e.prim) + where + ": hit at t = " + num(e.t) +
-               ", nearer than any hit so far. It becomes the nearest hit.";
-      return "Primitive " + std::to_string(e.prim) + where + ": no hit nearer than the nearest so far.";
+      return explainPrimTest(e, s, where);
     }
     case EventType::mailbox_hit:
       for (const MailboxEntry& m : s.mailbox)
