@@ -24,27 +24,29 @@ class CurveListener final : public BuildListener {
   void split(uint32_t node, const KdNodeInfo& info, uint32_t n, int axis, float position, float cost,
              float leaf_cost) override {
     if (node != node_) return;
-    found_ = true;
-    curve_->info = info;
-    curve_->n_prims = n;
+    decided(info, n, leaf_cost);
     curve_->axis = axis;
     curve_->position = position;
     curve_->cost = cost;
-    curve_->leaf_cost = leaf_cost;
   }
   void leaf_made(uint32_t node, const KdNodeInfo& info, uint32_t n, float leaf_cost, LeafReason reason) override {
     if (node != node_) return;
-    found_ = true;
-    curve_->info = info;
-    curve_->n_prims = n;
+    decided(info, n, leaf_cost);
     curve_->leaf = true;
     curve_->leaf_reason = reason;
-    curve_->leaf_cost = leaf_cost;
     curve_->cost = leaf_cost;
   }
   bool found() const { return found_; }
 
  private:
+  // What a split and a leaf both tell of the node.
+  void decided(const KdNodeInfo& info, uint32_t n, float leaf_cost) {
+    found_ = true;
+    curve_->info = info;
+    curve_->n_prims = n;
+    curve_->leaf_cost = leaf_cost;
+  }
+
   uint32_t node_;
   SahCurve* curve_;
   bool found_ = false;
