@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "raystep/accel/kdtree.h"
 #include "raystep/scene/ray_sets.h"
@@ -149,6 +150,11 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
     for (int i = 0; i < int(ray.events.size()); ++i) {
       const Event& e = ray.events[size_t(i)];
       ReplayState s = replayAt(ray, i);
+      // The nodes left behind, each once (a popped node, left for its own node event, is among them).
+      std::set<int32_t> left(s.visitedNodes.begin(), s.visitedNodes.end());
+      EXPECT_EQ(left.size(), s.visitedNodes.size());
+      if (e.type == EventType::node && i > 0 && ray.events[size_t(i - 1)].type == EventType::node)
+        EXPECT_EQ(left.count(ray.events[size_t(i - 1)].node), 1u);  // its parent, just left
       if (e.type == EventType::push) {
         ASSERT_GE(s.nodeEvent, 0);
         EXPECT_EQ(ray.events[size_t(s.nodeEvent)].type, EventType::node);

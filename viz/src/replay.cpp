@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace raystep::viz {
 
@@ -57,6 +58,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
 
   // Walk the log up to the current event, as the kernel did.
   std::unordered_map<int32_t, size_t> tested;  // prim -> its mailbox entry
+  std::unordered_set<int32_t> left;             // nodes in visitedNodes
   for (int i = 0; i <= step; ++i) {
     const Event& e = ev[size_t(i)];
     switch (e.type) {
@@ -71,6 +73,11 @@ ReplayState replayAt(const TracedRay& ray, int step) {
       case EventType::node:
       case EventType::pop:
       case EventType::leaf:
+        // The walk moves to another node (a leaf event names the node it is already at).
+        if (e.type != EventType::leaf && s.nodeEvent >= 0) {
+          int32_t from = ev[size_t(s.nodeEvent)].node;
+          if (left.insert(from).second) s.visitedNodes.push_back(from);
+        }
         s.nodeEvent = i;
         s.hasInterval = true;
         s.tMin = e.t_min_node;

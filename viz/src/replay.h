@@ -70,6 +70,8 @@ struct ReplayState {
   // -1: none; and the stack: the pushes not yet popped, top last.
   int nodeEvent = -1;
   std::vector<StackEntry> stack;
+  // The nodes the walk was at before the current one, each once, in the order it left them.
+  std::vector<int32_t> visitedNodes;
   // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
   // every one it references, in the order the walk meets them.
   int blockEvent = -1;

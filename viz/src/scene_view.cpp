@@ -587,14 +587,8 @@ void SceneView::updateStep() {
   d.visitedNodes.clear();
   if (ray && d.haveTree) {
     if (d.nodesOf != session_->trace()) d.indexNodes(session_->trace());
-    std::unordered_set<int32_t> seen;
-    for (int i = 0; i <= s.step && i < int(ray->events.size()); ++i) {
-      const Event& e = ray->events[size_t(i)];
-      if (e.type == EventType::node || e.type == EventType::pop) {
-        if (d.currentNode >= 0 && seen.insert(d.currentNode).second) d.visitedNodes.push_back(d.currentNode);
-        d.currentNode = e.node;
-      }
-    }
+    if (s.nodeEvent >= 0) d.currentNode = ray->events[size_t(s.nodeEvent)].node;
+    d.visitedNodes = s.visitedNodes;
     std::unordered_set<int32_t> onStack;
     for (const StackEntry& se : s.stack) onStack.insert(se.node);
     size_t first = d.visitedNodes.size() > kMaxVisitedDrawn ? d.visitedNodes.size() - kMaxVisitedDrawn : 0;

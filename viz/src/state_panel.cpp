@@ -169,12 +169,7 @@ void StatePanel::refresh() {
     stack_->setRowCount(0);
     return;
   }
-  bool tree = false;
-  for (const Event& e : r->events)
-    if (e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop || e.type == EventType::leaf) {
-      tree = true;
-      break;
-    }
+  const bool tree = isTreeRay(*r);
   treeBox_->setVisible(tree);
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
   if (tree) refreshTree(*r, s);
