@@ -326,9 +326,10 @@ TEST(KdBuild, DepthLimitAndBudgetRules) {
   KdOptions o;
   EXPECT_EQ(kd_max_depth(o, 0), 8);
   EXPECT_EQ(kd_max_depth(o, 1), 8);
-  EXPECT_EQ(kd_max_depth(o, 1024), 21);   // 8 + 1.3 * 10
-  EXPECT_EQ(kd_max_depth(o, 69451), 29);  // 8 + 1.3 * 16.08 = 28.9
-  EXPECT_EQ(kd_max_depth(o, size_t(1) << 50), kKdMaxDepth);
+  EXPECT_EQ(kd_max_depth(o, 64), 8);      // 1.2 * 6 = 7.2: at least 8
+  EXPECT_EQ(kd_max_depth(o, 1024), 12);   // 1.2 * 10
+  EXPECT_EQ(kd_max_depth(o, 69451), 19);  // 1.2 * 16.08 = 19.3
+  EXPECT_EQ(kd_max_depth(o, size_t(1) << 60), kKdMaxDepth);  // 1.2 * 60 = 72
   o.max_depth = 5;
   EXPECT_EQ(kd_max_depth(o, 69451), 5);
   KdOptions b;

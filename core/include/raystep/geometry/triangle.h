@@ -49,15 +49,17 @@ struct TriangleHit {
   float b0, b1, b2;  // barycentric coordinates: p = b0*p0 + b1*p1 + b2*p2
 };
 
-// True if the ray hits triangle (p0, p1, p2) with ray.tmin < t < tmax; then *hit holds t and barycentrics.
-// tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found.
-inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
-                               const glm::vec3& p2, float tmax, TriangleHit* hit) {
+namespace detail {
+// The test for one permutation (kx, ky, kz) of the axes, fixed at compile time so that every component is read
+// from a register (a permutation known only at run time goes through memory on each test).
+template <int kx, int ky, int kz>
+inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
+                                        const glm::vec3& p2, float tmax, TriangleHit* hit) {
   // Translate the vertices to the ray origin, permute (kx, ky, kz) and shear so the ray runs along +z.
   glm::vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
-  float ax = component(a, r.kx) + r.sx * component(a, r.kz), ay = component(a, r.ky) + r.sy * component(a, r.kz);
-  float bx = component(b, r.kx) + r.sx * component(b, r.kz), by = component(b, r.ky) + r.sy * component(b, r.kz);
-  float cx = component(c, r.kx) + r.sx * component(c, r.kz), cy = component(c, r.ky) + r.sy * component(c, r.kz);
+  float ax = component(a, kx) + r.sx * component(a, kz), ay = component(a, ky) + r.sy * component(a, kz);
+  float bx = component(b, kx) + r.sx * component(b, kz), by = component(b, ky) + r.sy * component(b, kz);
+  float cx = component(c, kx) + r.sx * component(c, kz), cy = component(c, ky) + r.sy * component(c, kz);
 
   // Edge functions: signed areas of the sheared triangle's edges seen from the ray (the origin in 2D).
   float e0 = bx * cy - by * cx;
@@ -75,7 +77,7 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
   if (det == 0.f) return false;
 
   // Scaled hit distance, compared with tmax without dividing.
-  float az = r.sz * component(a, r.kz), bz = r.sz * component(b, r.kz), cz = r.sz * component(c, r.kz);
+  float az = r.sz * component(a, kz), bz = r.sz * component(b, kz), cz = r.sz * component(c, kz);
   float t_scaled = e0 * az + e1 * bz + e2 * cz;
   if (det < 0 && (t_scaled >= 0 || t_scaled < tmax * det)) return false;
   if (det > 0 && (t_scaled <= 0 || t_scaled > tmax * det)) return false;
@@ -88,15 +90,15 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
   // The sheared x' = x + sx z is computed from the translated z BEFORE scaling by sz, so its error bound
   // uses that unscaled z (pbrt-v4's code reuses the scaled one, which is only right for |d| near 1: short
   // directions then reject valid hits, long ones accept t slightly below zero).
-  float max_zt = detail::max_abs3(az, bz, cz);
+  float max_zt = max_abs3(az, bz, cz);
   float delta_z = gamma(3) * max_zt;
-  float max_z = detail::max_abs3(component(a, r.kz), component(b, r.kz), component(c, r.kz));
-  float max_xt = detail::max_abs3(ax, bx, cx);
-  float max_yt = detail::max_abs3(ay, by, cy);
+  float max_z = max_abs3(component(a, kz), component(b, kz), component(c, kz));
+  float max_xt = max_abs3(ax, bx, cx);
+  float max_yt = max_abs3(ay, by, cy);
   float delta_x = gamma(5) * (max_xt + max_z);
   float delta_y = gamma(5) * (max_yt + max_z);
   float delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-  float max_e = detail::max_abs3(e0, e1, e2);
+  float max_e = max_abs3(e0, e1, e2);
   float delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv_det);
   if (!(t > delta_t)) return false;  // written so that a NaN bound rejects too
 
@@ -105,6 +107,19 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
   hit->b1 = e1 * inv_det;
   hit->b2 = e2 * inv_det;
   return true;
+}
+}  // namespace detail
+
+// True if the ray hits triangle (p0, p1, p2) with ray.tmin < t < tmax; then *hit holds t and barycentrics.
+// tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found. The branch on
+// the ray's dominant axis goes the same way for every test of a ray, so the predictor learns it at once.
+inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
+                               const glm::vec3& p2, float tmax, TriangleHit* hit) {
+  switch (r.kz) {
+    case 0: return detail::intersect_triangle_permuted<1, 2, 0>(r, p0, p1, p2, tmax, hit);
+    case 1: return detail::intersect_triangle_permuted<2, 0, 1>(r, p0, p1, p2, tmax, hit);
+    default: return detail::intersect_triangle_permuted<0, 1, 2>(r, p0, p1, p2, tmax, hit);
+  }
 }
 
 inline bool intersect_triangle(const Ray& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,

@@ -63,21 +63,27 @@ class Geometry {
 
   // Test one primitive, with tmin < t < tmax. wray is the ray prepared for the watertight triangle test.
   bool intersect(uint32_t id, const Ray& ray, const WatertightRay& wray, float tmax, Hit* hit) const {
-    if (type_[id] == PrimType::triangle) {
-      const glm::vec3* v = &tri_verts_[3 * local_[id]];
-      TriangleHit th;
-      if (!intersect_triangle(wray, v[0], v[1], v[2], tmax, &th)) return false;
+    // A scene of triangles only (every mesh) numbers its triangles like its primitives: the vertices are read
+    // at once, without the type and local-index look-ups that stand between a primitive id and its data.
+    const glm::vec3* v;
+    if (__builtin_expect(spheres_.empty(), 1)) {
+      v = &tri_verts_[3 * id];
+    } else if (type_[id] == PrimType::triangle) {
+      v = &tri_verts_[3 * local_[id]];
+    } else {
+      float t;
+      if (!intersect_sphere(ray, spheres_[local_[id]], tmax, &t)) return false;
       hit->prim = int32_t(id);
-      hit->t = th.t;
-      hit->b1 = th.b1;
-      hit->b2 = th.b2;
+      hit->t = t;
+      hit->b1 = hit->b2 = 0.f;
       return true;
     }
-    float t;
-    if (!intersect_sphere(ray, spheres_[local_[id]], tmax, &t)) return false;
+    TriangleHit th;
+    if (!intersect_triangle(wray, v[0], v[1], v[2], tmax, &th)) return false;
     hit->prim = int32_t(id);
-    hit->t = t;
-    hit->b1 = hit->b2 = 0.f;
+    hit->t = th.t;
+    hit->b1 = th.b1;
+    hit->b2 = th.b2;
     return true;
   }
 
