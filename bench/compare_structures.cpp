@@ -1,6 +1,7 @@
 // raystep_bench_structures: build time and single-thread ray throughput of raystep's structures against
 // Embree 3 in the same run, on the same rays (primary rays of the mesh's default camera, and random rays).
 // Usage: raystep_bench_structures [MESH.obj|SCENE.json] [--accel a,b,...] [--size N] [--random N] [--reps N]
+// (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D).
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <embree3/rtcore.h>
@@ -9,8 +10,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,22 +37,13 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-struct Measured {
-  double build_ms;
-  double mrays[2];
-  std::vector<Hit> hits[2];
-};
-
+// One pass over the rays; its time in ms.
 template <class Trace>
-double time_pass(const std::vector<Ray>& rays, std::vector<Hit>& hits, int reps, Trace trace) {
-  std::vector<double> times;
+double time_pass(const std::vector<Ray>& rays, std::vector<Hit>& hits, Trace trace) {
   hits.assign(rays.size(), Hit{});
-  for (int r = 0; r < reps; ++r) {
-    auto t0 = Clock::now();
-    for (size_t i = 0; i < rays.size(); ++i) trace(rays[i], &hits[i]);
-    times.push_back(ms_since(t0));
-  }
-  return double(rays.size()) / (median(times) * 1e3);
+  auto t0 = Clock::now();
+  for (size_t i = 0; i < rays.size(); ++i) trace(rays[i], &hits[i]);
+  return ms_since(t0);
 }
 
 // Embree 3, one thread, high-quality build, single-ray queries (rtcIntersect1).
@@ -123,12 +117,12 @@ size_t agreement(const std::vector<Hit>& a, const std::vector<Hit>& b) {
 
 int main(int argc, char** argv) {
   std::string mesh = bench::bunny_path();
-  std::string accels = "grid";
-  int size = 512, reps = 5;
+  std::string accels_list = "grid";
+  int size = 512, reps = 7;
   size_t random_count = 262144;
   bench::Args args(argc, argv);
   for (std::string a; args.next(&a);) {
-    if (a == "--accel") accels = args.value();
+    if (a == "--accel") accels_list = args.value();
     else if (a == "--size") size = int(args.number(1));
     else if (a == "--random") random_count = size_t(args.number(1));
     else if (a == "--reps") reps = int(args.number(1));
@@ -146,37 +140,69 @@ int main(int argc, char** argv) {
     std::printf("mesh: %s (%zu triangles); rays: camera %dx%d (%zu), random %zu; one thread, median of %d\n",
                 mesh.c_str(), g.size(), size, size, rays[0].size(), rays[1].size(), reps);
 
+    // Every structure is built first; then each pass of Embree is followed at once by a pass of each structure
+    // on the same rays, so that a slow spell of this shared machine falls on both sides of a ratio. A ratio is
+    // the median over the passes of (Embree's time / the structure's time) in the same round.
     EmbreeScene embree(g);
-    Measured em;
     auto t0 = Clock::now();
     embree.build();
-    em.build_ms = ms_since(t0);
-    for (int k = 0; k < 2; ++k)
-      em.mrays[k] = time_pass(rays[k], em.hits[k], reps, [&](const Ray& r, Hit* h) { embree.intersect(r, h); });
-
-    std::printf("%-12s %10s %14s %8s %14s %8s %16s %16s\n", "structure", "build_ms", "primary_Mray/s", "ratio",
-                "random_Mray/s", "ratio", "agree_primary", "agree_random");
-    std::printf("%-12s %10.1f %14.3f %8s %14.3f %8s %16s %16s\n", "embree-high", em.build_ms, em.mrays[0], "1",
-                em.mrays[1], "1", "-", "-");
-    std::stringstream list(accels);
-    std::string name;
-    while (std::getline(list, name, ',')) {
-      auto acc = make_accelerator(name, StructureOptions{});
-      Measured m;
+    double embree_build_ms = ms_since(t0);
+    std::vector<std::string> names;
+    std::vector<std::unique_ptr<Accelerator>> accels;
+    std::vector<double> build_ms;
+    std::stringstream list(accels_list);
+    for (std::string name; std::getline(list, name, ',');) {
+      // NAME or NAME:D, a kd-tree with the depth limit D (the sweep behind the default limit).
+      StructureOptions options;
+      std::string kind = name;
+      if (size_t colon = name.find(':'); colon != std::string::npos) {
+        kind = name.substr(0, colon);
+        char* end = nullptr;
+        long depth = std::strtol(name.c_str() + colon + 1, &end, 10);
+        if (*end != '\0' || depth < 1 || depth > kKdMaxDepth) bench::Args::fail("--accel " + name + ": expected NAME:DEPTH with DEPTH in 1..64");
+        options.kd.max_depth = int(depth);
+      }
+      names.push_back(name);
+      accels.push_back(make_accelerator(kind, options));
       std::vector<double> builds;
       for (int r = 0; r < 3; ++r) {
         auto t1 = Clock::now();
-        acc->build(g);
+        accels.back()->build(g);
         builds.push_back(ms_since(t1));
       }
-      m.build_ms = median(builds);
-      for (int k = 0; k < 2; ++k)
-        m.mrays[k] = time_pass(rays[k], m.hits[k], reps, [&](const Ray& r, Hit* h) { acc->intersect(r, h); });
-      std::printf("%-12s %10.1f %14.3f %8.3f %14.3f %8.3f %9zu/%-6zu %9zu/%-6zu\n", name.c_str(), m.build_ms,
-                  m.mrays[0], m.mrays[0] / em.mrays[0], m.mrays[1], m.mrays[1] / em.mrays[1],
-                  agreement(m.hits[0], em.hits[0]), rays[0].size(), agreement(m.hits[1], em.hits[1]),
-                  rays[1].size());
+      build_ms.push_back(median(builds));
     }
+
+    const size_t n = accels.size();
+    std::vector<Hit> embree_hits[2];
+    std::vector<std::vector<Hit>> hits[2];
+    std::vector<double> embree_ms[2];
+    std::vector<std::vector<double>> ms[2], ratio[2];
+    for (int k = 0; k < 2; ++k) {
+      hits[k].resize(n);
+      ms[k].resize(n);
+      ratio[k].resize(n);
+      for (int r = 0; r < reps; ++r) {
+        double e = time_pass(rays[k], embree_hits[k], [&](const Ray& ray, Hit* h) { embree.intersect(ray, h); });
+        embree_ms[k].push_back(e);
+        for (size_t a = 0; a < n; ++a) {
+          double t = time_pass(rays[k], hits[k][a], [&](const Ray& ray, Hit* h) { accels[a]->intersect(ray, h); });
+          ms[k][a].push_back(t);
+          ratio[k][a].push_back(e / t);
+        }
+      }
+    }
+    auto mrays = [](size_t count, const std::vector<double>& times) { return double(count) / (median(times) * 1e3); };
+
+    std::printf("%-12s %10s %14s %8s %14s %8s %16s %16s\n", "structure", "build_ms", "primary_Mray/s", "ratio",
+                "random_Mray/s", "ratio", "agree_primary", "agree_random");
+    std::printf("%-12s %10.1f %14.3f %8s %14.3f %8s %16s %16s\n", "embree-high", embree_build_ms,
+                mrays(rays[0].size(), embree_ms[0]), "1", mrays(rays[1].size(), embree_ms[1]), "1", "-", "-");
+    for (size_t a = 0; a < n; ++a)
+      std::printf("%-12s %10.1f %14.3f %8.3f %14.3f %8.3f %9zu/%-6zu %9zu/%-6zu\n", names[a].c_str(), build_ms[a],
+                  mrays(rays[0].size(), ms[0][a]), median(ratio[0][a]), mrays(rays[1].size(), ms[1][a]),
+                  median(ratio[1][a]), agreement(hits[0][a], embree_hits[0]), rays[0].size(),
+                  agreement(hits[1][a], embree_hits[1]), rays[1].size());
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -330,6 +330,10 @@ TEST(KdBuild, DepthLimitAndBudgetRules) {
   EXPECT_EQ(kd_max_depth(o, 1024), 12);   // 1.2 * 10
   EXPECT_EQ(kd_max_depth(o, 69451), 19);  // 1.2 * 16.08 = 19.3
   EXPECT_EQ(kd_max_depth(o, size_t(1) << 60), kKdMaxDepth);  // 1.2 * 60 = 72
+  KdOptions bonus;  // an empty bonus spends levels on empty space: pbrt's 8 + 1.3 log2 N
+  bonus.empty_bonus = 0.5f;
+  EXPECT_EQ(kd_max_depth(bonus, 1024), 21);   // 8 + 1.3 * 10
+  EXPECT_EQ(kd_max_depth(bonus, 69451), 29);  // 8 + 1.3 * 16.08 = 28.9
   o.max_depth = 5;
   EXPECT_EQ(kd_max_depth(o, 69451), 5);
   KdOptions b;
