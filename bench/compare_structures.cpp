@@ -140,9 +140,9 @@ int main(int argc, char** argv) {
     std::printf("mesh: %s (%zu triangles); rays: camera %dx%d (%zu), random %zu; one thread, median of %d\n",
                 mesh.c_str(), g.size(), size, size, rays[0].size(), rays[1].size(), reps);
 
-    // Every structure is built first; then each pass of Embree is followed at once by a pass of each structure
-    // on the same rays, so that a slow spell of this shared machine falls on both sides of a ratio. A ratio is
-    // the median over the passes of (Embree's time / the structure's time) in the same round.
+    // Every structure is built first; then each pass of Embree is followed at once by a pass of each
+    // structure on the same rays, so that a slow spell of this shared machine falls on both sides of a ratio.
+    // A ratio is the median over the passes of (Embree's time / the structure's time) in the same round.
     EmbreeScene embree(g);
     auto t0 = Clock::now();
     embree.build();
@@ -152,14 +152,16 @@ int main(int argc, char** argv) {
     std::vector<double> build_ms;
     std::stringstream list(accels_list);
     for (std::string name; std::getline(list, name, ',');) {
-      // NAME or NAME:D, a kd-tree with the depth limit D (the sweep behind the default limit).
+      // NAME, or kd:D / kd-median:D, a kd-tree with the depth limit D (the sweep behind the default limit).
       StructureOptions options;
       std::string kind = name;
       if (size_t colon = name.find(':'); colon != std::string::npos) {
         kind = name.substr(0, colon);
         char* end = nullptr;
         long depth = std::strtol(name.c_str() + colon + 1, &end, 10);
-        if (*end != '\0' || depth < 1 || depth > kKdMaxDepth) bench::Args::fail("--accel " + name + ": expected NAME:DEPTH with DEPTH in 1..64");
+        if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
+          bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
+                            std::to_string(kKdMaxDepth));
         options.kd.max_depth = int(depth);
       }
       names.push_back(name);
@@ -183,26 +185,32 @@ int main(int argc, char** argv) {
       ms[k].resize(n);
       ratio[k].resize(n);
       for (int r = 0; r < reps; ++r) {
-        double e = time_pass(rays[k], embree_hits[k], [&](const Ray& ray, Hit* h) { embree.intersect(ray, h); });
+        double e =
+            time_pass(rays[k], embree_hits[k], [&](const Ray& ray, Hit* h) { embree.intersect(ray, h); });
         embree_ms[k].push_back(e);
-        for (size_t a = 0; a < n; ++a) {
-          double t = time_pass(rays[k], hits[k][a], [&](const Ray& ray, Hit* h) { accels[a]->intersect(ray, h); });
+        // The structures take turns at coming first after Embree's pass.
+        for (size_t i = 0; i < n; ++i) {
+          size_t a = (i + size_t(r)) % n;
+          double t =
+              time_pass(rays[k], hits[k][a], [&](const Ray& ray, Hit* h) { accels[a]->intersect(ray, h); });
           ms[k][a].push_back(t);
           ratio[k][a].push_back(e / t);
         }
       }
     }
-    auto mrays = [](size_t count, const std::vector<double>& times) { return double(count) / (median(times) * 1e3); };
+    auto mrays = [](size_t count, const std::vector<double>& times) {
+      return double(count) / (median(times) * 1e3);
+    };
 
-    std::printf("%-12s %10s %14s %8s %14s %8s %16s %16s\n", "structure", "build_ms", "primary_Mray/s", "ratio",
-                "random_Mray/s", "ratio", "agree_primary", "agree_random");
+    std::printf("%-12s %10s %14s %8s %14s %8s %16s %16s\n", "structure", "build_ms", "primary_Mray/s",
+                "ratio", "random_Mray/s", "ratio", "agree_primary", "agree_random");
     std::printf("%-12s %10.1f %14.3f %8s %14.3f %8s %16s %16s\n", "embree-high", embree_build_ms,
                 mrays(rays[0].size(), embree_ms[0]), "1", mrays(rays[1].size(), embree_ms[1]), "1", "-", "-");
     for (size_t a = 0; a < n; ++a)
-      std::printf("%-12s %10.1f %14.3f %8.3f %14.3f %8.3f %9zu/%-6zu %9zu/%-6zu\n", names[a].c_str(), build_ms[a],
-                  mrays(rays[0].size(), ms[0][a]), median(ratio[0][a]), mrays(rays[1].size(), ms[1][a]),
-                  median(ratio[1][a]), agreement(hits[0][a], embree_hits[0]), rays[0].size(),
-                  agreement(hits[1][a], embree_hits[1]), rays[1].size());
+      std::printf("%-12s %10.1f %14.3f %8.3f %14.3f %8.3f %9zu/%-6zu %9zu/%-6zu\n", names[a].c_str(),
+                  build_ms[a], mrays(rays[0].size(), ms[0][a]), median(ratio[0][a]),
+                  mrays(rays[1].size(), ms[1][a]), median(ratio[1][a]), agreement(hits[0][a], embree_hits[0]),
+                  rays[0].size(), agreement(hits[1][a], embree_hits[1]), rays[1].size());
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

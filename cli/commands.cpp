@@ -20,10 +20,6 @@
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/structure_options.h"
-#include "raystep/trace/build_event_writer.h"
-#include "raystep/trace/record_trace.h"
-#include "raystep/trace/heatmap.h"
-#include "raystep/trace/pixel_rays.h"
 #include "raystep/io/image_io.h"
 #include "raystep/io/ray_files.h"
 #include "raystep/render/camera.h"
@@ -31,6 +27,10 @@
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
+#include "raystep/trace/build_event_writer.h"
+#include "raystep/trace/heatmap.h"
+#include "raystep/trace/pixel_rays.h"
+#include "raystep/trace/record_trace.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
@@ -196,14 +196,15 @@ void print_structure_summary(const Accelerator& accel, size_t prims) {
   double per_prim = 1.0 / double(std::max<size_t>(prims, 1));
   if (auto* grid = dynamic_cast<const UniformGrid*>(&accel)) {
     std::array<int, 3> n = grid->resolution();
-    std::printf("structure: grid %d x %d x %d cells, %zu references (%.3f per primitive), %s insertion\n", n[0], n[1],
-                n[2], grid->reference_count(), double(grid->reference_count()) * per_prim,
+    std::printf("structure: grid %d x %d x %d cells, %zu references (%.3f per primitive), %s insertion\n",
+                n[0], n[1], n[2], grid->reference_count(), double(grid->reference_count()) * per_prim,
                 grid->options().exact_insert ? "exact" : "bbox");
   } else if (auto* kd = dynamic_cast<const KdTree*>(&accel)) {
     KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
-    std::printf("structure: %s %zu nodes (%zu leaves, %zu empty), depth %d, %zu references (%.3f per primitive)\n",
-                kd->name().c_str(), st.nodes, st.leaves, st.empty_leaves, st.max_depth, st.references,
-                double(st.references) * per_prim);
+    std::printf(
+        "structure: %s %zu nodes (%zu leaves, %zu empty), depth %d, %zu references (%.3f per primitive)\n",
+        kd->name().c_str(), st.nodes, st.leaves, st.empty_leaves, st.max_depth, st.references,
+        double(st.references) * per_prim);
   }
 }
 

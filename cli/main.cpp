@@ -38,7 +38,9 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
   cmd->add_option("--tt", s.kd_tt, "kd: t_t, the cost of a traversal step")->capture_default_str();
   cmd->add_option("--empty-bonus", s.kd_empty_bonus, "kd: bonus in [0,1) for splits that cut off empty space")
       ->capture_default_str();
-  cmd->add_option("--max-depth", s.kd_max_depth, "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N)")->capture_default_str();
+  cmd->add_option("--max-depth", s.kd_max_depth,
+                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N)")
+      ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();
   cmd->add_option("--mailbox", s.kd_mailbox, "kd: mailboxes on | off")

@@ -62,12 +62,12 @@ inline Bounds3 without_negative_zero(Bounds3 b) {
 
 int kd_max_depth(const KdOptions& options, size_t prim_count) {
   if (options.max_depth > 0) return std::min(options.max_depth, kKdMaxDepth);
-  // With t_i = 80 t_t the SAH keeps cutting slivers of empty space off small nodes until the depth limit stops
-  // it; pbrt's 8 + 1.3 log2 N lets it go on far beyond what pays off on real hardware (the bunny: 906k nodes,
-  // every leaf at the limit). 1.2 log2 N leaves a few levels for the empty space beyond a balanced tree; measured
-  // fastest or level on the bunny, the teapot, the small bunny and the torus knot (bench/README.md). An empty
-  // bonus spends a level on every slab of empty space it cuts off, so with one the limit stays pbrt's (at
-  // 1.2 log2 N the bunny's leaves would hold up to 780 triangles).
+  // With t_i = 80 t_t the SAH keeps cutting slivers of empty space off small nodes until the depth limit
+  // stops it; pbrt's 8 + 1.3 log2 N lets it go on far beyond what pays off on real hardware (the bunny: 906k
+  // nodes, every leaf at the limit). 1.2 log2 N leaves a few levels for the empty space beyond a balanced
+  // tree; measured fastest or level on the bunny, the teapot, the small bunny and the torus knot
+  // (bench/README.md). An empty bonus spends a level on every slab of empty space it cuts off, so with one
+  // the limit stays pbrt's (at 1.2 log2 N the bunny's leaves would hold up to 780 triangles).
   double n = double(std::max<size_t>(prim_count, 1));
   double depth = options.empty_bonus > 0.f ? 8.0 + 1.3 * std::log2(n) : 1.2 * std::log2(n);
   return std::min(kKdMaxDepth, std::max(8, int(std::lround(depth))));

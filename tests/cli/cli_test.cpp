@@ -180,16 +180,17 @@ TEST_F(Cli, CastNamesTheStructuresShape) {
   std::string mesh = octahedron();
   ASSERT_EQ(run("rays " + mesh + " --kind random --count 500 --seed 3 -o " + path("r.rays")).code, 0);
   std::smatch m;
-  // A 2x2x2 grid of the octahedron: the cells are its octants, and cells are closed. The face (1,0,0), (0,1,0),
-  // (0,0,1) touches every octant that one of its corners borders: all but (-,-,-), 7. Its bounding box [0,1]^3
-  // also touches (-,-,-) at the origin: 8.
+  // A 2x2x2 grid of the octahedron: the cells are its octants, and cells are closed. The face (1,0,0),
+  // (0,1,0), (0,0,1) touches every octant that one of its corners borders: all but (-,-,-), 7. Its bounding
+  // box [0,1]^3 also touches (-,-,-) at the origin: 8.
   size_t refs[2] = {0, 0};
   for (int exact = 0; exact < 2; ++exact) {
     Outcome r = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("g.hits") +
                     " --accel grid --grid-res 2,2,2 --grid-insert " + (exact ? "exact" : "bbox"));
     ASSERT_EQ(r.code, 0) << r.err;
-    std::regex line(std::string("structure: grid 2 x 2 x 2 cells, ([0-9]+) references \\(([0-9.]+) per primitive\\), ") +
-                    (exact ? "exact" : "bbox") + " insertion\n");
+    std::regex line(
+        std::string("structure: grid 2 x 2 x 2 cells, ([0-9]+) references \\(([0-9.]+) per primitive\\), ") +
+        (exact ? "exact" : "bbox") + " insertion\n");
     ASSERT_TRUE(std::regex_search(r.out, m, line)) << r.out;
     refs[exact] = std::stoul(m[1]);
     EXPECT_NEAR(std::stod(m[2]), refs[exact] / 8.0, 1e-3);
@@ -198,8 +199,9 @@ TEST_F(Cli, CastNamesTheStructuresShape) {
   EXPECT_EQ(refs[0], 8u * 8u);
   Outcome k = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("k.hits") + " --accel kd");
   ASSERT_EQ(k.code, 0) << k.err;
-  EXPECT_TRUE(std::regex_search(k.out, m, std::regex("structure: kd ([0-9]+) nodes \\(([0-9]+) leaves, [0-9]+ empty\\), "
-                                                     "depth [0-9]+, ([0-9]+) references")))
+  ASSERT_TRUE(std::regex_search(k.out, m,
+                                std::regex("structure: kd ([0-9]+) nodes \\(([0-9]+) leaves, [0-9]+ "
+                                           "empty\\), depth [0-9]+, ([0-9]+) references")))
       << k.out;
   EXPECT_EQ(std::stoul(m[1]), 2 * std::stoul(m[2]) - 1);  // a binary tree
   EXPECT_GE(std::stoul(m[3]), 8u);

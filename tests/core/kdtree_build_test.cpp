@@ -326,9 +326,9 @@ TEST(KdBuild, DepthLimitAndBudgetRules) {
   KdOptions o;
   EXPECT_EQ(kd_max_depth(o, 0), 8);
   EXPECT_EQ(kd_max_depth(o, 1), 8);
-  EXPECT_EQ(kd_max_depth(o, 64), 8);      // 1.2 * 6 = 7.2: at least 8
-  EXPECT_EQ(kd_max_depth(o, 1024), 12);   // 1.2 * 10
-  EXPECT_EQ(kd_max_depth(o, 69451), 19);  // 1.2 * 16.08 = 19.3
+  EXPECT_EQ(kd_max_depth(o, 64), 8);                         // 1.2 * 6 = 7.2: at least 8
+  EXPECT_EQ(kd_max_depth(o, 1024), 12);                      // 1.2 * 10
+  EXPECT_EQ(kd_max_depth(o, 69451), 19);                     // 1.2 * 16.08 = 19.3
   EXPECT_EQ(kd_max_depth(o, size_t(1) << 60), kKdMaxDepth);  // 1.2 * 60 = 72
   KdOptions bonus;  // an empty bonus spends levels on empty space: pbrt's 8 + 1.3 log2 N
   bonus.empty_bonus = 0.5f;

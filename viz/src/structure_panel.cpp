@@ -108,7 +108,8 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   maxDepth_->setRange(0, kKdMaxDepth);
   maxDepth_->setValue(def.max_depth);
   maxDepth_->setSpecialValueText(tr("auto"));
-  maxDepth_->setToolTip(tr("The depth limit; auto: max(8, 1.2 log2 N), with an empty bonus 8 + 1.3 log2 N (pbrt)"));
+  maxDepth_->setToolTip(
+      tr("The depth limit; auto: max(8, 1.2 log2 N), with an empty bonus 8 + 1.3 log2 N (pbrt)"));
   k->addWidget(new QLabel(tr("max depth")), 1, 2);
   k->addWidget(maxDepth_, 1, 3);
   leafSize_ = new QSpinBox;

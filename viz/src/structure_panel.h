@@ -1,8 +1,8 @@
 // The structure panel: which acceleration structure and its build parameters. Grid: density d (in
 // max(nx, ny, nz) = d * cbrt(n)) or an explicit resolution, exact (triangle-box overlap) or bounding-box
-// insertion. kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0: the
-// pbrt rule), leaf size, mailboxes; an edit of a kd cost rebuilds at once. The build itself runs off the GUI
-// thread (the main window does it).
+// insertion. kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0:
+// max(8, 1.2 log2 N), with an empty bonus pbrt's 8 + 1.3 log2 N), leaf size, mailboxes; an edit of a kd cost
+// rebuilds at once. The build itself runs off the GUI thread (the main window does it).
 #pragma once
 
 #include <QWidget>

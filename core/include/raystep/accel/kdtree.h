@@ -96,8 +96,8 @@ bool KdTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       // stays on its origin's side, and an origin on the plane goes to the side the ray moves into.
       bool below_first = !std::signbit(d);
       uint32_t below = node_id + 1, above = node.above_child();
-      // The below child is the next node, likely in the same cache line; the above child may be far away, so its
-      // load starts now, while the ray is compared with the plane.
+      // The below child is the next node, likely in the same cache line; the above child may be far away, so
+      // its load starts now, while the ray is compared with the plane.
       __builtin_prefetch(&nodes[above]);
       uint32_t near_child = below_first ? below : above, far_child = below_first ? above : below;
 

@@ -28,7 +28,7 @@ struct KdOptions {
   float t_i = 80.f;          // cost of one ray-primitive test (lecture: t_i = 80 t_t)
   float t_t = 1.f;           // cost of one traversal step
   float empty_bonus = 0.f;   // in [0, 1): a split with an empty child costs t_t + (1 - bonus) t_i (...)
-  int max_depth = 0;         // 0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N (pbrt); <= kKdMaxDepth
+  int max_depth = 0;  // 0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N (pbrt); <= kKdMaxDepth
   int leaf_size = 1;         // a node with at most this many primitives is a leaf without a search
   // Bounded memory on pathological input: the leaves hold at most reference_budget * N primitive references
   // (never fewer than N). The root has this budget; a node splits only if its children's primitive counts fit

@@ -34,6 +34,11 @@ struct WatertightRay {
   }
 };
 
+struct TriangleHit {
+  float t;
+  float b0, b1, b2;  // barycentric coordinates: p = b0*p0 + b1*p1 + b2*p2
+};
+
 namespace detail {
 // Largest of |x|, |y|, |z| by plain comparisons: std::fmax is a library call unless NaNs are ruled out at
 // compile time (-ffast-math), and twelve such calls made a hit cost seven times a miss.
@@ -42,16 +47,9 @@ inline float max_abs3(float x, float y, float z) {
   float m = x > y ? x : y;
   return m > z ? m : z;
 }
-}  // namespace detail
 
-struct TriangleHit {
-  float t;
-  float b0, b1, b2;  // barycentric coordinates: p = b0*p0 + b1*p1 + b2*p2
-};
-
-namespace detail {
-// The test for one permutation (kx, ky, kz) of the axes, fixed at compile time so that every component is read
-// from a register (a permutation known only at run time goes through memory on each test).
+// The test for one permutation (kx, ky, kz) of the axes, fixed at compile time so that every component is
+// read from a register (a permutation known only at run time goes through memory on each test).
 template <int kx, int ky, int kz>
 inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
                                         const glm::vec3& p2, float tmax, TriangleHit* hit) {
@@ -65,9 +63,9 @@ inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3&
   float e0 = bx * cy - by * cx;
   float e1 = cx * ay - cy * ax;
   float e2 = ax * by - ay * bx;
-  // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator is a
-  // branch of its own, and on a miss which edge function decides it is a coin toss for the predictor (one branch
-  // instead of up to six: 15-20% faster kd-tree and grid walks on the bunny).
+  // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator
+  // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
+  // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
   // Exactly zero: the ray passes (nearly) through an edge; decide it in double so that the sign is exact.
   if (__builtin_expect((e0 == 0.f) | (e1 == 0.f) | (e2 == 0.f), 0)) {
     e0 = float(double(bx) * double(cy) - double(by) * double(cx));
@@ -114,14 +112,17 @@ inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3&
 }  // namespace detail
 
 // True if the ray hits triangle (p0, p1, p2) with ray.tmin < t < tmax; then *hit holds t and barycentrics.
-// tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found. The branch on
-// the ray's dominant axis goes the same way for every test of a ray, so the predictor learns it at once.
+// tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found. The branch
+// on the ray's dominant axis goes the same way for every test of a ray, so the predictor learns it at once.
 inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
                                const glm::vec3& p2, float tmax, TriangleHit* hit) {
   switch (r.kz) {
-    case 0: return detail::intersect_triangle_permuted<1, 2, 0>(r, p0, p1, p2, tmax, hit);
-    case 1: return detail::intersect_triangle_permuted<2, 0, 1>(r, p0, p1, p2, tmax, hit);
-    default: return detail::intersect_triangle_permuted<0, 1, 2>(r, p0, p1, p2, tmax, hit);
+    case 0:
+      return detail::intersect_triangle_permuted<1, 2, 0>(r, p0, p1, p2, tmax, hit);
+    case 1:
+      return detail::intersect_triangle_permuted<2, 0, 1>(r, p0, p1, p2, tmax, hit);
+    default:
+      return detail::intersect_triangle_permuted<0, 1, 2>(r, p0, p1, p2, tmax, hit);
   }
 }
 

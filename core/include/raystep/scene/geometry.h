@@ -66,7 +66,7 @@ class Geometry {
     // A scene of triangles only (every mesh) numbers its triangles like its primitives: the vertices are read
     // at once, without the type and local-index look-ups that stand between a primitive id and its data.
     const glm::vec3* v;
-    if (__builtin_expect(spheres_.empty(), 1)) {
+    if (__builtin_expect(all_triangles(), 1)) {
       v = &tri_verts_[3 * id];
     } else if (type_[id] == PrimType::triangle) {
       v = &tri_verts_[3 * local_[id]];
