@@ -61,6 +61,15 @@ class Geometry {
   glm::vec3 vertex_normal(uint32_t id, int k) const { return tri_normals_[3 * local_[id] + k]; }
   size_t triangle_count() const { return tri_verts_.size() / 3; }
 
+  // Start loading a primitive's data (a triangle's 36 bytes of vertices may straddle two cache lines), so
+  // that a leaf's primitives arrive together instead of one cache miss after another.
+  void prefetch(uint32_t id) const {
+    if (__builtin_expect(all_triangles(), 1)) {
+      __builtin_prefetch(&tri_verts_[3 * id]);
+      __builtin_prefetch(&tri_verts_[3 * id + 2]);
+    }
+  }
+
   // Test one primitive, with tmin < t < tmax. wray is the ray prepared for the watertight triangle test.
   bool intersect(uint32_t id, const Ray& ray, const WatertightRay& wray, float tmax, Hit* hit) const {
     // A scene of triangles only (every mesh) numbers its triangles like its primitives: the vertices are read
