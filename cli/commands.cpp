@@ -122,6 +122,11 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   }
 }
 
+// 0 (all cores) or an explicit count up to 256: TBB aborts the process on absurd counts (70,000 did).
+void check_threads(int threads) {
+  if (threads < 0 || threads > 256) throw InputError("", 0, "--threads must be 0..256 (0: all cores)");
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& a) {
@@ -132,7 +137,7 @@ int run_render(const RenderArgs& a) {
     if (extension(a.samples_map) != ".png") throw InputError(a.samples_map, 0, "the samples map is a .png");
     check_output_folder(a.samples_map);
   }
-  if (a.threads < 0) throw InputError("", 0, "--threads must be >= 0");
+  check_threads(a.threads);
 
   Scene scene = load_scene(a.scene);
   RenderOptions opt;
@@ -212,7 +217,7 @@ void print_structure_summary(const Accelerator& accel, size_t prims) {
 
 int run_cast(const CastArgs& a) {
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
-  if (a.threads < 0) throw InputError("", 0, "--threads must be >= 0");
+  check_threads(a.threads);
   check_output_folder(a.hits);
   Scene scene = load_scene(a.scene);
   std::vector<Ray> rays = read_rays(a.rays);
@@ -383,9 +388,33 @@ int run_sah(const SahArgs& a) {
   std::printf("node %u: depth %d, %u primitives, box [%g, %g, %g] .. [%g, %g, %g]\n", node, curve.info.depth,
               curve.n_prims, curve.info.box.lo.x, curve.info.box.lo.y, curve.info.box.lo.z, curve.info.box.hi.x,
               curve.info.box.hi.y, curve.info.box.hi.z);
-  if (curve.leaf)
+  if (curve.leaf) {
     std::printf("decision: leaf (%s), leaf cost N*t_i = %g\n", leaf_reason_name(curve.leaf_reason), curve.leaf_cost);
-  else
+    // What the rows mean for this leaf: only a leaf made by the cost rule has every row at N*t_i or above.
+    switch (curve.leaf_reason) {
+      case LeafReason::few_primitives:
+        std::printf("  at most --leaf-size %d primitives: a leaf without a search, so no rows\n",
+                    options.leaf_size);
+        break;
+      case LeafReason::max_depth:
+        std::printf(
+            "  the depth limit %d: a leaf without a search, so no rows (--max-depth sets the limit)\n",
+            kd_max_depth(options, scene.geometry.size()));
+        break;
+      case LeafReason::no_cheaper_split:
+        std::printf("  no plane costs less than N*t_i\n");
+        break;
+      case LeafReason::no_candidate:
+        std::printf("  no plane lies strictly inside the node\n");
+        break;
+      case LeafReason::budget:
+        std::printf(
+            "  the reference budget (%g references a primitive) is spent here: the cheapest row may cost "
+            "less than N*t_i, the budget, not the cost, stopped the split\n",
+            options.reference_budget);
+        break;
+    }
+  } else
     std::printf("decision: split %c = %.9g, cost %g against leaf cost N*t_i = %g\n", axes[curve.axis],
                 curve.position, curve.cost, curve.leaf_cost);
   std::printf("candidates: %zu (t_i %g, t_t %g, empty bonus %g); wrote %s\n", curve.candidates.size(), options.t_i,
@@ -404,7 +433,8 @@ int run_kdtree_stats(const KdStatsArgs& a) {
   double build_ms = ms_since(t0);
   const KdTreeData& d = tree->data();
   KdTreeStats st = kd_tree_stats(d, tree->options());
-  std::vector<KdNodeEntry> entry = measure_entry_probability(*tree, a.lines, a.seed);
+  size_t rays_cast = 0;
+  std::vector<KdNodeEntry> entry = measure_entry_probability(*tree, a.lines, a.seed, &rays_cast);
 
   size_t prims = scene.geometry.size();
   double leaf_depth = 0, leaf_prims = 0;
@@ -430,6 +460,10 @@ int run_kdtree_stats(const KdStatsArgs& a) {
   // Predicted against measured entry probabilities: the top of the tree, then all nodes at once.
   std::printf("\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
               static_cast<unsigned long long>(a.lines));
+  if (rays_cast < a.lines)
+    std::printf(
+        "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
+        rays_cast, static_cast<unsigned long long>(kMaxEntryRayTests));
   std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
   std::vector<std::string> paths(d.nodes.size());
   for (size_t i = 0; i < d.nodes.size(); ++i) {
@@ -443,15 +477,22 @@ int run_kdtree_stats(const KdStatsArgs& a) {
                   paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines, entry[i].rays);
   }
   double sum_abs = 0, worst = 0, sum_over = 0;
+  size_t compared = 0;
   for (const KdNodeEntry& e : entry) {
+    if (std::isnan(e.predicted)) continue;  // below a root of zero area
     sum_abs += std::fabs(e.predicted - e.lines);
     worst = std::max(worst, std::fabs(e.predicted - e.lines));
     sum_over += e.predicted - e.rays;
+    ++compared;
   }
-  double n = double(std::max<size_t>(entry.size(), 1));
-  std::printf("all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
-              "(rays stop at their first hit)\n",
-              entry.size(), sum_abs / n, worst, sum_over / n);
+  double n = double(std::max<size_t>(compared, 1));
+  std::printf(
+      "all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
+      "(rays stop at their first hit)\n",
+      compared, sum_abs / n, worst, sum_over / n);
+  if (compared < entry.size())
+    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n",
+                entry.size() - compared);
   if (!a.csv.empty()) {
     write_file_atomically(a.csv, [&](std::ostream& out) {
       out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";

@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox"}));
   render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
-  render_cmd->add_option("--threads", render.threads, "threads (0: all cores)")->capture_default_str();
+  render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
+      ->capture_default_str();
   render_cmd->add_option("--seed", render.seed, "sampling seed (default: the scene's)");
   render_cmd->add_option("--samples-map", render.samples_map, "also write a PNG of samples per pixel");
 
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
   cast_cmd->add_option("--rays", cast.rays, "input rays (.rays: 32 bytes per ray)")->required();
   cast_cmd->add_option("--hits", cast.hits, "output hits (.hits: 8 bytes per ray)")->required();
   add_structure_options(cast_cmd, cast.structure, "grid");
-  cast_cmd->add_option("--threads", cast.threads, "threads (0: all cores)")->capture_default_str();
+  cast_cmd->add_option("--threads", cast.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
   cast_cmd->add_option("--reps", cast.reps, "timed passes; trace_ms is their median")->capture_default_str();
 
   RaysArgs rays;

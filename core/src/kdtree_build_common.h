@@ -88,19 +88,17 @@ struct SahModel {
 // candidate replaces the best only when strictly cheaper.
 inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.cost < best.cost; }
 
-// The reference budget, shared out down the tree: the root has kd_reference_budget(N); a node may split only if
-// its children's primitives fit, n_below + n_above <= its budget, and then hands its budget to the children in
-// proportion to n_below and n_above (each gets at least its own count). So the leaves' references never exceed
-// the root's budget, and no part of the tree is starved by the parts built before it.
-struct BudgetShare {
-  size_t below, above;
-};
+// The reference budget, shared out down the tree: the root has kd_reference_budget(N); a node may split only
+// if its children's primitives fit, n_below + n_above <= its budget. The below child (built first) gets a
+// share in proportion to n_below, at least its own count; the above child gets the rest of the node's budget,
+// including whatever the below subtree left unused. So the leaves' references never exceed the root's budget,
+// the above side is never starved by the below side, and the budget binds only where the duplication really
+// piles up (on the bunny, nowhere; on 100,000 identical triangles, at once).
 inline bool budget_allows(size_t budget, uint32_t n_below, uint32_t n_above) {
   return size_t(n_below) + n_above <= budget;
 }
-inline BudgetShare share_budget(size_t budget, uint32_t n_below, uint32_t n_above) {
-  size_t below = size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above));
-  return {below, budget - below};
+inline size_t below_share(size_t budget, uint32_t n_below, uint32_t n_above) {
+  return size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above));
 }
 
 // The tree as it is written, node by node in depth-first preorder, with the build's limits.
@@ -121,6 +119,8 @@ class TreeWriter {
   void set_split_cost(uint32_t node, float cost) { tree_.info[node].cost = cost; }
   void set_inner(uint32_t node, int axis, float split, uint32_t above_child);
   uint32_t node_count() const { return uint32_t(tree_.nodes.size()); }
+  // The primitive references the leaves written so far hold.
+  size_t reference_count() const { return tree_.prim_index.size(); }
 
   // The root's reference budget.
   size_t root_budget() const { return budget_; }

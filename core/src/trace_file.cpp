@@ -5,8 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <functional>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <new>
 #include <sstream>
@@ -269,7 +270,8 @@ std::string trace_json_rest(const Trace& t) {
     out << (i ? ",\n   " : "\n   ") << jc.dump();
   }
   out << (t.cells.empty() ? "],\n" : "\n  ],\n");
-  if (!t.nodes.empty()) {
+  // A tree's trace always lists its nodes, [] for a ray that misses the root's box, so readers find the key.
+  if (!t.nodes.empty() || t.structure.kind != "grid") {
     out << "  \"nodes\": [";
     for (size_t i = 0; i < t.nodes.size(); ++i) {
       const TraceNode& n = t.nodes[i];
@@ -288,7 +290,7 @@ std::string trace_json_rest(const Trace& t) {
       }
       out << (i ? ",\n   " : "\n   ") << jn.dump();
     }
-    out << "\n  ],\n";
+    out << (t.nodes.empty() ? "],\n" : "\n  ],\n");
   }
   out << "  \"primitives\": [";
   for (size_t i = 0; i < t.primitives.size(); ++i) {
@@ -835,21 +837,24 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
 }
 
 Trace read_trace_json(const std::string& path) {
+  // A regular file only: a directory, a device such as /dev/zero or a FIFO would fail oddly, never end, or
+  // block; the scene and ray readers refuse them the same way.
+  std::error_code ec;
+  std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw InputError(path, 0, "cannot read the file: no such file");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path, 0, "cannot read the file: not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "cannot read the file");
   std::string text;
   in.seekg(0, std::ios::end);
   std::streamoff size = in.tellg();
   in.seekg(0, std::ios::beg);
-  if (size > 0 && in) {  // a regular file: read it in one go
+  if (size > 0 && in) {  // read it in one go
     text.resize(size_t(size));
     in.read(text.data(), size);
     text.resize(size_t(in.gcount()));
   }
-  in.clear();
-  std::ostringstream rest;  // whatever is left (a file that grew, or a stream that cannot seek)
-  rest << in.rdbuf();
-  text += rest.str();
   return parse_trace_json(text, path);
 }
 

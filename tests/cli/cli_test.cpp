@@ -1,6 +1,7 @@
 // The `raystep` command end to end: every bad input gives one line "error: FILE:LINE: what", exit code 2 and
 // no output file; the good paths write what they say.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <sys/wait.h>
 
@@ -139,7 +140,14 @@ TEST_F(Cli, BadOptions) {
   expect_error(run("render " + mesh + " -o " + path("no/such/dir/a.png")), path("no/such/dir/a.png"));
   expect_error(run("render " + mesh + " -o " + out + " --frobnicate"), "");
   expect_error(run("frobnicate"), "");
+  expect_error(run("render " + mesh + " -o " + out + " --threads 100000"), "--threads");
+  expect_error(run("render " + mesh + " -o " + out + " --threads -1"), "--threads");
   EXPECT_FALSE(fs::exists(out));
+  ASSERT_EQ(run("rays " + mesh + " --kind random --count 10 -o " + path("r.rays")).code, 0);
+  expect_error(
+      run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("h.hits") + " --threads 100000"),
+      "--threads");
+  EXPECT_FALSE(fs::exists(path("h.hits")));
 }
 
 TEST_F(Cli, RenderWritesTheImageAndCountsRays) {
@@ -293,6 +301,22 @@ TEST_F(Cli, MalformedTracesExitTwoWithFileAndLine) {
   expect_error(r, unknown + ":" + line + ":");
   EXPECT_NE(r.err.find("unknown event type \"warp\""), std::string::npos) << r.err;
   expect_error(run("trace-info " + path("missing.json")), path("missing.json"));
+  // Not a regular file: a directory, a FIFO (which would block), a device (which would never end).
+  expect_error(run("trace-info " + dir_.string()),
+               dir_.string() + ": cannot read the file: not a regular file");
+  ASSERT_EQ(::mkfifo(path("fifo.json").c_str(), 0600), 0);
+  expect_error(run("trace-info " + path("fifo.json")),
+               path("fifo.json") + ": cannot read the file: not a regular file");
+  expect_error(run("trace-info /dev/zero"), "/dev/zero: cannot read the file: not a regular file");
+}
+
+// A ray that misses the kd-tree's root box enters no node; its trace still lists the (empty) nodes.
+TEST_F(Cli, KdTraceOfAMissListsNoNodes) {
+  std::string mesh = octahedron();
+  ASSERT_EQ(run("trace " + mesh + " --accel kd --ray -3,5,0,1,0,0 -o " + path("t.json")).code, 0);
+  std::string text = slurp(path("t.json"));
+  EXPECT_NE(text.find("\"nodes\": []"), std::string::npos) << text;
+  EXPECT_EQ(run("trace-info " + path("t.json")).code, 0);
 }
 
 TEST_F(Cli, HeatMapAndGridOptions) {

@@ -779,6 +779,42 @@ TEST(KdPathological, BudgetStopsDuplication) {
   }
 }
 
+// The budget is shared out depth first: what the below subtree leaves unused goes to the above subtree, so
+// duplication on one side of the scene is not cut off while the other side's share lies idle. Tiny triangles
+// below x = 0 (about one reference each) and slivers above it (every split duplicates a third of them): the
+// median builder's root splits at x = 0, and the slivers' side ends up with more references than its
+// proportional share of the root's budget, while the whole tree stays within that budget.
+TEST(KdPathological, BudgetTheBelowSideLeavesGoesToTheAboveSide) {
+  Geometry g = make_slivers(1000, 73);  // in [-1, 1]^3
+  for (uint32_t i = 0; i < g.size(); ++i)
+    for (int k = 0; k < 3; ++k) ASSERT_GE(g.vertex(i, k).x, -1.f);
+  std::mt19937 rng(74);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  const int tiny = 1000;
+  for (int i = 0; i < tiny; ++i) {  // x in [-3.1, -1.2]: the root box's x range is [-3.1, about 1.01]
+    glm::vec3 p(i == 0 ? -3.1f : -3.f + 1.79f * u(rng), -1.f + 1.99f * u(rng), -1.f + 1.99f * u(rng));
+    g.add_triangle(p, p + glm::vec3(0.001f, 0.f, 0.f), p + glm::vec3(0.f, 0.001f, 0.f));
+  }
+  KdOptions o = with_builder(KdBuilder::median);
+  o.reference_budget = 1.5f;
+  BuildLog log(-2);
+  KdTreeData t = build_kdtree(g, o, log);
+  const size_t budget = kd_reference_budget(o, g.size());  // 3,000
+  ASSERT_FALSE(t.nodes[0].is_leaf());
+  ASSERT_EQ(t.nodes[0].axis(), 0);
+  ASSERT_GT(t.nodes[0].split, -1.2f);  // the middle of x: between the tiny triangles and the slivers
+  ASSERT_LT(t.nodes[0].split, -1.f);
+  // References held by the leaves of the above subtree (node ids from the above child on).
+  size_t above_refs = 0;
+  for (uint32_t id = t.nodes[0].above_child(); id < t.nodes.size(); ++id)
+    if (t.nodes[id].is_leaf()) above_refs += t.nodes[id].prim_count();
+  const size_t proportional = budget - budget * tiny / g.size();  // 1,500
+  EXPECT_GT(above_refs, proportional);
+  EXPECT_LE(t.prim_index.size(), budget);
+  EXPECT_GT(log.count(LeafReason::budget), 0u);  // the slivers still run into it
+  check_invariants(g, t, o);
+}
+
 TEST(KdDegenerate, ZeroAreaTrianglesAndSpheres) {
   Geometry g;
   g.add_triangle(glm::vec3(0, 0, 0), glm::vec3(1, 1, 1), glm::vec3(2, 2, 2));  // collinear

@@ -9,11 +9,12 @@
 
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/geometry/icosphere.h"
 #include "raystep/render/render.h"
-#include "raystep/scene/scene_loader.h"
 #include "raystep/scene/ray_sets.h"
+#include "raystep/scene/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/trace/event_recorder.h"
 #include "raystep/util/error.h"
@@ -336,6 +337,47 @@ TEST(KdTree, RendersTheSamePictureAsBruteForce) {
       EXPECT_TRUE(image.pixels == reference.pixels) << name << " builder " << int(builder);
     }
   }
+}
+
+// Crofton's theorem measured: every line through the root enters it, a child's fraction of the lines is near
+// S_child / S_root, and the rays (which test primitives) stop after the test budget on a crowded leaf.
+TEST(KdEntryProbability, LinesFollowCroftonAndRaysStopAtTheTestBudget) {
+  Geometry g;
+  add_to_geometry(make_icosphere(2), g);  // 320 triangles
+  KdTree tree;
+  tree.build(g);
+  size_t cast = 0;
+  std::vector<KdNodeEntry> e = measure_entry_probability(tree, 20000, 3, &cast);
+  ASSERT_EQ(e.size(), tree.data().nodes.size());
+  EXPECT_EQ(cast, 20000u);
+  EXPECT_EQ(e[0].predicted, 1.0);
+  EXPECT_EQ(e[0].lines, 1.0);
+  EXPECT_EQ(e[0].rays, 1.0);
+  for (size_t i = 1; i < std::min<size_t>(e.size(), 16); ++i) {
+    EXPECT_NEAR(e[i].lines, e[i].predicted, 0.02) << "node " << i;
+    EXPECT_LE(e[i].rays, e[i].lines + 0.02) << "node " << i;  // a ray stops at its first hit
+  }
+
+  // 2,000 identical triangles make one leaf, and every ray tests all of them: with a budget of 20,000 tests
+  // the rays stop after 10, while all the lines are measured.
+  Geometry crowd;
+  for (int i = 0; i < 2000; ++i)
+    crowd.add_triangle(glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 1));
+  KdTree leaf;
+  leaf.build(crowd);
+  ASSERT_EQ(leaf.data().nodes.size(), 1u);
+  std::vector<KdNodeEntry> c = measure_entry_probability(leaf, 500, 3, &cast, 20000);
+  EXPECT_EQ(cast, 10u);
+  EXPECT_EQ(c[0].lines, 1.0);
+  EXPECT_EQ(c[0].rays, 1.0);
+
+  // A root of zero area (all vertices at one point): the root is still entered with probability 1.
+  Geometry point;
+  point.add_triangle(glm::vec3(1, 2, 3), glm::vec3(1, 2, 3), glm::vec3(1, 2, 3));
+  KdTree dot;
+  dot.build(point);
+  std::vector<KdNodeEntry> p = measure_entry_probability(dot, 100, 3, &cast);
+  EXPECT_EQ(p[0].predicted, 1.0);
 }
 
 }  // namespace

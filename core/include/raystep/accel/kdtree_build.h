@@ -32,7 +32,8 @@ struct KdOptions {
   int leaf_size = 1;         // a node with at most this many primitives is a leaf without a search
   // Bounded memory on pathological input: the leaves hold at most reference_budget * N primitive references
   // (never fewer than N). The root has this budget; a node splits only if its children's primitive counts fit
-  // in its budget (else LeafReason::budget) and shares it out to them in proportion to their counts. >= 1.
+  // in its budget (else LeafReason::budget); the below child gets a share in proportion to its count, the
+  // above child the rest, with what the below subtree left unused. >= 1.
   float reference_budget = 8.f;
 };
 constexpr int kKdMaxDepth = 64;
