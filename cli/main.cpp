@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "raystep/accel/accelerator.h"
+#include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
 namespace {
@@ -52,6 +53,7 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
 
 int main(int argc, char** argv) {
   using namespace raystep::cli;
+  raystep::remove_temporary_files_on_signals();
   CLI::App app{"raystep: a step-debugger for anti-aliased, accelerated ray tracing"};
   app.set_version_flag("--version", "raystep 0.1.0");
   app.require_subcommand(1);

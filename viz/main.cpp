@@ -7,10 +7,12 @@
 #include <QCoreApplication>
 
 #include "main_window.h"
+#include "raystep/util/atomic_file.h"
 #include "scene_view.h"
 #include "script.h"
 
 int main(int argc, char** argv) {
+  raystep::remove_temporary_files_on_signals();
   for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
       QCoreApplication app(argc, argv);  // the usage needs no display

@@ -2,14 +2,17 @@
 // atomic writes.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <unistd.h>
 
 #include "raystep/io/image_io.h"
+#include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -182,6 +185,33 @@ TEST_F(ImageIo, WritesAreAtomic) {
   EXPECT_THROW(write_png(path("empty.png"), Image()), InputError);
   EXPECT_THROW(write_pfm(path("empty.pfm"), Image(2, 0)), InputError);
   EXPECT_EQ(file_count(), 2u);
+}
+
+// Ctrl-C in the middle of a write: the temporary file goes, the target stays as it was, and the process ends
+// by the signal. In a child process, so that the signal ends only the child.
+TEST_F(ImageIo, InterruptedWriteLeavesNoTemporaryFile) {
+  const std::string target = path("out.txt");
+  { std::ofstream(target) << "before"; }
+  for (int sig : {SIGINT, SIGTERM}) {
+    pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      remove_temporary_files_on_signals();
+      AtomicFile file(target);
+      std::ofstream(file.temp_path()) << "half";
+      ::raise(sig);
+      ::_exit(3);  // not reached: the signal ends the process
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_EQ(file_count(), 1u) << "signal " << sig;  // only out.txt: no out.txt.tmp.PID
+    std::ifstream in(target);
+    std::string text;
+    in >> text;
+    EXPECT_EQ(text, "before");
+  }
 }
 
 }  // namespace

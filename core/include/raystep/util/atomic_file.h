@@ -22,9 +22,16 @@ class AtomicFile {
  private:
   std::string path_, temp_;
   bool committed_ = false;
+  int slot_ = -1;  // where a signal handler finds temp_ (see remove_temporary_files_on_signals)
 };
 
 // Write through a stream callback, atomically. Throws InputError naming the path if it cannot be written.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+// Ctrl-C (SIGINT), SIGTERM and SIGHUP remove the temporary files of the AtomicFiles still open, then end the
+// process as the signal would have: a student who stops a gigabyte-long build log leaves no debris. Call
+// once, early in main. (SIGKILL cannot be caught: a killed run may leave a PATH.tmp.PID file, never a half
+// PATH.)
+void remove_temporary_files_on_signals();
 
 }  // namespace raystep
