@@ -77,13 +77,13 @@ QString leafReasonText(LeafReason r) {
     case LeafReason::few_primitives:
       return QObject::tr("N <= leaf size: no search");
     case LeafReason::max_depth:
-      return QObject::tr("the depth limit");
+      return QObject::tr("the depth limit: no search");
     case LeafReason::no_cheaper_split:
       return QObject::tr("no split costs less than N t_i");
     case LeafReason::no_candidate:
       return QObject::tr("no plane strictly inside the node");
     case LeafReason::budget:
-      return QObject::tr("the reference budget is spent");
+      return QObject::tr("the reference budget is spent: the cheapest plane may cost less than N t_i");
   }
   return {};
 }
