@@ -66,12 +66,14 @@ Bounds3 Geometry::prim_bounds(uint32_t id) const {
     b.extend(v[2]);
     return b;
   }
-  // Rounded outwards so that the box contains the whole sphere despite float rounding.
+  // Rounded outwards so that the box contains the whole sphere despite float rounding, and only where
+  // rounding happened: an exact face stays exact (a sphere on the floor y = 0 would otherwise reach y =
+  // -1.4e-45, and the SAH would cut that zero-width slab off every node above the floor).
   const Sphere& s = spheres_[local_[id]];
-  glm::vec3 lo = s.center - glm::vec3(s.radius), hi = s.center + glm::vec3(s.radius);
+  glm::vec3 lo, hi;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = next_float_down(lo[a]);
-    hi[a] = next_float_up(hi[a]);
+    lo[a] = sub_round_down(s.center[a], s.radius);
+    hi[a] = add_round_up(s.center[a], s.radius);
   }
   return Bounds3(lo, hi);
 }

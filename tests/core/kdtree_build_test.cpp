@@ -815,6 +815,24 @@ TEST(KdPathological, BudgetTheBelowSideLeavesGoesToTheAboveSide) {
   check_invariants(g, t, o);
 }
 
+// A sphere resting on the floor: its box starts at the floor's plane y = 0 exactly (rounded outwards only
+// where rounding happened), so the SAH has no zero-width slab [-1.4e-45, 0] to cut off below every node on
+// the floor.
+TEST(KdDegenerate, SphereOnTheFloorLeavesNoZeroWidthSlab) {
+  Geometry g;
+  g.add_triangle(glm::vec3(-1, 0, -1), glm::vec3(1, 0, -1), glm::vec3(1, 0, 1));
+  g.add_triangle(glm::vec3(-1, 0, -1), glm::vec3(1, 0, 1), glm::vec3(-1, 0, 1));
+  g.add_sphere(Sphere{glm::vec3(0.3f, 0.5f, -0.2f), 0.5f});
+  add_box(g, glm::vec3(-0.8f, 0.f, 0.2f), glm::vec3(-0.3f, 1.2f, 0.7f));
+  EXPECT_EQ(g.prim_bounds(2).lo.y, 0.f);
+  EXPECT_EQ(g.bounds().lo.y, 0.f);
+  for (KdBuilder b : {KdBuilder::sah, KdBuilder::sah_reference}) {
+    KdTreeData t = build_kdtree(g, with_builder(b));
+    for (size_t i = 0; i < t.nodes.size(); ++i)
+      EXPECT_GT(t.info[i].box.hi.y - t.info[i].box.lo.y, 1e-6f) << "node " << i;
+  }
+}
+
 TEST(KdDegenerate, ZeroAreaTrianglesAndSpheres) {
   Geometry g;
   g.add_triangle(glm::vec3(0, 0, 0), glm::vec3(1, 1, 1), glm::vec3(2, 2, 2));  // collinear

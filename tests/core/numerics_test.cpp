@@ -80,5 +80,27 @@ TEST(Numerics, BitsRoundTrip) {
   EXPECT_EQ(float_to_bits(bits_to_float(0x7fc00123u)), 0x7fc00123u);  // NaN payload kept
 }
 
+// Directed rounding of a sum or difference: never inside the exact result, and exact results kept exact.
+// Checked in double, where the sum of two floats of these magnitudes is exact.
+TEST(Numerics, SubRoundDownAndAddRoundUp) {
+  EXPECT_EQ(sub_round_down(0.5f, 0.5f), 0.f);  // a sphere of radius 0.5 at y = 0.5 rests on y = 0
+  EXPECT_FALSE(std::signbit(sub_round_down(0.5f, 0.5f)));
+  EXPECT_EQ(add_round_up(0.25f, 0.5f), 0.75f);
+  EXPECT_EQ(sub_round_down(1.f, 1e-8f), std::nextafter(1.f, 0.f));  // 1 - 1e-8 rounds to 1: step down
+  EXPECT_EQ(add_round_up(1.f, 1e-8f), std::nextafter(1.f, 2.f));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-100.f, 100.f), r(0.f, 3.f);
+  for (int i = 0; i < 100000; ++i) {
+    float a = u(rng), b = r(rng);
+    double lo = double(a) - double(b), hi = double(a) + double(b);
+    float l = sub_round_down(a, b), h = add_round_up(a, b);
+    ASSERT_LE(double(l), lo) << a << " - " << b;
+    ASSERT_GE(double(h), hi) << a << " + " << b;
+    // At most one step: the float just below (above) is already inside.
+    ASSERT_GT(double(std::nextafter(l, INFINITY)), lo) << a << " - " << b;
+    ASSERT_LT(double(std::nextafter(h, -INFINITY)), hi) << a << " + " << b;
+  }
+}
+
 }  // namespace
 }  // namespace raystep

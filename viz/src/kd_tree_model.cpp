@@ -102,7 +102,7 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
                                      : tr("leaf, %n primitive(s)", "", int(n.prim_count()));
         return tr("split %1 = %2").arg(axisName(n.axis())).arg(double(n.split), 0, 'g', 5);
       case CostColumn:
-        return QString::number(double(info.cost), 'f', 1);
+        return QString::number(double(info.cost), 'g', 5);  // 3.6298e+06 fits the column; 3629800.0 did not
     }
   } else if (role == Qt::ToolTipRole) {
     return tr("node %1, path \"%2\", box (%3, %4, %5) .. (%6, %7, %8)")

@@ -213,7 +213,7 @@ void MainWindow::showSahCurve() {
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return std::function<void()>([this, structure, options, node, path, curve, ms] {
       if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
-      sahChart_->setCurve(curve, path, options.t_i, options.t_t);
+      sahChart_->setCurve(curve, path, options.t_i, options.t_t, options.empty_bonus);
       statusBar()->showMessage(tr("SAH curve of node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
                                took(tr(", recorded"), ms));
     });

@@ -150,7 +150,8 @@ void SahChart::showMessage(const QString& text) {
   renderNow();
 }
 
-void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t) {
+void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t,
+                        float empty_bonus) {
   Impl& d = *d_;
   curve_ = std::move(curve);
   d.message.clear();
@@ -233,12 +234,27 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     }
     d.chart->SetTitle("node " + std::to_string(c.node) + ": leaf (" + leaf_reason_name(c.leaf_reason) + ")");
   } else {
-    t += tr("<b>split %1 = %2</b>, cost %3 = t_t + p_a N_a t_i + p_b N_b t_i (t_t = %4)")
-             .arg(axisName(c.axis))
-             .arg(fmt(c.position))
-             .arg(fmt(c.cost))
-             .arg(double(t_t));
-    if (c.chosen >= 0 && size_t(c.chosen) < c.candidates.size()) {
+    // With an empty side and an empty bonus b, the cost is t_t + (1 - b)(p_a N_a + p_b N_b) t_i.
+    const bool chosen_known = c.chosen >= 0 && size_t(c.chosen) < c.candidates.size();
+    const bool bonus =
+        empty_bonus > 0.f && chosen_known &&
+        (c.candidates[size_t(c.chosen)].n_below == 0 || c.candidates[size_t(c.chosen)].n_above == 0);
+    if (bonus)
+      t +=
+          tr("<b>split %1 = %2</b>, cost %3 = t_t + (1 &minus; b)(p_a N_a + p_b N_b) t_i (t_t = %4; an empty "
+             "side earns the empty bonus b = %5)")
+              .arg(axisName(c.axis))
+              .arg(fmt(c.position))
+              .arg(fmt(c.cost))
+              .arg(double(t_t))
+              .arg(double(empty_bonus));
+    else
+      t += tr("<b>split %1 = %2</b>, cost %3 = t_t + p_a N_a t_i + p_b N_b t_i (t_t = %4)")
+               .arg(axisName(c.axis))
+               .arg(fmt(c.position))
+               .arg(fmt(c.cost))
+               .arg(double(t_t));
+    if (chosen_known) {
       const SahCandidate& s = c.candidates[size_t(c.chosen)];
       t += tr("<br>N below %1, above %2 (planar %3)").arg(s.n_below).arg(s.n_above).arg(s.n_planar);
     }

@@ -29,7 +29,8 @@ class SahChart : public QWidget {
   ~SahChart() override;
 
   // The curve of a node (path: its "LRL" from the root), with the costs' t_i for the text.
-  void setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t);
+  void setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t,
+                float empty_bonus = 0.f);
   // No curve: a message instead ("Select a node ...", "Recording node 5 ...").
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }

@@ -293,7 +293,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.hitActor->SetMapper(mapper);
     d.hitActor->GetProperty()->SetLighting(false);
   }
-  d.stackActor = unlitActor(d.stackData, palette::stackNode, 2.f);
+  d.stackActor = unlitActor(d.stackData, palette::stackNode, 3.f);
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
   // On a layer of its own: over the scene (which stays the same from step to step, see BackdropCache) and under
@@ -597,8 +597,13 @@ void SceneView::updateStep() {
       const TraceNode* n = d.node(id);
       if (n && id != d.currentNode && !onStack.count(id)) addBoxEdges(vpts, vlines, n->box.lo, n->box.hi);
     }
+    // A far child shares faces with its parent and its sibling, whose outlines are drawn over it: inset by 2%
+    // of its size, the box waiting on the stack keeps an outline of its own.
     for (const StackEntry& se : s.stack)
-      if (const TraceNode* n = d.node(se.node)) addBoxEdges(stpts, stlines, n->box.lo, n->box.hi);
+      if (const TraceNode* n = d.node(se.node)) {
+        glm::vec3 inset = 0.02f * (n->box.hi - n->box.lo);
+        addBoxEdges(stpts, stlines, n->box.lo + inset, n->box.hi - inset);
+      }
     if (const TraceNode* n = d.node(d.currentNode)) {
       addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
       if (!n->leaf) {

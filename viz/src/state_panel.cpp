@@ -108,7 +108,6 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   form->addRow(tr("cell (i,j,k)"), cell_);
   form->addRow(tr("[t_enter, t_exit]"), interval_);
   form->addRow(dda_);
-  form->addRow(tr("nearest hit"), nearest_);
   layout->addWidget(gridBox_);
 
   // Trees (kd-tree): the current node and the stack, shown when the trace has tree events.
@@ -133,6 +132,11 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   treeBox_->hide();
   layout->addWidget(treeBox_);
 
+  // The nearest hit so far, for grids and trees alike: the stop rules compare with its t.
+  auto* hitForm = new QFormLayout;
+  hitForm->addRow(tr("<b>nearest hit</b>"), nearest_);
+  layout->addLayout(hitForm);
+
   auto* counterBox = new QGroupBox(tr("Counters so far"));
   auto* counterLayout = new QVBoxLayout(counterBox);
   counters_ = label("countersLabel");
@@ -156,6 +160,7 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
 
   connect(session_, &Session::stepChanged, this, &StatePanel::refresh);
   connect(session_, &Session::traceChanged, this, &StatePanel::refresh);
+  connect(session_, &Session::structureChanged, this, &StatePanel::refresh);
   refresh();
 }
 
@@ -167,6 +172,10 @@ void StatePanel::refresh() {
     ray_->setText(tr("<i>No ray yet. Click a pixel in the image, or open a trace.</i>"));
     for (QLabel* l : {event_, cell_, interval_, dda_, nearest_, rule_, counters_, node_, crossing_}) l->clear();
     stack_->setRowCount(0);
+    // Before a ray, the boxes of the structure that is built.
+    const bool tree = session_->structure() && session_->structure()->kind != "grid";
+    treeBox_->setVisible(tree);
+    gridBox_->setVisible(!tree);
     return;
   }
   const bool tree = isTreeRay(*r);

@@ -35,12 +35,12 @@ TreeView::TreeView(Session* session, QWidget* parent)
   view_->setSelectionMode(QAbstractItemView::SingleSelection);
   view_->setIndentation(10);
   view_->setAllColumnsShowFocus(true);
-  view_->header()->setStretchLastSection(false);
+  view_->header()->setStretchLastSection(true);  // the cost column takes the room that is left
   view_->header()->setSectionResizeMode(KdTreeModel::SideColumn, QHeaderView::ResizeToContents);
   view_->setColumnWidth(KdTreeModel::NodeColumn, 60);
   view_->setColumnWidth(KdTreeModel::DepthColumn, 40);
   view_->setColumnWidth(KdTreeModel::WhatColumn, 150);
-  view_->setColumnWidth(KdTreeModel::CostColumn, 55);
+  view_->setColumnWidth(KdTreeModel::CostColumn, 70);
   layout->addWidget(view_, 1);
 
   connect(view_->selectionModel(), &QItemSelectionModel::currentChanged, this, [this](const QModelIndex& i) {

@@ -45,4 +45,21 @@ inline float next_float_down(float v) {
   return bits_to_float(ui);
 }
 
+// a - b and a + b rounded towards -inf and +inf: the float nearest the exact result, stepped one ulp outwards
+// only when rounding to nearest moved it inwards. The exact rounding error comes from Knuth's TwoSum (plain
+// additions, so no FMA contraction can touch it). A box built this way keeps an exact face where one exists:
+// a sphere resting on the plane y = 0 has its box start at 0, not at -1.4e-45.
+inline float sub_round_down(float a, float b) {
+  float s = a - b;
+  float bv = s - a, av = s - bv;     // TwoSum(a, -b)
+  float err = (a - av) + (-b - bv);  // s + err == a - b exactly
+  return err < 0.f ? next_float_down(s) : s;
+}
+inline float add_round_up(float a, float b) {
+  float s = a + b;
+  float bv = s - a, av = s - bv;
+  float err = (a - av) + (b - bv);  // s + err == a + b exactly
+  return err > 0.f ? next_float_up(s) : s;
+}
+
 }  // namespace raystep
