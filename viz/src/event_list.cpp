@@ -5,6 +5,7 @@
 #include <QFontDatabase>
 #include <QLabel>
 #include <QListView>
+#include <QResizeEvent>
 #include <QVBoxLayout>
 
 #include "replay.h"
@@ -64,6 +65,12 @@ EventList::EventList(Session* session, QWidget* parent) : QWidget(parent), sessi
 }
 
 int EventList::currentRow() const { return view_->currentIndex().row(); }
+
+void EventList::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  if (view_->currentIndex().isValid())
+    view_->scrollTo(view_->currentIndex(), QAbstractItemView::PositionAtCenter);
+}
 
 void EventList::sync() {
   if (model_->rowCount() == 0) return;

@@ -17,6 +17,10 @@ class EventList : public QWidget {
   explicit EventList(Session* session, QWidget* parent = nullptr);
   int currentRow() const;
 
+ protected:
+  // The list shrinks when a panel opens below it: the current event is brought back into view.
+  void resizeEvent(QResizeEvent* event) override;
+
  private:
   void sync();
   Session* session_;

@@ -165,6 +165,7 @@ struct SceneView::Impl {
   std::vector<int> primCells;
   float sceneRadius = 1.f;
   bool translucent = false, follow = false, followZoom = false;
+  int32_t followedNode = -1;  // the kd node the camera last framed while following
   double lastMs = 0.0;
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
@@ -746,12 +747,20 @@ void SceneView::updateStep() {
     cam->GetFocalPoint(fp);
     cam->GetPosition(pos);
     glm::dvec3 offset(pos[0] - fp[0], pos[1] - fp[1], pos[2] - fp[2]);
-    if (d.followZoom) {  // on switching follow on: come close enough that about a dozen cells fill the view
+    // Grid: on switching follow on, come close enough that about a dozen cells fill the view (cells are all
+    // alike). Tree: whenever the current node changes, frame about three times its size: nodes shrink by
+    // orders of magnitude on the way down to a leaf and grow again at a pop.
+    const bool newNode = followNode && d.currentNode != d.followedNode;
+    if (d.followZoom || newNode) {
       d.followZoom = false;
-      // (a kd node: about three times its size)
+      d.followedNode = followNode ? d.currentNode : -1;
       double span = (followNode ? 3.0 : 12.0) * glm::length(glm::dvec3(hi - lo));
       double dist = 0.5 * span / std::tan(0.5 * cam->GetViewAngle() * M_PI / 180.0);
-      if (dist < glm::length(offset)) offset = glm::normalize(offset) * dist;
+      if (followNode) {
+        if (dist > 0.0) offset = glm::normalize(offset) * dist;
+      } else if (dist < glm::length(offset)) {
+        offset = glm::normalize(offset) * dist;
+      }
     }
     cam->SetFocalPoint(c.x, c.y, c.z);
     cam->SetPosition(c.x + offset.x, c.y + offset.y, c.z + offset.z);
@@ -776,6 +785,7 @@ void SceneView::setFollowCell(bool on) {
   d_->followCheck->setChecked(on);
   d_->follow = on;
   d_->followZoom = on;
+  d_->followedNode = -1;
   updateStep();
 }
 

@@ -125,6 +125,8 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   stack_->setSelectionMode(QAbstractItemView::NoSelection);
   stack_->setFocusPolicy(Qt::NoFocus);
   stack_->setVerticalScrollBarPolicy(Qt::ScrollBarAsNeeded);
+  // Room for five entries: a bunny's walk keeps up to six on the stack, and two rows told too little.
+  stack_->setMinimumHeight(stack_->horizontalHeader()->sizeHint().height() + 5 * 18 + 4);
   treeForm->addRow(tr("node"), node_);
   treeForm->addRow(tr("t*"), crossing_);
   treeForm->addRow(new QLabel(tr("stack (top first; pushed far children)")));
