@@ -307,6 +307,26 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
   ++generation_["build"];  // a structure still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
   session_->setTrace(trace, path);
+  // The structure panel names the trace's kd-tree and its options (shown only: there is no scene to build
+  // on).
+  if (trace->structure.kind != "grid") {
+    StructureOptions so;
+    for (const TraceParam& p : trace->structure.params) {
+      if (p.key == "t_i")
+        so.kd.t_i = float(p.number);
+      else if (p.key == "t_t")
+        so.kd.t_t = float(p.number);
+      else if (p.key == "empty_bonus")
+        so.kd.empty_bonus = float(p.number);
+      else if (p.key == "max_depth")
+        so.kd.max_depth = int(p.number);
+      else if (p.key == "leaf_size")
+        so.kd.leaf_size = int(p.number);
+      else if (p.key == "mailboxes")
+        so.kd_mailboxes = p.text != "off";
+    }
+    structure_->setStructure(trace->structure.kind, so);
+  }
   double showMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   size_t events = 0;
   for (const TracedRay& r : trace->rays) events += r.events.size();
