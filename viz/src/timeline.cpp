@@ -137,6 +137,15 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     refresh();
   });
   connect(session_, &Session::stepChanged, this, &Timeline::refresh);
+  // Before any ray, the unit of the structure that is built.
+  connect(session_, &Session::structureChanged, this, [this] {
+    if (session_->ray() || !session_->structure()) return;
+    QString k = kind_->currentData().toString();
+    bool tree = session_->structure()->kind != "grid";
+    if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
+    if (!tree && (k == "node" || k == "leaf" || k == "pushpop"))
+      kind_->setCurrentIndex(kind_->findData("cell"));
+  });
   refresh();
 }
 
