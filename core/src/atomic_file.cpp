@@ -24,12 +24,12 @@ PendingSlot pending[16];
 
 int register_pending(const std::string& path) {
   if (path.size() >= sizeof pending[0].path) return -1;
-  for (int i = 0; i < 16; ++i) {
+  for (PendingSlot& p : pending) {
     int expected = 0;
-    if (pending[i].state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) {
-      std::memcpy(pending[i].path, path.c_str(), path.size() + 1);
-      pending[i].state.store(2, std::memory_order_release);
-      return i;
+    if (p.state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) {
+      std::memcpy(p.path, path.c_str(), path.size() + 1);
+      p.state.store(2, std::memory_order_release);
+      return int(&p - pending);
     }
   }
   return -1;

@@ -97,9 +97,6 @@ inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.
 inline bool budget_allows(size_t budget, uint32_t n_below, uint32_t n_above) {
   return size_t(n_below) + n_above <= budget;
 }
-inline size_t below_share(size_t budget, uint32_t n_below, uint32_t n_above) {
-  return size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above));
-}
 
 // The tree as it is written, node by node in depth-first preorder, with the build's limits.
 class TreeWriter {
@@ -134,6 +131,19 @@ class TreeWriter {
   size_t budget_;
   KdTreeData tree_;
 };
+
+// A split node's children, built depth first with the budget shared out as described above:
+// build_below(budget) then build_above(budget), each building its whole subtree. Returns the above child's id.
+template <class BuildBelow, class BuildAbove>
+uint32_t build_children(TreeWriter& out, size_t budget, uint32_t n_below, uint32_t n_above, BuildBelow build_below,
+                        BuildAbove build_above) {
+  const size_t refs_before = out.reference_count();
+  build_below(size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above)));
+  const size_t used_below = out.reference_count() - refs_before;
+  const uint32_t above_child = out.node_count();
+  build_above(budget - used_below);
+  return above_child;
+}
 
 // The list-based builders (reference and median) carry each primitive with its bounds clipped to the node.
 struct PrimRef {

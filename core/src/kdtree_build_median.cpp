@@ -61,12 +61,10 @@ class MedianBuilder : public PrimRefBuilder<MedianBuilder<Recorder>, Recorder> {
     std::vector<PrimRef> below, above;
     classify_prim_refs(geometry_, prims, axis, position, c.planar_below, below_box, above_box, &below, &above);
     std::vector<PrimRef>().swap(prims);
-    const size_t refs_before = out_.reference_count();
-    build_node(below_box, int32_t(node), depth + 1, below_share(budget, c.n_below, c.n_above),
-               std::move(below));
-    const size_t used_below = out_.reference_count() - refs_before;
-    uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, budget - used_below, std::move(above));
+    uint32_t above_child = build_children(
+        out_, budget, c.n_below, c.n_above,
+        [&](size_t b) { build_node(below_box, int32_t(node), depth + 1, b, std::move(below)); },
+        [&](size_t b) { build_node(above_box, int32_t(node), depth + 1, b, std::move(above)); });
     out_.set_inner(node, axis, position, above_child);
   }
 

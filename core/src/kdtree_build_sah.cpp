@@ -324,11 +324,10 @@ class SweepBuilder {
     above_box.lo[best.axis] = best.position;
     NodeEvents below, above;
     split_events(ev, best, below_box, above_box, &below, &above);
-    const size_t refs_before = out_.reference_count();
-    build_node(below_box, int32_t(node), depth + 1, below_share(budget, best.n_below, best.n_above), below);
-    const size_t used_below = out_.reference_count() - refs_before;
-    uint32_t above_child = out_.node_count();
-    build_node(above_box, int32_t(node), depth + 1, budget - used_below, above);
+    uint32_t above_child = build_children(
+        out_, budget, best.n_below, best.n_above,
+        [&](size_t b) { build_node(below_box, int32_t(node), depth + 1, b, below); },
+        [&](size_t b) { build_node(above_box, int32_t(node), depth + 1, b, above); });
     out_.set_inner(node, best.axis, best.position, above_child);
   }
 

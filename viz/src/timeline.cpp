@@ -127,24 +127,13 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
         ray_->addItem(QString("%1: %2 (depth %3)").arg(i).arg(ray_kind_name(r.kind)).arg(r.depth));
       }
     ray_->setCurrentIndex(session_->rayIndex());
-    // Offer the walk's own unit first: the next cell in a grid, the next node in a tree.
-    if (const TracedRay* r = session_->ray()) {
-      QString k = kind_->currentData().toString();
-      bool tree = isTreeRay(*r);
-      if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
-      if (!tree && (k == "node" || k == "leaf" || k == "pushpop")) kind_->setCurrentIndex(kind_->findData("cell"));
-    }
+    if (const TracedRay* r = session_->ray()) offerUnit(isTreeRay(*r));
     refresh();
   });
   connect(session_, &Session::stepChanged, this, &Timeline::refresh);
   // Before any ray, the unit of the structure that is built.
   connect(session_, &Session::structureChanged, this, [this] {
-    if (session_->ray() || !session_->structure()) return;
-    QString k = kind_->currentData().toString();
-    bool tree = session_->structure()->kind != "grid";
-    if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
-    if (!tree && (k == "node" || k == "leaf" || k == "pushpop"))
-      kind_->setCurrentIndex(kind_->findData("cell"));
+    if (!session_->ray() && session_->structure()) offerUnit(session_->structure()->kind != "grid");
   });
   refresh();
 }
@@ -178,6 +167,12 @@ void Timeline::setPlaying(bool on) {
 }
 
 bool Timeline::playing() const { return timer_->isActive(); }
+
+void Timeline::offerUnit(bool tree) {
+  QString k = kind_->currentData().toString();
+  if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
+  if (!tree && (k == "node" || k == "leaf" || k == "pushpop")) kind_->setCurrentIndex(kind_->findData("cell"));
+}
 
 void Timeline::refresh() {
   int n = session_->eventCount();

@@ -33,6 +33,8 @@ class Timeline : public QWidget {
 
  private:
   void refresh();
+  // Offer the walk's own unit first in "Jump to": the next node in a tree, the next cell in a grid.
+  void offerUnit(bool tree);
   Session* session_;
   QSlider* slider_;
   QLabel* position_;
