@@ -7,7 +7,7 @@ PACKAGES=(
   # toolchain
   g++ cmake ninja-build pkg-config git ca-certificates
   # core
-  libglm-dev nlohmann-json3-dev libtinyobjloader-dev libpng-dev libstb-dev libtbb-dev
+  libglm-dev nlohmann-json3-dev libtinyobjloader-dev libpng-dev libstb-dev libtbb-dev libgmp-dev
   # command line, tests, benchmarks (Embree 3 is the speed yardstick)
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev valgrind
   # the step-debugger (Qt5 + VTK 9.1) and GUI tests under a virtual X server

@@ -204,8 +204,8 @@ TEST(Bounds, ConservativeForRaysHittingTheTriangleInside) {
     // Exact distance to the plane of the float vertices: double cross products of float differences.
     glm::dvec3 n = glm::cross(glm::dvec3(p1) - glm::dvec3(p0), glm::dvec3(p2) - glm::dvec3(p0));
     double t_exact = glm::dot(n, glm::dvec3(p0) - glm::dvec3(origin)) / glm::dot(n, glm::dvec3(r.direction));
-    // Only where the exact plane hit lies in the box: aimed at a vertex or edge, the (rounded) ray may pass
-    // just beside the triangle, which the triangle test may still count as a hit.
+    // Only where the exact plane hit lies in the box (the triangle test settles rays near an edge exactly, so
+    // this holds for every hit; the check stays as the test's own guard).
     glm::dvec3 x = glm::dvec3(origin) + t_exact * glm::dvec3(r.direction);
     bool inside = true;
     for (int a = 0; a < 3; ++a) inside = inside && x[a] >= box.lo[a] && x[a] <= box.hi[a];
@@ -218,7 +218,9 @@ TEST(Bounds, ConservativeForRaysHittingTheTriangleInside) {
     }
     worst_late = std::fmax(worst_late, (t_exact - t1) / t1);
   }
-  EXPECT_GT(triangle_hits, 150000);
+  // About 139,000: a ray aimed at a rounded point of an edge or a vertex passes just beside the triangle about
+  // half the time, and the triangle test settles such rays exactly.
+  EXPECT_GT(triangle_hits, 130000);
   EXPECT_GT(exact_inside, 100000);
   EXPECT_EQ(box_misses, 0);
   EXPECT_EQ(after_exit, 0) << "worst relative (t - t_exit) / t_exit: " << worst_late;

@@ -2,7 +2,9 @@
 // JCGT 2013), in the form of pbrt-v4 (section 6.5.3): translate to the ray origin, permute so that the
 // dominant direction axis is z, shear so the ray is +z, then evaluate the three 2D edge functions, falling
 // back to double precision when one is exactly zero. Rays through a shared edge or vertex hit at least
-// one of the triangles that share it. The hit is also conservatively checked to lie in front of the origin.
+// one of the triangles that share it. Whether the hit lies beyond tmin is decided by pbrt-v4's error bound on t
+// (section 6.8.7) where the bound proves it either way, and exactly (exact.h) where it does not: a long thin
+// triangle seen from nearby has a loose bound, and a hit it cannot prove is still a hit.
 #pragma once
 
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <glm/vec3.hpp>
 
 #include "raystep/geometry/component.h"
+#include "raystep/geometry/exact.h"
 #include "raystep/geometry/numerics.h"
 #include "raystep/geometry/ray.h"
 
@@ -21,8 +24,9 @@ struct WatertightRay {
   int kx, ky, kz;
   float sx, sy, sz;
   float tmin, tmax;
+  glm::vec3 direction;  // for the exact decision, when the error bound cannot settle one
 
-  explicit WatertightRay(const Ray& r) : origin(r.origin), tmin(r.tmin), tmax(r.tmax) {
+  explicit WatertightRay(const Ray& r) : origin(r.origin), tmin(r.tmin), tmax(r.tmax), direction(r.direction) {
     glm::vec3 ad = glm::abs(r.direction);
     kz = (ad.x > ad.y) ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
     kx = kz + 1 == 3 ? 0 : kz + 1;
@@ -63,45 +67,72 @@ inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3&
   float e0 = bx * cy - by * cx;
   float e1 = cx * ay - cy * ax;
   float e2 = ax * by - ay * bx;
-  // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator
-  // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
-  // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
-  // Exactly zero: the ray passes (nearly) through an edge; decide it in double so that the sign is exact.
-  if (__builtin_expect((e0 == 0.f) | (e1 == 0.f) | (e2 == 0.f), 0)) {
-    e0 = float(double(bx) * double(cy) - double(by) * double(cx));
-    e1 = float(double(cx) * double(ay) - double(cy) * double(ax));
-    e2 = float(double(ax) * double(by) - double(ay) * double(bx));
-  }
-  // The origin is inside when all edge functions share a sign (zeros allowed: edges are shared).
-  if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0))) return false;
-  float det = e0 + e1 + e2;
-  if (det == 0.f) return false;
 
-  // Scaled hit distance, compared with tmax without dividing.
-  float az = r.sz * component(a, kz), bz = r.sz * component(b, kz), cz = r.sz * component(c, kz);
-  float t_scaled = e0 * az + e1 * bz + e2 * cz;
-  if ((det < 0) & ((t_scaled >= 0) | (t_scaled < tmax * det))) return false;
-  if ((det > 0) & ((t_scaled <= 0) | (t_scaled > tmax * det))) return false;
-
-  float inv_det = 1.f / det;
-  float t = t_scaled * inv_det;
-  if (!(t > r.tmin && t < tmax)) return false;
-
-  // Conservatively ensure t > 0 given the rounding error of the computation (pbrt-v4, 6.8.7).
-  // The sheared x' = x + sx z is computed from the translated z BEFORE scaling by sz, so its error bound
-  // uses that unscaled z (pbrt-v4's code reuses the scaled one, which is only right for |d| near 1: short
-  // directions then reject valid hits, long ones accept t slightly below zero).
-  float max_zt = max_abs3(az, bz, cz);
-  float delta_z = gamma(3) * max_zt;
+  // A conservative bound delta_e on each edge function's rounding error (pbrt-v4, 6.8.7), widened for the
+  // rounding of the shear factors sx, sy (|sx|, |sy| <= 1: kz is the dominant axis): an edge function larger
+  // than it has the sign the exact one has. The sheared x' = x + sx z is computed from the translated z BEFORE
+  // scaling by sz, so the bound uses that unscaled z (pbrt-v4's code reuses the scaled one).
   float max_z = max_abs3(component(a, kz), component(b, kz), component(c, kz));
   float max_xt = max_abs3(ax, bx, cx);
   float max_yt = max_abs3(ay, by, cy);
-  float delta_x = gamma(5) * (max_xt + max_z);
-  float delta_y = gamma(5) * (max_yt + max_z);
-  float delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  float delta_x = gamma(6) * (max_xt + 2 * max_z);
+  float delta_y = gamma(6) * (max_yt + 2 * max_z);
+  float delta_e = 2 * (gamma(3) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator
+  // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
+  // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
+  if (__builtin_expect((std::fabs(e0) <= delta_e) | (std::fabs(e1) <= delta_e) | (std::fabs(e2) <= delta_e), 0)) {
+    // The ray passes within rounding of an edge's line (or through it): the signs are settled exactly, so that
+    // a ray through a long thin triangle's edge finds the triangle the exact line meets, not its neighbour,
+    // which the structures may not have in the cell or leaf the ray is in there. An edge function whose sign
+    // disagrees with the exact one is within delta_e of zero and becomes 0.
+    int sign[3];
+    edge_signs(p0, p1, p2, r.origin, r.direction, sign);
+    int dz_sign = component(r.direction, kz) > 0 ? 1 : -1;
+    float* e[3] = {&e0, &e1, &e2};
+    bool negative = false, positive = false;
+    for (int i = 0; i < 3; ++i) {
+      sign[i] *= dz_sign;
+      negative |= sign[i] < 0;
+      positive |= sign[i] > 0;
+      if ((sign[i] == 0) | (sign[i] * *e[i] <= 0.f)) *e[i] = 0.f;
+    }
+    if (negative & positive) return false;
+  } else if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0))) {
+    return false;  // the origin is outside: the edge functions differ in sign
+  }
+  // Inside: all edge functions share a sign (zeros allowed: edges are shared).
+  float det = e0 + e1 + e2;
+  if (det == 0.f) return false;  // the ray lies in the triangle's plane, or the triangle is degenerate
+
+  // Scaled hit distance, compared with tmax without dividing: beyond tmax (the nearest hit so far, for an
+  // accelerator) is decided in float, as every structure compares its hits.
+  float az = r.sz * component(a, kz), bz = r.sz * component(b, kz), cz = r.sz * component(c, kz);
+  float t_scaled = e0 * az + e1 * bz + e2 * cz;
+  if (((det < 0) & (t_scaled < tmax * det)) | ((det > 0) & (t_scaled > tmax * det))) return false;
+  float inv_det = 1.f / det;
+  float t = t_scaled * inv_det;
+  if (!(t < tmax)) return false;
+
+  // Beyond tmin? A conservative bound delta_t on the rounding error of t (pbrt-v4, 6.8.7) decides it where
+  // t lies further than delta_t from tmin.
+  float max_zt = max_abs3(az, bz, cz);
+  float delta_z = gamma(3) * max_zt;
   float max_e = max_abs3(e0, e1, e2);
   float delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv_det);
-  if (!(t > delta_t)) return false;  // written so that a NaN bound rejects too
+  // delta_t bounds the error of t near 0, where det's own error cannot change t's sign; away from 0 that error
+  // (each edge function's delta_e, and the division) moves t in proportion to it.
+  if (__builtin_expect(r.tmin != 0.f, 0))
+    delta_t += std::fabs(t) * (gamma(4) + 3 * delta_e * std::fabs(inv_det));
+  // Written so that a NaN bound goes to the exact decision too.
+  if (__builtin_expect(!(t - delta_t > r.tmin), 0)) {
+    if (t + delta_t < r.tmin) return false;  // proven before tmin (rounding is monotonic)
+    // Not proven either way (a long thin triangle seen from nearby, an origin on or next to the surface):
+    // settled exactly. A hit is reported at a t that is inside (tmin, tmax) even when t rounded below.
+    if (!plane_hit_beyond(p0, p1, p2, r.origin, r.direction, r.tmin)) return false;
+    if (!(t > r.tmin)) t = next_float_up(r.tmin);
+    if (!(t < tmax)) return false;
+  }
 
   hit->t = t;
   hit->b0 = e0 * inv_det;

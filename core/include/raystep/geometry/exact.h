@@ -1,0 +1,31 @@
+// Exact answers for the few geometric questions that a floating-point error bound cannot settle. First a
+// double-precision filter with a rigorous error bound (Shewchuk, "Adaptive Precision Floating-Point Arithmetic
+// and Fast Robust Geometric Predicates", 1997: the orient3d bound), then, only when the filter cannot decide,
+// exact rational arithmetic on the float inputs (GMP). A conservative bound may send a case here; it never
+// turns "cannot prove" into "miss".
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace raystep {
+
+// The line o + t d meets the plane of triangle (p0, p1, p2) at t* = N / D, where n = (p1 - p0) x (p2 - p0),
+// N = n . (p0 - o) and D = n . d. True when D != 0 and t* > tmin, decided exactly for the float inputs.
+// tmin = -inf counts as below every t*; NaN or infinite inputs answer false.
+bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                      const glm::vec3& d, float tmin);
+
+// The exact signs (-1, 0, +1) of det[p_j - o, p_k - o, d] for the edges (j, k) = (1, 2), (2, 0), (0, 1): on
+// which side of each edge's line the line o + t d passes. The watertight test's edge functions e0, e1, e2 are
+// these determinants divided by d's dominant component. NaN or infinite inputs give 0.
+void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                const glm::vec3& d, int signs[3]);
+
+// How many decisions plane_hit_beyond and edge_signs have settled by its double filter and by exact arithmetic, in this thread
+// (tests and benchmarks read them to show how rare the exact path is).
+struct ExactCounters {
+  unsigned long long filtered = 0, exact = 0;
+};
+ExactCounters& exact_counters();
+
+}  // namespace raystep

@@ -1,0 +1,142 @@
+#include "raystep/geometry/exact.h"
+
+#include <cmath>
+#include <gmpxx.h>
+
+namespace raystep {
+
+namespace {
+
+// Unit roundoff of double, and Shewchuk's bound for a 3x3 determinant whose columns are differences of
+// doubles computed with one rounding each: |computed - exact| <= kDetBound * permanent (orient3d's errboundA).
+constexpr double kU = 0x1p-53;
+constexpr double kDetBound = (7.0 + 56.0 * kU) * kU;
+
+struct DetD {
+  double value, permanent;
+};
+
+// det[x, y, z] = x . (y x z) in double, with its permanent (the same sum of products, in absolute values).
+DetD det3(const double x[3], const double y[3], const double z[3]) {
+  double m0 = y[1] * z[2] - y[2] * z[1], m1 = y[2] * z[0] - y[0] * z[2], m2 = y[0] * z[1] - y[1] * z[0];
+  double p0 = std::fabs(y[1] * z[2]) + std::fabs(y[2] * z[1]);
+  double p1 = std::fabs(y[2] * z[0]) + std::fabs(y[0] * z[2]);
+  double p2 = std::fabs(y[0] * z[1]) + std::fabs(y[1] * z[0]);
+  return {x[0] * m0 + x[1] * m1 + x[2] * m2, std::fabs(x[0]) * p0 + std::fabs(x[1]) * p1 + std::fabs(x[2]) * p2};
+}
+
+// -1, 0 or +1.
+template <class T>
+int sign_of(const T& v) {
+  return (v > 0) - (v < 0);
+}
+
+// The exact signs of G = N - tmin D and of D, in rational arithmetic (every float is a rational).
+void exact_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                 const glm::vec3& d, float tmin, int* sign_g, int* sign_d) {
+  mpq_class a[3], e1[3], e2[3], dir[3];
+  for (int i = 0; i < 3; ++i) {
+    mpq_class v0(double(p0[i])), oi(double(o[i]));
+    a[i] = v0 - oi;
+    e1[i] = mpq_class(double(p1[i])) - v0;
+    e2[i] = mpq_class(double(p2[i])) - v0;
+    dir[i] = mpq_class(double(d[i]));
+  }
+  mpq_class n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  mpq_class num = n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
+  mpq_class den = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
+  mpq_class g = num - mpq_class(double(tmin)) * den;
+  *sign_g = sgn(g);
+  *sign_d = sgn(den);
+}
+
+bool all_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// The exact sign of det[u - o, v - o, d].
+int edge_sign_exact(const glm::vec3& u, const glm::vec3& v, const glm::vec3& o, const glm::vec3& d) {
+  mpq_class x[3], y[3], z[3];
+  for (int i = 0; i < 3; ++i) {
+    mpq_class oi(double(o[i]));
+    x[i] = mpq_class(double(u[i])) - oi;
+    y[i] = mpq_class(double(v[i])) - oi;
+    z[i] = mpq_class(double(d[i]));
+  }
+  mpq_class det = x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) +
+                  x[2] * (y[0] * z[1] - y[1] * z[0]);
+  return sgn(det);
+}
+
+}  // namespace
+
+void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                const glm::vec3& d, int signs[3]) {
+  if (!(all_finite(p0) && all_finite(p1) && all_finite(p2) && all_finite(o) && all_finite(d))) {
+    signs[0] = signs[1] = signs[2] = 0;
+    return;
+  }
+  const glm::vec3* p[3] = {&p0, &p1, &p2};
+  double t[3][3], dir[3] = {double(d.x), double(d.y), double(d.z)};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) t[k][i] = double((*p[k])[i]) - double(o[i]);
+  for (int e = 0; e < 3; ++e) {
+    int j = e == 2 ? 0 : e + 1, k = j == 2 ? 0 : j + 1;
+    DetD det = det3(t[j], t[k], dir);
+    if (std::fabs(det.value) > kDetBound * det.permanent) {
+      ++exact_counters().filtered;
+      signs[e] = sign_of(det.value);
+    } else {
+      ++exact_counters().exact;
+      signs[e] = edge_sign_exact(*p[j], *p[k], o, d);
+    }
+  }
+}
+
+ExactCounters& exact_counters() {
+  thread_local ExactCounters counters;
+  return counters;
+}
+
+bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                      const glm::vec3& d, float tmin) {
+  if (!(all_finite(p0) && all_finite(p1) && all_finite(p2) && all_finite(o) && all_finite(d))) return false;
+  if (std::isnan(tmin) || tmin == HUGE_VALF) return false;
+  const bool any_tmin = tmin == -HUGE_VALF;  // every t* lies beyond -inf: only D != 0 matters
+  const double t0 = any_tmin ? 0.0 : double(tmin);
+
+  // The double filter. N = det[a, b, c] with a = p0 - o, b = p1 - o, c = p2 - o (orient3d of the triangle and
+  // the origin); D = det[d, e1, e2] with e1 = p1 - p0, e2 = p2 - p0 (d exact). Each difference of two floats is
+  // rounded once in double, as Shewchuk's bound assumes; products of up to three floats neither overflow nor
+  // underflow in double.
+  double a[3], b[3], c[3], e1[3], e2[3], dir[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = double(p0[i]) - double(o[i]);
+    b[i] = double(p1[i]) - double(o[i]);
+    c[i] = double(p2[i]) - double(o[i]);
+    e1[i] = double(p1[i]) - double(p0[i]);
+    e2[i] = double(p2[i]) - double(p0[i]);
+    dir[i] = double(d[i]);
+  }
+  DetD num = det3(a, b, c), den = det3(dir, e1, e2);
+  double err_num = kDetBound * num.permanent, err_den = kDetBound * den.permanent;
+  // G = N - tmin D: the two errors carried through, plus the product's and the difference's roundings.
+  double tden = t0 * den.value;
+  double g = num.value - tden;
+  double err_g = err_num + std::fabs(t0) * err_den + 2.0 * kU * (std::fabs(num.value) + 2.0 * std::fabs(tden));
+  err_g *= 1.0 + 4.0 * kU;
+  int sign_d = std::fabs(den.value) > err_den ? sign_of(den.value) : 2;  // 2: undecided
+  int sign_g = any_tmin ? 1 : (std::fabs(g) > err_g ? sign_of(g) : 2);
+  if (sign_d != 2 && sign_g != 2) {
+    ++exact_counters().filtered;
+    return sign_g * sign_d > 0;
+  }
+
+  // Exact: the float inputs as rationals.
+  ++exact_counters().exact;
+  int eg, ed;
+  exact_signs(p0, p1, p2, o, d, any_tmin ? 0.f : tmin, &eg, &ed);
+  if (ed == 0) return false;  // the line is parallel to the plane (or the triangle degenerate)
+  if (any_tmin) return true;
+  return eg * ed > 0;
+}
+
+}  // namespace raystep
