@@ -3,6 +3,8 @@
 #include <cmath>
 #include <gmpxx.h>
 
+#include "raystep/geometry/numerics.h"
+
 namespace raystep {
 
 namespace {
@@ -137,6 +139,41 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   if (ed == 0) return false;  // the line is parallel to the plane (or the triangle degenerate)
   if (any_tmin) return true;
   return eg * ed > 0;
+}
+
+bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2) {
+  int sign[3];
+  edge_signs(p0, p1, p2, o, d, sign);
+  bool negative = sign[0] < 0 || sign[1] < 0 || sign[2] < 0, positive = sign[0] > 0 || sign[1] > 0 || sign[2] > 0;
+  if (negative == positive) return false;  // outside (mixed signs), or the ray lies in the plane (all zero)
+  if (!plane_hit_beyond(p0, p1, p2, o, d, tmin)) return false;
+
+  // The values: barycentrics from the three edge determinants, t* = N / D (D is their sum), in double. An edge
+  // determinant whose double value disagrees with its exact sign is within its rounding of zero: it counts 0.
+  const glm::vec3* p[3] = {&p0, &p1, &p2};
+  double v[3][3], dir[3] = {double(d.x), double(d.y), double(d.z)}, edge[3];
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) v[k][i] = double((*p[k])[i]) - double(o[i]);
+  double sum = 0.0;
+  for (int e = 0; e < 3; ++e) {
+    int j = e == 2 ? 0 : e + 1, k = j == 2 ? 0 : j + 1;
+    double value = det3(v[j], v[k], dir).value;
+    edge[e] = sign_of(value) == sign[e] ? value : 0.0;
+    sum += edge[e];
+  }
+  double n = det3(v[0], v[1], v[2]).value;
+  if (sum == 0.0) return false;  // unreachable in exact terms (one sign is nonzero); guards the division
+  double t_star = n / sum;
+  if (!(t_star < double(tmax))) return false;
+  float tf = float(t_star);
+  if (!(tf > tmin)) tf = next_float_up(tmin);
+  if (!(tf < tmax)) return false;
+  *t = tf;
+  *b0 = float(edge[0] / sum);
+  *b1 = float(edge[1] / sum);
+  *b2 = float(edge[2] / sum);
+  return true;
 }
 
 }  // namespace raystep

@@ -2,7 +2,8 @@
 // both windings, the open interval (tmin, tmax), degenerate triangles and invalid rays, large and small
 // coordinates, the accuracy of t, and watertightness: rays from inside a closed icosphere aimed exactly at
 // its shared edges and vertices must never leak. triangle_moller.h (the non-watertight reference) is checked
-// against it on ordinary rays.
+// against it on ordinary rays. Hard cases (slivers, needles, long thin triangles seen from nearby, rays through
+// edges, origins on the plane) are checked against exact rational arithmetic (exact_reference.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "raystep/geometry/triangle_moller.h"
 #include "raystep/scene/geometry.h"
 #include "raystep/scene/ray_sets.h"
+#include "exact_reference.h"
 
 namespace raystep {
 namespace {
@@ -281,6 +283,106 @@ TEST(Triangle, WatertightNoLeaksThroughSharedEdgesAndVertices) {
     }
     EXPECT_EQ(leaks, 0u) << "radius " << c.radius << " at " << c.centre.x << ", " << g.size() << " triangles";
   }
+}
+
+// The issue's ray: a long thin side of a prism (20 x 0.001) seen from 3 units away. The loose error bound on t
+// (delta_t = 3.34 for t = 3.08) made the test reject this hit; in rational arithmetic it is a hit at t = 3.0834851
+// with barycentrics (b0, b1, b2) about (0.064, 0.189, 0.748), well inside (the issue lists them starting at b2).
+TEST(Triangle, LongThinTriangleSeenFromNearbyIsHit) {
+  const glm::vec3 p0(-10.f, -0.0067148944f, 0.6011051f), p1(10.f, -0.0057148947f, 0.6011051f),
+      p2(10.f, -0.0077148946f, 0.6031051f);
+  Ray r = make_ray({11.153518f, 1.0161176f, -1.0f}, {-0.78722286f, -0.3318944f, 0.5197367f});
+  test::ExactHit exact = test::exact_ray_triangle(r, p0, p1, p2);
+  ASSERT_TRUE(exact.hit);
+  EXPECT_NEAR(exact.t.get_d(), 3.0834851, 1e-6);
+  TriangleHit h;
+  ASSERT_TRUE(intersect_triangle(r, p0, p1, p2, &h));
+  EXPECT_NEAR(h.t, 3.0834851f, 1e-5f);
+  EXPECT_NEAR(h.b0, exact.b[0].get_d(), 1e-5);
+  EXPECT_NEAR(h.b1, exact.b[1].get_d(), 1e-5);
+  EXPECT_NEAR(h.b2, exact.b[2].get_d(), 1e-5);
+  EXPECT_NEAR(h.b0, 0.064f, 1e-3f);
+  EXPECT_NEAR(h.b1, 0.189f, 1e-3f);
+  EXPECT_NEAR(h.b2, 0.748f, 1e-3f);
+}
+
+// Hard cases against exact rational arithmetic: the test's hit or miss is the exact one on every ray (tmax =
+// +inf, so only the edges and t > tmin decide), and every hit has barycentrics >= 0 and a point (triangle_point)
+// whose documented error box reaches the exact plane of the triangle. Slivers (a vertex within 1e-4..1e-7 of the
+// opposite edge), needles (two vertices within that of each other), long thin triangles (length : width up to
+// 10^5) seen from nearby, at scales 1e-3 to 1e4 and up to 1e4 sizes from the origin; rays aimed at interior
+// points, at rounded points of edges and at vertices; origins on or near the triangle's plane; nonzero tmin.
+TEST(Triangle, HardCasesAgreeWithExactArithmetic) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.f, 1.f), w(0.f, 1.f);
+  int hits = 0, misses = 0, disagreements = 0, off_plane = 0, negative_barycentric = 0, origins_on_plane = 0;
+  for (int i = 0; i < 60000; ++i) {
+    float scale = std::pow(10.f, float(int(rng() % 8) - 3));  // 1e-3 .. 1e4
+    glm::vec3 c = (i % 2 ? 0.f : 1e4f) * scale * glm::vec3(u(rng), u(rng), u(rng));
+    float thin = std::pow(10.f, -float(2 + rng() % 6));  // 1e-2 .. 1e-7
+    glm::vec3 p0 = c + scale * glm::vec3(u(rng), u(rng), u(rng));
+    glm::vec3 p1 = c + scale * glm::vec3(u(rng), u(rng), u(rng)), p2;
+    switch (i % 3) {
+      case 0:  // sliver: p2 near the edge p0 p1
+        p2 = p0 + (p1 - p0) * w(rng) + thin * scale * glm::vec3(u(rng), u(rng), u(rng));
+        break;
+      case 1:  // needle: p1 and p2 close together
+        p2 = p1 + thin * scale * glm::vec3(u(rng), u(rng), u(rng));
+        break;
+      default:  // ordinary
+        p2 = c + scale * glm::vec3(u(rng), u(rng), u(rng));
+    }
+    float b1 = w(rng), b2 = w(rng);
+    if (b1 + b2 > 1.f) b1 = 1.f - b1, b2 = 1.f - b2;
+    glm::vec3 target = (1.f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
+    if (i % 5 == 1) target = p0 + w(rng) * (p1 - p0);  // a rounded point of an edge
+    if (i % 5 == 2) target = p2;                        // a vertex
+    // Origins from far (100 sizes) to very near the triangle (1e-6 of its size), some exactly on a vertex's
+    // plane through the target, which puts them on or next to the triangle's plane.
+    float distance = scale * std::pow(10.f, float(int(rng() % 9) - 6));
+    glm::vec3 origin = target + distance * glm::vec3(u(rng), u(rng), u(rng));
+    if (i % 7 == 3) {
+      origin = p0 + w(rng) * (p1 - p0) + w(rng) * (p2 - p0) * 0.5f;  // (nearly) in the plane
+      ++origins_on_plane;
+    }
+    glm::vec3 dir = target - origin;
+    if (i % 4 == 3) dir = glm::vec3(u(rng), u(rng), u(rng));  // any direction
+    float tmin = i % 6 == 5 ? w(rng) * 0.5f : 0.f;
+    Ray r = make_ray(origin, dir, tmin);
+    test::ExactHit exact = test::exact_ray_triangle(r, p0, p1, p2);
+    TriangleHit h;
+    bool hit = intersect_triangle(r, p0, p1, p2, &h);
+    if (hit != exact.hit) {
+      ++disagreements;
+      if (disagreements <= 3)
+        ADD_FAILURE() << "case " << i << ": test says " << hit << ", exact " << exact.hit << " t* " << exact.t.get_d()
+                      << " edges " << exact.edge[0] << exact.edge[1] << exact.edge[2] << " tmin " << tmin << " kind "
+                      << i % 3 << " scale " << scale << " thin " << thin << " dist " << distance;
+      continue;
+    }
+    if (!hit) {
+      ++misses;
+      continue;
+    }
+    ++hits;
+    EXPECT_GT(h.t, r.tmin);
+    negative_barycentric += (h.b0 < 0.f) | (h.b1 < 0.f) | (h.b2 < 0.f);
+    glm::vec3 err;
+    glm::vec3 p = triangle_point(h, p0, p1, p2, &err);
+    // The box p +- err meets the exact plane n.(x - p0) = 0 when |n.(p - p0)| <= sum |n_i| err_i.
+    test::ExactVec n = test::cross(test::ExactVec(p1) - test::ExactVec(p0), test::ExactVec(p2) - test::ExactVec(p0));
+    mpq_class distance_n = abs(test::dot(n, test::ExactVec(p) - test::ExactVec(p0)));
+    mpq_class reach = abs(n.x) * mpq_class(double(err.x)) + abs(n.y) * mpq_class(double(err.y)) +
+                      abs(n.z) * mpq_class(double(err.z));
+    off_plane += distance_n > reach;
+  }
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_EQ(negative_barycentric, 0);
+  EXPECT_EQ(off_plane, 0);
+  // The mix is hard and balanced: many hits and many misses, origins on the plane included.
+  EXPECT_GT(hits, 15000);
+  EXPECT_GT(misses, 15000);
+  EXPECT_GT(origins_on_plane, 8000);
 }
 
 }  // namespace

@@ -21,6 +21,13 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
 void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                 const glm::vec3& d, int signs[3]);
 
+// The whole ray-triangle test for a ray that passes within rounding of an edge's line (or a vertex), where the
+// float edge functions cannot be trusted: inside by the exact edge signs (all of one sign, zeros allowed, not
+// all zero), tmin < t* decided exactly, t* < tmax in double. On a hit, *t lies in (tmin, tmax) and b0, b1, b2
+// (>= 0, summing to 1 up to rounding) come from the edge determinants in double.
+bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2);
+
 // How many decisions plane_hit_beyond and edge_signs have settled by its double filter and by exact arithmetic, in this thread
 // (tests and benchmarks read them to show how rare the exact path is).
 struct ExactCounters {

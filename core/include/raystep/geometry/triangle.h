@@ -82,28 +82,20 @@ inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3&
   // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
   // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
   if (__builtin_expect((std::fabs(e0) <= delta_e) | (std::fabs(e1) <= delta_e) | (std::fabs(e2) <= delta_e), 0)) {
-    // The ray passes within rounding of an edge's line (or through it): the signs are settled exactly, so that
-    // a ray through a long thin triangle's edge finds the triangle the exact line meets, not its neighbour,
-    // which the structures may not have in the cell or leaf the ray is in there. An edge function whose sign
-    // disagrees with the exact one is within delta_e of zero and becomes 0.
-    int sign[3];
-    edge_signs(p0, p1, p2, r.origin, r.direction, sign);
-    int dz_sign = component(r.direction, kz) > 0 ? 1 : -1;
-    float* e[3] = {&e0, &e1, &e2};
-    bool negative = false, positive = false;
-    for (int i = 0; i < 3; ++i) {
-      sign[i] *= dz_sign;
-      negative |= sign[i] < 0;
-      positive |= sign[i] > 0;
-      if ((sign[i] == 0) | (sign[i] * *e[i] <= 0.f)) *e[i] = 0.f;
-    }
-    if (negative & positive) return false;
+    // The ray passes within rounding of an edge's line (or through it, or a vertex): the float edge functions
+    // cannot be trusted there, so the test is settled exactly (exact.h). A ray through a long thin triangle's
+    // edge then finds the triangle the exact line meets, not its neighbour, which the structures may not hold
+    // in the cell or leaf the ray is in at that point.
+    float t;
+    if (!exact_triangle_hit(p0, p1, p2, r.origin, r.direction, r.tmin, tmax, &t, &hit->b0, &hit->b1, &hit->b2))
+      return false;
+    hit->t = t;
+    return true;
   } else if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0))) {
     return false;  // the origin is outside: the edge functions differ in sign
   }
-  // Inside: all edge functions share a sign (zeros allowed: edges are shared).
+  // Inside: all edge functions share a sign (each exceeds its error bound, so none is zero).
   float det = e0 + e1 + e2;
-  if (det == 0.f) return false;  // the ray lies in the triangle's plane, or the triangle is degenerate
 
   // Scaled hit distance, compared with tmax without dividing: beyond tmax (the nearest hit so far, for an
   // accelerator) is decided in float, as every structure compares its hits.
