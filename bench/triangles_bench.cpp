@@ -4,7 +4,9 @@
 // (targets as in ray_sets.h: vertices, and points p0 + k/16 (p1 - p0) on edges), at several subdivision
 // levels, radii and distances from the origin. The icosphere is convex, so a ray from inside can leave only
 // through its target; it leaks when none of the triangles containing the target reports a hit.
-// (The first rays of each set are also checked against all triangles, to confirm that shortcut.)
+// (The first rays of each set are also checked against all triangles, to confirm that shortcut.) Then leaks per
+// million rays shot from inside closed thin prisms (prism.h) in random directions, against all their triangles:
+// the long thin triangles seen from nearby where a loose bound on t once rejected real hits.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "raystep/geometry/icosphere.h"
+#include "raystep/geometry/prism.h"
 #include "raystep/geometry/triangle.h"
 #include "raystep/geometry/triangle_moller.h"
 
@@ -146,6 +149,14 @@ int main() {
                             {"L3 r=1000 @1e5", 3, glm::vec3(1e5f, -3e4f, 2e5f), 1000.f},
                             {"L3 r=1 @1e4", 3, glm::vec3(1e4f, 5e3f, -2e4f), 1.f}};
   const int kConfigs = int(sizeof configs / sizeof configs[0]);
+  // The prism (6 sides, 20 long, 0.02 across: 1000:1) and a slanted 10^5:1 prism far from the origin.
+  struct PrismConfig {
+    const char* label;
+    Prism prism;
+  };
+  const PrismConfig prisms[] = {
+      {"prism 20x0.02", make_prism(6, 20.0, 0.01)},
+      {"prism 1e5:1 far", make_prism(5, 1.0, 5e-6, glm::dvec3(0.02, 0.006, -0.014), glm::dvec3(1.0, 0.7, 0.3))}};
 
   std::vector<Case> cases = random_cases(4096, 1);
   std::printf(
@@ -155,6 +166,7 @@ int main() {
   std::printf("Icosphere configurations: level, radius, centre distance from the origin.\n\n");
   std::printf("%-26s %8s", "method", "ns/test");
   for (const Config& c : configs) std::printf(" %16s", c.label);
+  for (const PrismConfig& c : prisms) std::printf(" %16s", c.label);
   std::printf("\n");
 
   int disagreements = 0;
@@ -175,6 +187,20 @@ int main() {
         if (i < kBruteChecked && hit != hits_any(m, mesh, rays[i].ray, all)) ++disagreements;
       }
       std::printf(" %16.1f", 1e6 * double(leaks) / double(rays.size()));
+    }
+    for (const PrismConfig& c : prisms) {
+      std::vector<uint32_t> all(c.prism.triangles.size());
+      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+      std::vector<Ray> rays = rays_inside(c.prism, kLeakRays, 11);
+      size_t leaks = 0;
+      for (const Ray& r : rays) {
+        TriangleHit h;
+        bool hit = false;
+        for (uint32_t t : all) hit |= m.test(r, c.prism.vertex(t, 0), c.prism.vertex(t, 1), c.prism.vertex(t, 2), &h);
+        leaks += !hit;
+      }
+      std::printf(" %16.1f", 1e6 * double(leaks) / double(rays.size()));
+      std::fflush(stdout);
     }
     std::printf("\n");
   }

@@ -126,10 +126,10 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   double err_g = err_num + std::fabs(t0) * err_den + 2.0 * kU * (std::fabs(num.value) + 2.0 * std::fabs(tden));
   err_g *= 1.0 + 4.0 * kU;
   int sign_d = std::fabs(den.value) > err_den ? sign_of(den.value) : 2;  // 2: undecided
-  int sign_g = any_tmin ? 1 : (std::fabs(g) > err_g ? sign_of(g) : 2);
+  int sign_g = any_tmin ? 0 : (std::fabs(g) > err_g ? sign_of(g) : 2);
   if (sign_d != 2 && sign_g != 2) {
     ++exact_counters().filtered;
-    return sign_g * sign_d > 0;
+    return any_tmin ? sign_d != 0 : sign_g * sign_d > 0;
   }
 
   // Exact: the float inputs as rationals.

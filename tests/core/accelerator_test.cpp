@@ -6,6 +6,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/geometry/prism.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"
 
@@ -167,11 +168,11 @@ TEST(Accelerator, ThinClosedPrismsNeverLeak) {
           for (bool far : {false, true}) {
             double radius = length / (2.0 * aspect);
             glm::dvec3 center = far ? 4096.0 * radius * glm::dvec3(1.0, 0.3, -0.7) : glm::dvec3(0.0);
-            test::Prism prism = test::make_prism_frame(sides, length, radius, center,
-                                                       slanted ? glm::dvec3(1.0, 0.7, 0.3) : glm::dvec3(1, 0, 0));
+            Prism prism = make_prism(sides, length, radius, center,
+                                     slanted ? glm::dvec3(1.0, 0.7, 0.3) : glm::dvec3(1.0, 0.0, 0.0));
             Geometry g;
-            test::add_prism(g, prism);
-            std::vector<Ray> rays = test::rays_inside_prism(prism, kRaysPerPrism, uint32_t(prisms++));
+            add_to_geometry(prism, g);
+            std::vector<Ray> rays = rays_inside(prism, kRaysPerPrism, uint32_t(prisms++));
             BruteForce brute;
             brute.build(g);
             for (const std::string& name : accelerator_names()) {
@@ -194,10 +195,10 @@ TEST(Accelerator, ThinClosedPrismsNeverLeak) {
 
 // The prism itself (six sides, 20 long, 0.02 across) and its 100,000 rays, for every structure.
 TEST(Accelerator, TheReportedPrismHoldsAllItsRays) {
-  test::Prism prism = test::make_prism_frame(6, 20.0, 0.01, glm::dvec3(0.0), glm::dvec3(1, 0, 0));
+  Prism prism = make_prism(6, 20.0, 0.01);
   Geometry g;
-  test::add_prism(g, prism);
-  std::vector<Ray> rays = test::rays_inside_prism(prism, 100000, 2026);
+  add_to_geometry(prism, g);
+  std::vector<Ray> rays = rays_inside(prism, 100000, 2026);
   for (const std::string& name : accelerator_names()) {
     auto acc = make_accelerator(name);
     acc->build(g);
