@@ -201,9 +201,15 @@ void print_structure_summary(const Accelerator& accel, size_t prims) {
   double per_prim = 1.0 / double(std::max<size_t>(prims, 1));
   if (auto* grid = dynamic_cast<const UniformGrid*>(&accel)) {
     std::array<int, 3> n = grid->resolution();
-    std::printf("structure: grid %d x %d x %d cells, %zu references (%.3f per primitive), %s insertion\n",
-                n[0], n[1], n[2], grid->reference_count(), double(grid->reference_count()) * per_prim,
-                grid->options().exact_insert ? "exact" : "bbox");
+    std::printf("structure: grid %d x %d x %d cells", n[0], n[1], n[2]);
+    if (grid->coarsened()) {
+      // The density rule asked for more: say from what and why, so that the timing is not misread.
+      std::array<int, 3> r = grid->requested_resolution();
+      std::printf(" (coarsened from %d x %d x %d: %s of %zu)", r[0], r[1], r[2],
+                  to_string(grid->coarsening()), UniformGrid::reference_budget(prims));
+    }
+    std::printf(", %zu references (%.3f per primitive), %s insertion\n", grid->reference_count(),
+                double(grid->reference_count()) * per_prim, grid->options().exact_insert ? "exact" : "bbox");
   } else if (auto* kd = dynamic_cast<const KdTree*>(&accel)) {
     KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
     std::printf(

@@ -1,6 +1,7 @@
 #include "raystep/trace/grid_trace.h"
 
 #include <set>
+#include <string>
 #include <tuple>
 
 #include "trace_recording.h"
@@ -21,6 +22,12 @@ Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid, const
   t.structure.params.push_back({"resolution_from", true, 0.0, grid.options().resolution ? "explicit" : "density"});
   t.structure.params.push_back({"insert", true, 0.0, grid.options().exact_insert ? "exact" : "bbox"});
   param("references", double(grid.reference_count()));
+  if (grid.coarsened()) {
+    std::array<int, 3> r = grid.requested_resolution();
+    std::string from = std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
+    t.structure.params.push_back({"coarsened_from", true, 0.0, from});
+    t.structure.params.push_back({"coarsening", true, 0.0, to_string(grid.coarsening())});
+  }
   detail::sort_params(&t.structure);
 
   detail::record_rays(

@@ -861,8 +861,16 @@ Trace read_trace_json(const std::string& path) {
 std::string trace_summary(const Trace& t) {
   std::ostringstream out;
   out << "trace: " << t.rays.size() << " ray(s), structure " << t.structure.kind;
-  if (t.structure.kind == "grid")
+  if (t.structure.kind == "grid") {
     out << " " << t.structure.resolution[0] << "x" << t.structure.resolution[1] << "x" << t.structure.resolution[2];
+    std::string from, why;
+    for (const TraceParam& p : t.structure.params)
+      if (p.is_text && p.key == "coarsened_from")
+        from = p.text;
+      else if (p.is_text && p.key == "coarsening")
+        why = p.text;
+    if (!from.empty()) out << " (coarsened from " << from << (why.empty() ? "" : ": " + why) << ")";
+  }
   out << ", scene " << t.scene_path << " (" << t.scene_primitives << " primitives)\n";
   std::map<std::string, size_t> totals;
   for (size_t r = 0; r < t.rays.size(); ++r) {

@@ -184,6 +184,37 @@ TEST_F(Cli, RaysAndCastAgreeAcrossAccelerators) {
   EXPECT_EQ(slurp(path("brute.hits")), slurp(path("bvol.hits")));
 }
 
+TEST_F(Cli, CastCoarsensAGridPastTheReferenceBudgetAndSaysSo) {
+  // 100,000 copies of one triangle: the density rule's 139^3 grid would need ~10^9 references; the grid is
+  // coarsened to the budget, answers as brute force does, and the structure line names the coarsening.
+  std::string obj = "v 0 0 0\nv 1 0.2 0.1\nv 0.3 1 1\n";
+  for (int i = 0; i < 100000; ++i) obj += "f 1 2 3\n";
+  std::string mesh = write("copies.obj", obj);
+  ASSERT_EQ(run("rays " + mesh + " --kind camera --size 12x12 -o " + path("r.rays")).code, 0);
+  Outcome g = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("g.hits") +
+                  " --accel grid --reps 1");
+  ASSERT_EQ(g.code, 0) << g.err;
+  std::smatch m;
+  std::regex line(
+      "structure: grid ([0-9]+) x ([0-9]+) x ([0-9]+) cells \\(coarsened from 139 x 139 x 139: "
+      "reference budget of 4194304\\), ([0-9]+) references");
+  ASSERT_TRUE(std::regex_search(g.out, m, line)) << g.out;
+  EXPECT_LT(std::stoi(m[1]), 139);
+  EXPECT_LE(std::stoul(m[4]), 4194304u);
+  Outcome b = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("b.hits") +
+                  " --accel brute --reps 1");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_EQ(slurp(path("g.hits")), slurp(path("b.hits")));
+  EXPECT_NE(g.out.find("hits: "), std::string::npos);
+  EXPECT_EQ(g.out.find("hits: 0 of"), std::string::npos) << g.out;  // the camera sees the triangle
+  // An explicit resolution is taken as asked or refused, never changed.
+  Outcome x = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("x.hits") +
+                  " --accel grid --grid-res 64,64,64");
+  expect_error(x, "grid resolution 64x64x64 would test");
+  EXPECT_NE(x.err.find("budget of 16777216 for 100000 primitives"), std::string::npos) << x.err;
+  EXPECT_FALSE(fs::exists(path("x.hits")));
+}
+
 TEST_F(Cli, CastNamesTheStructuresShape) {
   std::string mesh = octahedron();
   ASSERT_EQ(run("rays " + mesh + " --kind random --count 500 --seed 3 -o " + path("r.rays")).code, 0);

@@ -1,10 +1,12 @@
-// The uniform grid: resolution rule, agreement with brute force, the mailbox trap, and the 3D-DDA's cell
-// sequence against an independent enumeration of the cells a ray segment crosses.
+// The uniform grid: resolution rule, agreement with brute force, the mailbox trap, the 3D-DDA's cell
+// sequence against an independent enumeration of the cells a ray segment crosses, and the reference budget.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
+#include <string>
 #include <tuple>
+#include <utility>
 
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/grid.h"
@@ -245,6 +247,108 @@ TEST(Grid, ExactInsertionStoresFewerReferencesThanBoxes) {
   ge.build(g);
   gb.build(g);
   EXPECT_LT(ge.reference_count() * 4, gb.reference_count());
+}
+
+// 100,000 copies of one triangle: every copy covers the same cells, so the density rule's resolution would
+// need ~10^9 references (the old build refused: "more than 268435456 primitive references").
+Geometry identical_triangles(glm::vec3 a, glm::vec3 b, glm::vec3 c, int copies) {
+  Geometry g;
+  g.begin_object("copies", 0);
+  for (int i = 0; i < copies; ++i) g.add_triangle(a, b, c);
+  return g;
+}
+
+// Rays from points above (z > 0) to random points of the box [lo, hi]: no ray grazes the triangles, so every
+// structure's answer is a plain hit or a plain miss.
+std::vector<Ray> rays_from_above(const Bounds3& b, int count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-0.25f, 1.25f);
+  std::vector<Ray> rays(count);
+  glm::vec3 e = b.extent();
+  for (Ray& r : rays) {
+    glm::vec3 target = b.lo + e * glm::vec3(u(rng), u(rng), 0.5f);
+    r.origin = b.lo + e * glm::vec3(u(rng), u(rng), 0.f) + glm::vec3(0.f, 0.f, 2.f + e.z);
+    r.direction = target - r.origin;
+  }
+  return rays;
+}
+
+TEST(Grid, ReferenceBudgetFormula) {
+  // max(2^22, 32 n), never above 2^28.
+  EXPECT_EQ(UniformGrid::reference_budget(0), size_t(1) << 22);
+  EXPECT_EQ(UniformGrid::reference_budget(100000), size_t(1) << 22);
+  EXPECT_EQ(UniformGrid::reference_budget(size_t(1) << 20), size_t(32) << 20);
+  EXPECT_EQ(UniformGrid::reference_budget(size_t(1) << 30), size_t(1) << 28);
+}
+
+TEST(Grid, IdenticalTrianglesCoarsenToTheReferenceBudget) {
+  const size_t budget = UniformGrid::reference_budget(100000);
+  struct Case {
+    const char* name;
+    glm::vec3 a, b, c;
+  };
+  for (const Case& k : {Case{"flat", {0.f, 0.f, 0.f}, {1.f, 0.f, 0.f}, {0.f, 1.f, 0.f}},
+                        Case{"tilted", {0.f, 0.f, 0.f}, {1.f, 0.2f, 0.1f}, {0.3f, 1.f, 1.f}}}) {
+    Geometry g = identical_triangles(k.a, k.b, k.c, 100000);
+    BruteForce brute;
+    brute.build(g);
+    for (bool exact : {true, false}) {
+      GridOptions opt;
+      opt.exact_insert = exact;
+      UniformGrid grid(opt);
+      grid.build(g);
+      SCOPED_TRACE(std::string(k.name) + (exact ? " exact" : " bbox"));
+      EXPECT_TRUE(grid.coarsened());
+      EXPECT_EQ(grid.coarsening(), GridCoarsening::reference_budget);
+      EXPECT_EQ(grid.requested_resolution(),
+                UniformGrid::resolution_for(grid.bounds(), g.size(), opt.density));
+      std::array<int, 3> n = grid.resolution(), r = grid.requested_resolution();
+      for (int a = 0; a < 3; ++a) EXPECT_LE(n[a], r[a]);
+      EXPECT_LT(size_t(n[0]) * n[1] * n[2], size_t(r[0]) * r[1] * r[2]);
+      EXPECT_LE(grid.reference_count(), budget);
+      EXPECT_GE(grid.reference_count(), g.size());  // every copy is stored somewhere
+      // Ties go to the lowest id: every hit is copy 0, at brute force's t.
+      EXPECT_EQ(count_disagreements(grid, brute, rays_from_above(g.bounds(), 60, 11)), 0);
+    }
+  }
+}
+
+TEST(Grid, OrdinaryScenesAreNotCoarsened) {
+  // The budget binds only on pathological input: soups of small triangles keep the density rule's resolution.
+  for (auto [triangles, density] : {std::pair<int, float>{400, 3.f}, {400, 8.f}, {20000, 3.f}}) {
+    Geometry g = make_soup(12, triangles, 8);
+    GridOptions opt;
+    opt.density = density;
+    UniformGrid grid(opt);
+    grid.build(g);
+    EXPECT_FALSE(grid.coarsened()) << triangles << " triangles, d = " << density;
+    EXPECT_EQ(grid.coarsening(), GridCoarsening::none);
+    EXPECT_EQ(grid.resolution(), UniformGrid::resolution_for(g.bounds(), g.size(), density));
+    EXPECT_EQ(grid.resolution(), grid.requested_resolution());
+  }
+}
+
+TEST(Grid, ExplicitResolutionPastTheBudgetIsRefused) {
+  // Who names the cells wants those cells: refused before any reference is stored, not coarsened.
+  Geometry g = identical_triangles({0.f, 0.f, 0.f}, {1.f, 0.f, 0.f}, {0.f, 1.f, 1.f}, 1000);
+  GridOptions opt;
+  opt.resolution = std::array<int, 3>{100, 100, 100};
+  UniformGrid grid(opt);
+  try {
+    grid.build(g);
+    FAIL() << "built";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.detail().find("100x100x100"), std::string::npos) << e.detail();
+    EXPECT_NE(e.detail().find("budget of 16777216 for 1000 primitives"), std::string::npos) << e.detail();
+  }
+  EXPECT_TRUE(grid.empty());
+  EXPECT_EQ(grid.reference_count(), 0u);
+  // Within the budget the explicit resolution is kept.
+  opt.resolution = std::array<int, 3>{10, 10, 10};
+  UniformGrid fits(opt);
+  fits.build(g);
+  EXPECT_FALSE(fits.coarsened());
+  EXPECT_EQ(fits.resolution(), (std::array<int, 3>{10, 10, 10}));
 }
 
 }  // namespace

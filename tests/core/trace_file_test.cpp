@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -57,6 +58,33 @@ std::vector<EventType> types(const TracedRay& r) {
   std::vector<EventType> out;
   for (const Event& e : r.events) out.push_back(e.type);
   return out;
+}
+
+TEST(TraceFile, CoarsenedGridSaysSoInParamsAndSummary) {
+  // 20,000 copies of one triangle: the reference budget coarsens the density rule's grid; the trace keeps the
+  // resolution asked for and the reason, through the JSON round trip.
+  Geometry g;
+  g.begin_object("copies", 0);
+  for (int i = 0; i < 20000; ++i)
+    g.add_triangle(glm::vec3(0.f), glm::vec3(1.f, 0.f, 0.f), glm::vec3(0.f, 1.f, 0.f));
+  UniformGrid grid;
+  grid.build(g);
+  ASSERT_TRUE(grid.coarsened());
+  RayRequest down;
+  down.ray.origin = glm::vec3(0.25f, 0.25f, 1.f);
+  down.ray.direction = glm::vec3(0.f, 0.f, -1.f);
+  Trace t =
+      parse_trace_json(trace_to_json(record_grid_trace(g, grid, {down}, "copies.obj", "fnv1a64:0")), "t");
+  std::array<int, 3> r = grid.requested_resolution();
+  std::string from = std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
+  std::map<std::string, std::string> text;
+  for (const TraceParam& p : t.structure.params)
+    if (p.is_text) text[p.key] = p.text;
+  EXPECT_EQ(text["coarsened_from"], from);
+  EXPECT_EQ(text["coarsening"], "reference budget");
+  EXPECT_EQ(t.structure.resolution, grid.resolution());
+  EXPECT_NE(trace_summary(t).find("(coarsened from " + from + ": reference budget)"), std::string::npos)
+      << trace_summary(t);
 }
 
 TEST(TraceFile, RecordsTheMailboxTrapStepByStep) {

@@ -340,6 +340,23 @@ TEST(Viz, WithoutADisplayHelpWorksAndTheRestExits2) {
   EXPECT_NE(run.err.find("DISPLAY"), std::string::npos) << run.err;
 }
 
+// 100,000 copies of one triangle: the structure panel says that the reference budget coarsened the grid; an
+// explicit resolution past the budget is refused with one line and exit 2, as on the command line.
+TEST(Viz, CoarsenedGridSaysSoInTheStructurePanel) {
+  std::string mesh = kOut + "/copies.obj", st = kOut + "/copies.json";
+  std::string obj = "v 0 0 0\nv 1 0.2 0.1\nv 0.3 1 1\n";
+  for (int i = 0; i < 100000; ++i) obj += "f 1 2 3\n";
+  writeFile(mesh, obj);
+  GuiRun r = gui("'" + mesh + "' --accel grid --size 16x12 --dump-state '" + st + "' --quit", "copies");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::string info = readJson(st)["structure_info"];
+  EXPECT_NE(info.find("(coarsened from 139 x 139 x 139: reference budget)"), std::string::npos) << info;
+  EXPECT_EQ(info.rfind("grid ", 0), 0u) << info;
+  GuiRun x = gui("'" + mesh + "' --grid-res 64,64,64 --size 16x12 --quit", "copies_explicit");
+  EXPECT_EQ(x.code, 2);
+  EXPECT_NE(x.err.find("error: grid resolution 64x64x64 would test"), std::string::npos) << x.err;
+}
+
 TEST(Viz, BadOptionsExit2) {
   for (const char* args : {"--pixel 400,1", "--pixel 1", "--step 100000", "--step-to teleport:1", "--grid-res 0,1,1",
                            "--grid-insert fuzzy", "--aa sometimes", "--accel octree", "--size 0x3"}) {

@@ -331,11 +331,15 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
   size_t events = 0;
   for (const TracedRay& r : trace->rays) events += r.events.size();
   QString structure = QString::fromStdString(trace->structure.kind);
-  if (trace->structure.kind == "grid")
+  if (trace->structure.kind == "grid") {
     structure += QString(" %1x%2x%3")
                      .arg(trace->structure.resolution[0])
                      .arg(trace->structure.resolution[1])
                      .arg(trace->structure.resolution[2]);
+    for (const TraceParam& p : trace->structure.params)
+      if (p.is_text && p.key == "coarsened_from")
+        structure += tr(" coarsened from %1").arg(QString::fromStdString(p.text));
+  }
   structure_->setInfo(tr("Replaying %1 (%2 rays, %3 events; structure %4) without the scene.")
                           .arg(QFileInfo(path).fileName())
                           .arg(trace->rays.size())
@@ -404,10 +408,21 @@ void MainWindow::buildStructure() {
       size_t n = std::max<size_t>(1, built->scene->scene.geometry.size());
       if (const UniformGrid* grid = built->grid()) {
         auto r = grid->resolution();
-        structure_->setInfo(tr("grid %1 x %2 x %3, %4 references (%5 per primitive)")
+        // A coarsened grid says so: the density rule's resolution would have exceeded the reference budget.
+        QString coarsened;
+        if (grid->coarsened()) {
+          auto q = grid->requested_resolution();
+          coarsened = tr(" (coarsened from %1 x %2 x %3: %4)")
+                          .arg(q[0])
+                          .arg(q[1])
+                          .arg(q[2])
+                          .arg(QString::fromUtf8(to_string(grid->coarsening())));
+        }
+        structure_->setInfo(tr("grid %1 x %2 x %3%4, %5 references (%6 per primitive)")
                                 .arg(r[0])
                                 .arg(r[1])
                                 .arg(r[2])
+                                .arg(coarsened)
                                 .arg(grid->reference_count())
                                 .arg(double(grid->reference_count()) / n, 0, 'f', 2) +
                             took(tr(", built"), built->buildMs));

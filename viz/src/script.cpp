@@ -91,6 +91,7 @@ QJsonObject dumpState(MainWindow& w) {
   o["event_type"] = s->state().event ? event_type_name(s->state().event->type) : "";
   o["event_list_row"] = w.eventList()->currentRow();
   o["panels"] = w.statePanel()->dumpState();
+  o["structure_info"] = w.structurePanel()->info();
   o["view"] = w.sceneView()->dumpState();
   o["sah"] = w.sahChart()->dumpState();
   o["selected_node"] = s->selectedNode();

@@ -40,7 +40,9 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   density_->setRange(0.1, 64.0);
   density_->setSingleStep(0.5);
   density_->setValue(3.0);
-  density_->setToolTip(tr("d in max(nx, ny, nz) = d * cbrt(n)"));
+  density_->setToolTip(
+      tr("d in max(nx, ny, nz) = d * cbrt(n); coarsened (the info below says so) when the scene "
+         "would need more than the reference budget, max(2^22, 32 n) references"));
   g->addWidget(new QLabel(tr("density d")), 0, 0);
   g->addWidget(density_, 0, 1);
   insert_ = new QComboBox;
@@ -51,7 +53,9 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   g->addWidget(new QLabel(tr("insertion")), 0, 2);
   g->addWidget(insert_, 0, 3);
   explicitRes_ = new QCheckBox(tr("resolution"));
-  explicitRes_->setToolTip(tr("An explicit nx, ny, nz instead of the density rule"));
+  explicitRes_->setToolTip(
+      tr("An explicit nx, ny, nz instead of the density rule; refused, not coarsened, past "
+         "the reference budget"));
   g->addWidget(explicitRes_, 1, 0);
   auto* resRow = new QHBoxLayout;
   for (auto*& r : res_) {
@@ -201,6 +205,8 @@ void StructurePanel::setBusy(bool busy) {
 }
 
 void StructurePanel::setInfo(const QString& text) { info_->setText(text); }
+
+QString StructurePanel::info() const { return info_->text(); }
 
 bool StructurePanel::costsEditPending() const { return costsTimer_->isActive(); }
 

@@ -1,6 +1,7 @@
 // The structure panel: which acceleration structure and its build parameters. Grid: density d (in
 // max(nx, ny, nz) = d * cbrt(n)) or an explicit resolution, exact (triangle-box overlap) or bounding-box
-// insertion. kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0:
+// insertion; the info line says when the density rule's resolution was coarsened to the reference budget.
+// kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0:
 // max(8, 1.2 log2 N), with an empty bonus pbrt's 8 + 1.3 log2 N), leaf size, mailboxes; an edit of a kd cost
 // rebuilds at once. The build itself runs off the GUI thread (the main window does it).
 #pragma once
@@ -33,6 +34,7 @@ class StructurePanel : public QWidget {
   void setStructure(const std::string& accelName, const StructureOptions& o);
   void setBusy(bool busy);  // a moving bar while work runs in the background
   void setInfo(const QString& text);
+  QString info() const;  // what the info line below the options says (the state dump has it)
   bool costsEditPending() const;  // an edited kd cost waits for the spin box to rest
 
  Q_SIGNALS:

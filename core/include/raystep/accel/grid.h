@@ -2,7 +2,9 @@
 // max(nx, ny, nz) = d * cbrt(n), each primitive stored in every cell it really overlaps (exact SAT test) or,
 // as an option, every cell its bounding box overlaps. Traversal is the 3D-DDA of Amanatides and Woo
 // ("A Fast Voxel Traversal Algorithm", 1987) with incremental arithmetic and per-thread mailboxes, walking
-// until the next cell's entry exceeds the nearest hit: "traverse until tmin(cell) > tmax(ray)".
+// until the next cell's entry exceeds the nearest hit: "traverse until tmin(cell) > tmax(ray)". Memory is
+// bounded: the density rule's resolution is coarsened when the scene would need more references than a
+// budget.
 #pragma once
 
 #include <array>
@@ -27,6 +29,13 @@ struct GridOptions {
   bool exact_insert = true;                      // false: insert by bounding box
 };
 
+// Why a grid's resolution differs from the one asked for.
+enum class GridCoarsening {
+  none,
+  reference_budget,  // the density rule's resolution would exceed UniformGrid::reference_budget
+};
+const char* to_string(GridCoarsening c);
+
 class UniformGrid final : public Accelerator {
  public:
   explicit UniformGrid(GridOptions options = {}) : options_(options) {}
@@ -45,8 +54,20 @@ class UniformGrid final : public Accelerator {
   // The lecture's resolution rule, exposed for tests and lessons.
   static std::array<int, 3> resolution_for(const Bounds3& bounds, size_t prim_count, float density);
 
+  // Bounded memory and build time on any scene: a build stores at most reference_budget(n) =
+  // min(2^28, max(2^22, 32 n)) primitive references. It first counts, allocating nothing, each primitive's
+  // bounding-box cells: the references under bbox insertion; under exact insertion the triangle-box tests,
+  // held to 4 budgets. Exact insertion then stops as soon as its references pass the budget. Either way, the
+  // density rule's resolution is coarsened (all axes alike) until the build fits, and coarsened() says so; an
+  // explicit resolution is refused (InputError) instead, since who names the cells wants those cells.
+  static size_t reference_budget(size_t prim_count);
+
   const Bounds3& bounds() const { return bounds_; }
   std::array<int, 3> resolution() const { return {n_[0], n_[1], n_[2]}; }
+  // The resolution asked for (explicit, or the density rule's) and why the built one differs, if it does.
+  std::array<int, 3> requested_resolution() const { return requested_; }
+  GridCoarsening coarsening() const { return coarsening_; }
+  bool coarsened() const { return coarsening_ != GridCoarsening::none; }
   glm::vec3 cell_size() const { return cell_size_; }
   Bounds3 cell_bounds(int i, int j, int k) const;
   size_t reference_count() const { return prim_index_.size(); }
@@ -72,11 +93,19 @@ class UniformGrid final : public Accelerator {
   bool occupied(size_t id) const { return (occupied_[id >> 6] >> (id & 63)) & 1u; }
 
  private:
+  // Set n_ and the cell size for resolution n.
+  void set_resolution(const std::array<int, 3>& n);
+  // The sum over primitives of their candidate cells at the current resolution (allocates nothing).
+  size_t count_box_cells() const;
+  // A primitive's candidate cells: those its bounding box (widened against rounding) overlaps.
+  void box_cells(uint32_t id, int lo[3], int hi[3]) const;
 
   GridOptions options_;
   const Geometry* geometry_ = nullptr;
   Bounds3 bounds_;
   int n_[3] = {1, 1, 1};
+  std::array<int, 3> requested_{1, 1, 1};
+  GridCoarsening coarsening_ = GridCoarsening::none;
   glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
   std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
   std::vector<uint32_t> prim_index_;
