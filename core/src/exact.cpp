@@ -27,6 +27,9 @@ DetD det3(const double x[3], const double y[3], const double z[3]) {
   return {x[0] * m0 + x[1] * m1 + x[2] * m2, std::fabs(x[0]) * p0 + std::fabs(x[1]) * p1 + std::fabs(x[2]) * p2};
 }
 
+// A value computed with an error of at most `bound` has a known sign: it exceeds the bound, or the bound is 0.
+bool decided(double value, double bound) { return std::fabs(value) > bound || bound == 0.0; }
+
 // -1, 0 or +1.
 template <class T>
 int sign_of(const T& v) {
@@ -83,7 +86,7 @@ void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, c
   for (int e = 0; e < 3; ++e) {
     int j = e == 2 ? 0 : e + 1, k = j == 2 ? 0 : j + 1;
     DetD det = det3(t[j], t[k], dir);
-    if (std::fabs(det.value) > kDetBound * det.permanent) {
+    if (decided(det.value, kDetBound * det.permanent)) {
       ++exact_counters().filtered;
       signs[e] = sign_of(det.value);
     } else {
@@ -125,8 +128,12 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   double g = num.value - tden;
   double err_g = err_num + std::fabs(t0) * err_den + 2.0 * kU * (std::fabs(num.value) + 2.0 * std::fabs(tden));
   err_g *= 1.0 + 4.0 * kU;
-  int sign_d = std::fabs(den.value) > err_den ? sign_of(den.value) : 2;  // 2: undecided
-  int sign_g = any_tmin ? 0 : (std::fabs(g) > err_g ? sign_of(g) : 2);
+  // Decided when the value exceeds its bound, or when the bound is 0: then every product had an exactly zero
+  // factor (a difference of two floats is 0 in double only when they are equal, and products of up to three
+  // floats never underflow), so the value is exact. That is the common case of an origin on an axis-aligned
+  // plane: a shadow ray spawned from a floor at y = 0, whose error bound (and so offset) along y is 0.
+  int sign_d = decided(den.value, err_den) ? sign_of(den.value) : 2;  // 2: undecided
+  int sign_g = any_tmin ? 0 : (decided(g, err_g) ? sign_of(g) : 2);
   if (sign_d != 2 && sign_g != 2) {
     ++exact_counters().filtered;
     return any_tmin ? sign_d != 0 : sign_g * sign_d > 0;

@@ -9,23 +9,25 @@
 
 namespace raystep {
 
+// The functions are marked cold: the kernels that call them keep their fast paths free of the calls' cost.
+
 // The line o + t d meets the plane of triangle (p0, p1, p2) at t* = N / D, where n = (p1 - p0) x (p2 - p0),
 // N = n . (p0 - o) and D = n . d. True when D != 0 and t* > tmin, decided exactly for the float inputs.
 // tmin = -inf counts as below every t*; NaN or infinite inputs answer false.
-bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+[[gnu::cold]] bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                       const glm::vec3& d, float tmin);
 
 // The exact signs (-1, 0, +1) of det[p_j - o, p_k - o, d] for the edges (j, k) = (1, 2), (2, 0), (0, 1): on
 // which side of each edge's line the line o + t d passes. The watertight test's edge functions e0, e1, e2 are
 // these determinants divided by d's dominant component. NaN or infinite inputs give 0.
-void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+[[gnu::cold]] void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                 const glm::vec3& d, int signs[3]);
 
 // The whole ray-triangle test for a ray that passes within rounding of an edge's line (or a vertex), where the
 // float edge functions cannot be trusted: inside by the exact edge signs (all of one sign, zeros allowed, not
 // all zero), tmin < t* decided exactly, t* < tmax in double. On a hit, *t lies in (tmin, tmax) and b0, b1, b2
 // (>= 0, summing to 1 up to rounding) come from the edge determinants in double.
-bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+[[gnu::cold]] bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                         const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2);
 
 // How many decisions plane_hit_beyond and edge_signs have settled by its double filter and by exact arithmetic, in this thread
