@@ -22,10 +22,11 @@ Ray make_ray(glm::vec3 o, glm::vec3 d, float tmin = 0.f) {
 
 // The reference's answers to the two questions exact.h answers.
 bool reference_beyond(const Ray& r, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
-  test::ExactVec o(r.origin), d(r.direction), v0(p0), n = test::cross(test::ExactVec(p1) - v0, test::ExactVec(p2) - v0);
+  test::QVec o = test::to_q(r.origin), d = test::to_q(r.direction), v0 = test::to_q(p0);
+  test::QVec n = test::cross(test::sub(test::to_q(p1), v0), test::sub(test::to_q(p2), v0));
   mpq_class den = test::dot(n, d);
   if (sgn(den) == 0) return false;
-  return test::dot(n, v0 - o) / den > mpq_class(double(r.tmin));
+  return test::dot(n, test::sub(v0, o)) / den > mpq_class(double(r.tmin));
 }
 
 TEST(Exact, RandomAndDegenerateInputsAgreeWithRationals) {

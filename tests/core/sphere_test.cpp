@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 
+#include "exact_reference.h"
 #include "raystep/geometry/sphere.h"
 
 namespace raystep {
@@ -195,6 +196,98 @@ TEST(Sphere, ReprojectedPointWithinErrorBound) {
     ASSERT_LE(glm::length(glm::dvec3(err)), 1e-5 * (glm::length(glm::dvec3(p)) + s.radius));  // and small
   }
   EXPECT_GT(hits, 10000);
+}
+
+// Rays from inside a sphere always leave it: origins anywhere inside, down to a few float ulps below the surface
+// (inside exactly, checked in rationals), spheres of radius 1e-3 .. 1e4 at the origin and 1e4 radii away (along a
+// diagonal, and along one axis only), random directions. The exit is found, beyond tmin = 0, on the sphere.
+TEST(Sphere, RaysFromInsideNeverMiss) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int near_surface = 0, rays = 0;
+  for (int i = 0; i < 60000; ++i) {
+    const float radius = std::pow(10.f, float(int(rng() % 8) - 3)) * float(0.5 + 0.5 * std::fabs(u(rng)));
+    glm::vec3 center(0.f);
+    if (i % 3 == 1) center = 1e4f * radius * glm::vec3(0.6f, -0.48f, 0.64f);
+    if (i % 3 == 2) center[rng() % 3] = -1e4f * radius;
+    const Sphere s{center, radius};
+    glm::dvec3 n = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+    // Depth below the surface: anything, or 2^-k of the radius for k up to 30 (a float ulp is 2^-24).
+    double depth = (i % 2) ? std::fabs(u(rng)) : std::ldexp(1.0, -int(rng() % 31));
+    glm::vec3 o(glm::dvec3(center) + (1 - depth) * double(radius) * n);
+    test::QVec f = test::sub(test::to_q(o), test::to_q(center));
+    if (!(test::dot(f, f) < test::Q(double(radius)) * test::Q(double(radius)))) continue;  // rounded outside
+    near_surface += depth < 1e-6;
+    ++rays;
+    glm::vec3 d(glm::normalize(glm::dvec3(u(rng), u(rng), u(rng))) * std::pow(10.0, int(rng() % 5) - 2));
+    float t;
+    ASSERT_TRUE(hit(make_ray(o, d), s, &t)) << i << " radius " << radius << " depth " << depth;
+    ASSERT_GT(t, 0.f);
+    // On the sphere to within the rounding of t and of the coordinates (float ulps of the centre's position).
+    double off = std::fabs(glm::length(glm::dvec3(o) + double(t) * glm::dvec3(d) - glm::dvec3(center)) - radius);
+    ASSERT_LE(off, 4 * gamma(1) * (double(t) * glm::length(glm::dvec3(d)) + glm::length(glm::dvec3(center)) + radius))
+        << i;
+  }
+  EXPECT_GT(rays, 45000);
+  EXPECT_GT(near_surface, 5000);
+}
+
+// A root just above tmin that rounds to tmin as a float is a hit there, not a skip to the far root: from
+// (0, 0, -5) along (0, 0, k) the unit sphere's roots are 4/k and 6/k; tmin is float(4/k) where that rounds down.
+TEST(Sphere, RootRoundingToTminIsStillAHit) {
+  int cases = 0;
+  for (int k = 3; k < 200; ++k) {
+    const double near_root = 4.0 / k;
+    const float tmin = float(near_root);
+    if (!(double(tmin) < near_root)) continue;
+    ++cases;
+    float t;
+    ASSERT_TRUE(hit(make_ray({0.f, 0.f, -5.f}, {0.f, 0.f, float(k)}, tmin), kUnit, &t)) << k;
+    EXPECT_EQ(t, next_float_up(tmin)) << k;  // the near root, at the first float beyond tmin
+    // A tmax at that float excludes it (tmax is compared in float), and the far root too.
+    EXPECT_FALSE(intersect_sphere(make_ray({0.f, 0.f, -5.f}, {0.f, 0.f, float(k)}, tmin), kUnit,
+                                  next_float_up(tmin), &t));
+  }
+  EXPECT_GT(cases, 40);
+}
+
+// Tangent-ish rays from outside: where the exact discriminant (rationals: a r^2 - |f x d|^2 for the float inputs)
+// is further from 0 than the double computation's rounding can move it, hit and miss agree with it. Spheres of
+// radius 1e-3 .. 1e4, at the origin and 1e4 radii away; lines at relative distances 1 +- 1e-4 .. 1e-12 from the
+// centre, most of them within the undecided band of float inputs, a few thousand decidable either way.
+TEST(Sphere, TangentRaysAgreeWithTheExactDiscriminant) {
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int decided_hits = 0, decided_misses = 0;
+  for (int i = 0; i < 60000; ++i) {
+    const float radius = std::pow(10.f, float(int(rng() % 8) - 3));
+    glm::vec3 center(0.f);
+    if (i % 2) center = 1e4f * radius * glm::vec3(-0.36f, 0.48f, 0.8f);
+    const Sphere s{center, radius};
+    glm::dvec3 view = glm::normalize(glm::dvec3(u(rng), u(rng), u(rng)));
+    glm::vec3 o(glm::dvec3(center) - 5.0 * radius * view);
+    glm::dvec3 side = glm::normalize(glm::cross(view, glm::dvec3(u(rng), u(rng), u(rng))));
+    double want = radius * (1 + std::ldexp(u(rng), -int(13 + rng() % 28)));
+    glm::dvec3 to = glm::dvec3(center) - glm::dvec3(o);
+    double L = glm::length(to);
+    glm::vec3 d(to + want * L / std::sqrt(L * L - want * want) * side);
+    test::QVec f = test::sub(test::to_q(o), test::to_q(center)), dq = test::to_q(d);
+    test::QVec fxd = test::cross(f, dq);
+    const test::Q rq = double(radius);
+    test::Q disc = rq * rq * test::dot(dq, dq) - test::dot(fxd, fxd);
+    // The double discriminant's rounding: relative gamma(16) of a (|f| + r)^2 is ample (l = f + (b/a) d and
+    // |l|^2 each round a few times, relative to |f|).
+    double band = gamma_double(16) * glm::dot(glm::dvec3(d), glm::dvec3(d)) *
+                  std::pow(glm::length(glm::dvec3(o) - glm::dvec3(center)) + radius, 2);
+    double exact = disc.get_d();
+    if (std::fabs(exact) <= band) continue;
+    float t;
+    bool got = hit(make_ray(o, d), s, &t);
+    ASSERT_EQ(got, exact > 0) << i << " radius " << radius;
+    (exact > 0 ? decided_hits : decided_misses)++;
+  }
+  EXPECT_GT(decided_hits, 1000);
+  EXPECT_GT(decided_misses, 1000);
 }
 
 }  // namespace

@@ -370,10 +370,10 @@ TEST(Triangle, HardCasesAgreeWithExactArithmetic) {
     glm::vec3 err;
     glm::vec3 p = triangle_point(h, p0, p1, p2, &err);
     // The box p +- err meets the exact plane n.(x - p0) = 0 when |n.(p - p0)| <= sum |n_i| err_i.
-    test::ExactVec n = test::cross(test::ExactVec(p1) - test::ExactVec(p0), test::ExactVec(p2) - test::ExactVec(p0));
-    mpq_class distance_n = abs(test::dot(n, test::ExactVec(p) - test::ExactVec(p0)));
-    mpq_class reach = abs(n.x) * mpq_class(double(err.x)) + abs(n.y) * mpq_class(double(err.y)) +
-                      abs(n.z) * mpq_class(double(err.z));
+    test::QVec n = test::cross(test::sub(test::to_q(p1), test::to_q(p0)), test::sub(test::to_q(p2), test::to_q(p0)));
+    mpq_class distance_n = abs(test::dot(n, test::sub(test::to_q(p), test::to_q(p0))));
+    mpq_class reach = abs(n[0]) * mpq_class(double(err.x)) + abs(n[1]) * mpq_class(double(err.y)) +
+                      abs(n[2]) * mpq_class(double(err.z));
     off_plane += distance_n > reach;
   }
   EXPECT_EQ(disagreements, 0);

@@ -1,8 +1,8 @@
 // Axis-aligned bounding box and the slab test (Kay and Kajiya 1986) made robust:
 // near/far planes chosen by the sign bit of the reciprocal direction (Williams et al. 2005), so +0 and -0
 // components behave alike; a 0*inf NaN (ray lying in a slab plane) adds no constraint; rays with NaN
-// components miss; the exit distance is enlarged by Ize's factor 1 + 2*gamma(3)
-// (Ize, "Robust BVH Ray Traversal", JCGT 2013) so that the test is conservative.
+// components miss; the entry and exit distances are moved outward by Ize's factor 1 -+ 2*gamma(3)
+// (Ize, "Robust BVH Ray Traversal", JCGT 2013) whatever their signs, so that the test is conservative.
 #pragma once
 
 #include <algorithm>
@@ -81,8 +81,9 @@ struct SlabRay {
   }
 };
 
-// Slab test. On a hit, [*t_enter, *t_exit] is the part of (ray.tmin, ray.tmax) inside the box
-// (touching the box's boundary counts as a hit: the box is closed).
+// Slab test. On a hit, [*t_enter, *t_exit] contains the part of [ray.tmin, ray.tmax] inside the box, widened by
+// at most 2*gamma(3) of each plane distance (touching the box's boundary counts as a hit: the box is closed).
+// Never a miss when the exact segment meets the box (for normal, not subnormal, floats).
 inline bool intersect_slabs(const Bounds3& b, const SlabRay& r, float* t_enter, float* t_exit) {
   if (!r.valid) return false;
   float t0 = r.tmin, t1 = r.tmax;
@@ -91,7 +92,14 @@ inline bool intersect_slabs(const Bounds3& b, const SlabRay& r, float* t_enter, 
     bool negative = std::signbit(r.inv_dir[a]);
     float t_near = ((negative ? b.hi[a] : b.lo[a]) - r.origin[a]) * r.inv_dir[a];
     float t_far = ((negative ? b.lo[a] : b.hi[a]) - r.origin[a]) * r.inv_dir[a];
-    t_far *= 1.f + 2.f * gamma(3);  // Ize's factor: conservative against rounding in t_near, t_far
+    // Ize's factor, for every sign. Each distance is within gamma(3)|t| of the exact one (a subtraction, the
+    // rounded reciprocal, a product); scaling t_near towards -inf and t_far towards +inf by 2*gamma(3) (as a
+    // float, 6 ulps of 1: enough for the product's own rounding too) makes them bounds of the exact ones, so
+    // [t0, t1] contains the exact interval. Scaling by 1 + 2*gamma(3) alone moved a negative t_far inwards
+    // (a box behind the origin, or an origin inside near a face, with tmin < 0: a line's overlap was lost),
+    // and left t_near free to round above an exit or tmax. Infinities keep their sign; NaN stays NaN.
+    t_near *= t_near > 0.f ? 1.f - 2.f * gamma(3) : 1.f + 2.f * gamma(3);
+    t_far *= t_far > 0.f ? 1.f + 2.f * gamma(3) : 1.f - 2.f * gamma(3);
     // Written so that a NaN (0*inf: the ray lies in this slab's plane) leaves t0, t1 unchanged.
     t0 = t_near > t0 ? t_near : t0;
     t1 = t_far < t1 ? t_far : t1;

@@ -16,6 +16,10 @@ constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;
 // Relative error bound of n chained float operations: n*eps / (1 - n*eps).
 constexpr float gamma(int n) { return (n * kMachineEpsilon) / (1 - n * kMachineEpsilon); }
 
+// The same bound for n double operations: for the kernels that work in double on float inputs.
+constexpr double kDoubleMachineEpsilon = std::numeric_limits<double>::epsilon() * 0.5;
+constexpr double gamma_double(int n) { return (n * kDoubleMachineEpsilon) / (1 - n * kDoubleMachineEpsilon); }
+
 inline uint32_t float_to_bits(float f) {
   uint32_t u;
   std::memcpy(&u, &f, sizeof u);
