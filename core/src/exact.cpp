@@ -36,42 +36,51 @@ int sign_of(const T& v) {
   return (v > 0) - (v < 0);
 }
 
+// Exact rationals: p - q for float vectors, and det[x, y, z] = x . (y x z).
+void exact_difference(const glm::vec3& p, const glm::vec3& q, mpq_class out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = mpq_class(double(p[i])) - mpq_class(double(q[i]));
+}
+mpq_class exact_det(const mpq_class x[3], const mpq_class y[3], const mpq_class z[3]) {
+  return x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+}
+
 // The exact signs of G = N - tmin D and of D, in rational arithmetic (every float is a rational).
 void exact_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                  const glm::vec3& d, float tmin, int* sign_g, int* sign_d) {
-  mpq_class a[3], e1[3], e2[3], dir[3];
-  for (int i = 0; i < 3; ++i) {
-    mpq_class v0(double(p0[i])), oi(double(o[i]));
-    a[i] = v0 - oi;
-    e1[i] = mpq_class(double(p1[i])) - v0;
-    e2[i] = mpq_class(double(p2[i])) - v0;
-    dir[i] = mpq_class(double(d[i]));
-  }
-  mpq_class n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-  mpq_class num = n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
-  mpq_class den = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
-  mpq_class g = num - mpq_class(double(tmin)) * den;
-  *sign_g = sgn(g);
+  mpq_class a[3], e1[3], e2[3], dir[3] = {mpq_class(double(d.x)), mpq_class(double(d.y)), mpq_class(double(d.z))};
+  exact_difference(p0, o, a);
+  exact_difference(p1, p0, e1);
+  exact_difference(p2, p0, e2);
+  // N = det[a, e1, e2] = n . a (n = e1 x e2), D = det[d, e1, e2] = n . d.
+  mpq_class num = exact_det(a, e1, e2), den = exact_det(dir, e1, e2);
+  *sign_g = sgn(num - mpq_class(double(tmin)) * den);
   *sign_d = sgn(den);
 }
 
 bool all_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The exact sign of det[u - o, v - o, d].
-int edge_sign_exact(const glm::vec3& u, const glm::vec3& v, const glm::vec3& o, const glm::vec3& d) {
-  mpq_class x[3], y[3], z[3];
-  for (int i = 0; i < 3; ++i) {
-    mpq_class oi(double(o[i]));
-    x[i] = mpq_class(double(u[i])) - oi;
-    y[i] = mpq_class(double(v[i])) - oi;
-    z[i] = mpq_class(double(d[i]));
-  }
-  mpq_class det = x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) +
-                  x[2] * (y[0] * z[1] - y[1] * z[0]);
-  return sgn(det);
-}
-
 }  // namespace
+
+int orientation(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& q) {
+  if (!(all_finite(p0) && all_finite(p1) && all_finite(p2) && all_finite(q))) return 0;
+  double a[3], b[3], c[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = double(p0[i]) - double(q[i]);
+    b[i] = double(p1[i]) - double(q[i]);
+    c[i] = double(p2[i]) - double(q[i]);
+  }
+  DetD det = det3(a, b, c);
+  if (decided(det.value, kDetBound * det.permanent)) {
+    ++exact_counters().filtered;
+    return sign_of(det.value);
+  }
+  ++exact_counters().exact;
+  mpq_class x[3], y[3], z[3];
+  exact_difference(p0, q, x);
+  exact_difference(p1, q, y);
+  exact_difference(p2, q, z);
+  return sgn(exact_det(x, y, z));
+}
 
 void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                 const glm::vec3& d, int signs[3]) {
@@ -91,7 +100,10 @@ void edge_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, c
       signs[e] = sign_of(det.value);
     } else {
       ++exact_counters().exact;
-      signs[e] = edge_sign_exact(*p[j], *p[k], o, d);
+      mpq_class x[3], y[3], z[3] = {mpq_class(dir[0]), mpq_class(dir[1]), mpq_class(dir[2])};
+      exact_difference(*p[j], o, x);
+      exact_difference(*p[k], o, y);
+      signs[e] = sgn(exact_det(x, y, z));
     }
   }
 }
@@ -148,16 +160,11 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   return eg * ed > 0;
 }
 
-bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
-                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2) {
-  int sign[3];
-  edge_signs(p0, p1, p2, o, d, sign);
-  bool negative = sign[0] < 0 || sign[1] < 0 || sign[2] < 0, positive = sign[0] > 0 || sign[1] > 0 || sign[2] > 0;
-  if (negative == positive) return false;  // outside (mixed signs), or the ray lies in the plane (all zero)
-  if (!plane_hit_beyond(p0, p1, p2, o, d, tmin)) return false;
-
-  // The values: barycentrics from the three edge determinants, t* = N / D (D is their sum), in double. An edge
-  // determinant whose double value disagrees with its exact sign is within its rounding of zero: it counts 0.
+bool triangle_hit_values(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                         const glm::vec3& d, const int sign[3], float tmin, float tmax, float* t, float* b0,
+                         float* b1, float* b2) {
+  // Barycentrics from the three edge determinants, t* = N / D (D is their sum), in double. An edge determinant
+  // whose double value disagrees with its exact sign is within its rounding of zero: it counts 0.
   const glm::vec3* p[3] = {&p0, &p1, &p2};
   double v[3][3], dir[3] = {double(d.x), double(d.y), double(d.z)}, edge[3];
   for (int k = 0; k < 3; ++k)
@@ -181,6 +188,16 @@ bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec
   *b1 = float(edge[1] / sum);
   *b2 = float(edge[2] / sum);
   return true;
+}
+
+bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2) {
+  int sign[3];
+  edge_signs(p0, p1, p2, o, d, sign);
+  bool negative = sign[0] < 0 || sign[1] < 0 || sign[2] < 0, positive = sign[0] > 0 || sign[1] > 0 || sign[2] > 0;
+  if (negative == positive) return false;  // outside (mixed signs), or the ray lies in the plane (all zero)
+  if (!plane_hit_beyond(p0, p1, p2, o, d, tmin)) return false;
+  return triangle_hit_values(p0, p1, p2, o, d, sign, tmin, tmax, t, b0, b1, b2);
 }
 
 }  // namespace raystep

@@ -60,6 +60,11 @@ TEST(Exact, RandomAndDegenerateInputsAgreeWithRationals) {
     float tmin = i % 3 == 0 ? 0.f : u(rng) * 2.f;
     Ray r = make_ray(o, d, tmin);
     exact_counters() = {};
+    // orient3d: the side of the plane the origin is on, as the reference's det[p0 - o, p1 - o, p2 - o].
+    EXPECT_EQ(orientation(p0, p1, p2, o),
+              sgn(test::det(test::sub(test::to_q(p0), test::to_q(o)), test::sub(test::to_q(p1), test::to_q(o)),
+                            test::sub(test::to_q(p2), test::to_q(o)))))
+        << "case " << i;
     bool b = plane_hit_beyond(p0, p1, p2, o, d, tmin);
     EXPECT_EQ(b, reference_beyond(r, p0, p1, p2)) << "case " << i;
     beyond += b;

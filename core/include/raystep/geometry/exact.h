@@ -17,6 +17,10 @@ namespace raystep {
 [[gnu::cold]] bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                       const glm::vec3& d, float tmin);
 
+// The exact sign (-1, 0, +1) of det[p0 - q, p1 - q, p2 - q] (orient3d): positive when q lies on the side of the
+// plane that n = (p1 - p0) x (p2 - p0) points away from. NaN or infinite inputs give 0.
+[[gnu::cold]] int orientation(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& q);
+
 // The exact signs (-1, 0, +1) of det[p_j - o, p_k - o, d] for the edges (j, k) = (1, 2), (2, 0), (0, 1): on
 // which side of each edge's line the line o + t d passes. The watertight test's edge functions e0, e1, e2 are
 // these determinants divided by d's dominant component. NaN or infinite inputs give 0.
@@ -29,6 +33,13 @@ namespace raystep {
 // (>= 0, summing to 1 up to rounding) come from the edge determinants in double.
 [[gnu::cold]] bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                         const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2);
+
+// The values of a hit already decided (the ray meets the triangle beyond tmin; sign[i] are the exact edge signs,
+// of one sign or zero), in double: t* in (tmin, tmax) as in exact_triangle_hit, and the barycentrics. False when
+// t* is not below tmax. For a hit whose float values have a loose bound.
+[[gnu::cold]] bool triangle_hit_values(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                                       const glm::vec3& o, const glm::vec3& d, const int sign[3], float tmin,
+                                       float tmax, float* t, float* b0, float* b1, float* b2);
 
 // How many decisions plane_hit_beyond and edge_signs have settled by its double filter and by exact arithmetic, in this thread
 // (tests and benchmarks read them to show how rare the exact path is).
