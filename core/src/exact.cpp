@@ -200,4 +200,15 @@ bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec
   return triangle_hit_values(p0, p1, p2, o, d, sign, tmin, tmax, t, b0, b1, b2);
 }
 
+bool settle_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
+                         const glm::vec3& d, int det_sign, float tmin, float tmax, float* t, float* b0, float* b1,
+                         float* b2) {
+  // With tmin = 0 (spawned rays testing the surface they leave), t* = N / D > 0 is the side of the plane the
+  // origin lies on (orient3d: the sign of N) against the side the ray faces (the sign of D).
+  bool beyond = tmin == 0.f ? orientation(p0, p1, p2, o) * det_sign > 0 : plane_hit_beyond(p0, p1, p2, o, d, tmin);
+  if (!beyond) return false;
+  const int sign[3] = {det_sign, det_sign, det_sign};
+  return triangle_hit_values(p0, p1, p2, o, d, sign, tmin, tmax, t, b0, b1, b2);
+}
+
 }  // namespace raystep

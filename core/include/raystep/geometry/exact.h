@@ -41,6 +41,12 @@ namespace raystep {
                                        const glm::vec3& o, const glm::vec3& d, const int sign[3], float tmin,
                                        float tmax, float* t, float* b0, float* b1, float* b2);
 
+// A hit whose edges are proven (all of one sign, det_sign: the sign of n . d) but whose t > tmin is not: decided
+// exactly (orient3d when tmin = 0, else plane_hit_beyond), then its values as triangle_hit_values gives them.
+[[gnu::cold]] bool settle_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+                                       const glm::vec3& o, const glm::vec3& d, int det_sign, float tmin, float tmax,
+                                       float* t, float* b0, float* b1, float* b2);
+
 // How many decisions plane_hit_beyond and edge_signs have settled by its double filter and by exact arithmetic, in this thread
 // (tests and benchmarks read them to show how rare the exact path is).
 struct ExactCounters {

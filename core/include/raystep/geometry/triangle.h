@@ -96,11 +96,8 @@ template <int kx, int ky, int kz>
     // cannot be trusted there, so the test is settled exactly (exact.h). A ray through a long thin triangle's
     // edge then finds the triangle the exact line meets, not its neighbour, which the structures may not hold
     // in the cell or leaf the ray is in at that point.
-    float t;
-    if (!exact_triangle_hit(p0, p1, p2, r.origin, r.direction, r.tmin, tmax, &t, &hit->b0, &hit->b1, &hit->b2))
-      return false;
-    hit->t = t;
-    return true;
+    return exact_triangle_hit(p0, p1, p2, r.origin, r.direction, r.tmin, tmax, &hit->t, &hit->b0, &hit->b1,
+                              &hit->b2);
   } else if (((e0 < 0) | (e1 < 0) | (e2 < 0)) & ((e0 > 0) | (e1 > 0) | (e2 > 0))) {
     return false;  // the origin is outside: the edge functions differ in sign
   }
@@ -130,18 +127,11 @@ template <int kx, int ky, int kz>
   if (__builtin_expect(!(t - delta_t > r.tmin), 0)) {
     if (t + delta_t < r.tmin) return false;  // proven before tmin (rounding is monotonic)
     // Not proven either way (a long thin triangle seen from nearby, an origin on or next to the surface):
-    // settled exactly. A hit is reported at a t that is inside (tmin, tmax) even when t rounded below.
-    // With tmin = 0 (spawned rays testing the surface they leave) that is the side of the triangle's plane the
-    // origin lies on (orient3d), against the side the ray faces, which the edge functions settled: every one
-    // exceeds its bound, so their sum has the sign of n . d / d_z.
-    bool beyond = r.tmin == 0.f ? orientation(p0, p1, p2, r.origin) * (det > 0 ? 1 : -1) * r.dz_sign > 0
-                                : plane_hit_beyond(p0, p1, p2, r.origin, r.direction, r.tmin);
-    if (!beyond) return false;
-    // A hit: its float t and barycentrics are as loose as the bound was, so they are computed again in double.
-    const int s = det > 0 ? 1 : -1;
-    const int sign[3] = {s * r.dz_sign, s * r.dz_sign, s * r.dz_sign};
-    return triangle_hit_values(p0, p1, p2, r.origin, r.direction, sign, r.tmin, tmax, &hit->t, &hit->b0, &hit->b1,
-                               &hit->b2);
+    // settled exactly, and the hit's t and barycentrics computed again in double, since they are as loose as the
+    // bound was. The edge functions are all proven, so their sum has the sign of n . d / d_z. (A tail call: no
+    // value of this function lives across it, so its fast path keeps its registers in the walks it is inlined in.)
+    return settle_triangle_hit(p0, p1, p2, r.origin, r.direction, (det > 0 ? 1 : -1) * r.dz_sign, r.tmin, tmax,
+                               &hit->t, &hit->b0, &hit->b1, &hit->b2);
   }
 
   hit->t = t;
