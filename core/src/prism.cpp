@@ -7,7 +7,6 @@
 #include <glm/geometric.hpp>
 
 #include "raystep/geometry/numerics.h"
-#include "raystep/scene/geometry.h"
 
 namespace raystep {
 
@@ -46,13 +45,6 @@ Prism make_prism(int sides, double length, double radius, const glm::dvec3& cent
     p.triangles.emplace_back(hi(0), hi(i), hi(i + 1));
   }
   return p;
-}
-
-uint32_t add_to_geometry(const Prism& prism, Geometry& g, const std::string& name, uint32_t material) {
-  uint32_t object = g.begin_object(name, material);
-  for (size_t i = 0; i < prism.triangles.size(); ++i)
-    g.add_triangle(prism.vertex(i, 0), prism.vertex(i, 1), prism.vertex(i, 2));
-  return object;
 }
 
 std::vector<Ray> rays_inside(const Prism& p, size_t count, uint32_t seed) {

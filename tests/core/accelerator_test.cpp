@@ -152,6 +152,16 @@ TEST(Accelerator, TiesGoToTheLowerPrimitiveId) {
   }
 }
 
+// Rays that hit nothing.
+int count_misses(const Accelerator& acc, const std::vector<Ray>& rays) {
+  int misses = 0;
+  for (const Ray& r : rays) {
+    Hit h;
+    misses += !acc.intersect(r, &h);
+  }
+  return misses;
+}
+
 // Watertight for real: closed thin prisms hit from inside never let a ray out, with any structure. Aspect ratios
 // (length : width) 100:1 to 10^5:1, 3 to 8 sides, lengths 1e-3 to 1e4, along x and along a slanted axis, at the
 // origin and 4096 radii away from it (as far as the float coordinates still resolve the prism's width). A loose
@@ -178,12 +188,7 @@ TEST(Accelerator, ThinClosedPrismsNeverLeak) {
             for (const std::string& name : accelerator_names()) {
               auto acc = make_accelerator(name);
               acc->build(g);
-              int misses = 0;
-              for (const Ray& r : rays) {
-                Hit h;
-                misses += !acc->intersect(r, &h);
-              }
-              EXPECT_EQ(misses, 0) << name << ": " << sides << " sides, " << length << " long, aspect " << aspect
+              EXPECT_EQ(count_misses(*acc, rays), 0) << name << ": " << sides << " sides, " << length << " long, aspect " << aspect
                                    << (slanted ? ", slanted" : "") << (far ? ", far from the origin" : "");
               if (name != "brute")
                 EXPECT_EQ(test::count_disagreements(*acc, brute, rays), 0) << name << ": " << sides << " sides, "
@@ -202,12 +207,7 @@ TEST(Accelerator, TheReportedPrismHoldsAllItsRays) {
   for (const std::string& name : accelerator_names()) {
     auto acc = make_accelerator(name);
     acc->build(g);
-    int misses = 0;
-    for (const Ray& r : rays) {
-      Hit h;
-      misses += !acc->intersect(r, &h);
-    }
-    EXPECT_EQ(misses, 0) << name;
+    EXPECT_EQ(count_misses(*acc, rays), 0) << name;
   }
 }
 

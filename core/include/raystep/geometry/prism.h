@@ -5,33 +5,25 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "raystep/geometry/indexed_mesh.h"
 #include "raystep/geometry/ray.h"
 
 namespace raystep {
 
-class Geometry;
-
-struct Prism {
+struct Prism : IndexedMesh {
   int sides = 6;
   double length = 1.0, radius = 0.01;  // radius: of the circle through the long edges
   glm::dvec3 center{0.0}, axis{1.0, 0.0, 0.0}, u{0.0, 1.0, 0.0}, v{0.0, 0.0, 1.0};  // u, v: unit, across the axis
-  std::vector<glm::vec3> positions;
-  std::vector<glm::uvec3> triangles;  // 4 * sides - 4, wound counter-clockwise seen from outside
-
-  glm::vec3 vertex(size_t tri, int k) const { return positions[triangles[tri][k]]; }
+  // positions: 2 * sides; triangles: 4 * sides - 4
 };
 
 // sides in [3, 64], length and radius > 0, axis nonzero (std::invalid_argument otherwise: a programming error).
 Prism make_prism(int sides, double length, double radius, const glm::dvec3& center = glm::dvec3(0.0),
                  const glm::dvec3& axis = glm::dvec3(1.0, 0.0, 0.0));
-
-// Adds the prism's triangles to g as one object; returns the object index.
-uint32_t add_to_geometry(const Prism& prism, Geometry& g, const std::string& name = "prism", uint32_t material = 0);
 
 // Rays from inside, near the axis (within a quarter of the inscribed radius, along 90% of the length), in
 // uniformly random directions, tmin 0, tmax +inf: every one of them must hit the prism.
