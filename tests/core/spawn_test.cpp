@@ -33,6 +33,17 @@ glm::vec3 leaving(const glm::vec3& n, const glm::vec3& tangent, float c, float s
 
 const float kCosines[] = {1.f, 0.5f, 0.1f, 1e-2f, 1e-3f};  // down to grazing
 
+// A spawned ray starts beyond the hit point's own rounding region: 2 |p_error|_1 along the ray, whatever its length.
+TEST(Spawn, StartsBeyondTheHitPointsRoundingRegion) {
+  const glm::vec3 p(3.f, 0.f, -2.f), err(1e-6f, 0.f, 2e-6f), n(0.f, 1.f, 0.f);
+  Ray r = spawn_ray(p, err, n, glm::vec3(0.f, 2.f, 0.f));
+  EXPECT_FLOAT_EQ(r.tmin * 2.f, 6e-6f);
+  Ray s = spawn_ray_to(p, err, n, glm::vec3(3.f, 10.f, -2.f));
+  EXPECT_NEAR(s.tmin * glm::length(s.direction), 6e-6f, 1e-12f);
+  EXPECT_LT(s.tmin, s.tmax);
+  EXPECT_EQ(spawn_ray(p, glm::vec3(0.f), n, glm::vec3(0.f, 1.f, 0.f)).tmin, 0.f);
+}
+
 TEST(Spawn, NoSelfIntersectionOnTrianglesAtEveryScale) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<float> u(-1.f, 1.f), w(0.f, 1.f);
@@ -70,6 +81,7 @@ TEST(Spawn, NoSelfIntersectionOnTrianglesAtEveryScale) {
       float magnitude = std::fmax(std::fabs(c.x), std::fmax(std::fabs(c.y), std::fabs(c.z)));
       for (const glm::vec3& dir : outgoing) {
         Ray out = spawn_ray(p, err, n, dir);
+        out.tmin = 0.f;  // the offset alone must keep the ray off its surface
         ++spawned;
         TriangleHit again;
         rehits += intersect_triangle(out, p0, p1, p2, &again);
@@ -81,6 +93,7 @@ TEST(Spawn, NoSelfIntersectionOnTrianglesAtEveryScale) {
       }
       // Shadow ray towards a light on the arriving side.
       Ray shadow = spawn_ray_to(p, err, n, origin + size * glm::vec3(u(rng), u(rng), u(rng)));
+      shadow.tmin = 0.f;
       ++spawned;
       rehits += intersect_triangle(shadow, p0, p1, p2, &h);
     }
@@ -123,6 +136,7 @@ TEST(Spawn, NoSelfIntersectionOnSpheresAtEveryScale) {
         for (float cosine : kCosines) {
           glm::vec3 dir = leaving(nn, tangent, cosine, side);
           Ray out = spawn_ray(p, err, n, dir);
+          out.tmin = 0.f;  // the offset alone must keep the ray off its surface
           ++spawned;
           worst_offset = std::fmax(worst_offset, glm::length(out.origin - p) / magnitude);
           float t2;

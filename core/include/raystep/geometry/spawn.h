@@ -27,12 +27,23 @@ inline glm::vec3 offset_ray_origin(const glm::vec3& p, const glm::vec3& p_error,
   return po;
 }
 
+// The part of a spawned ray that cannot be told from its surface point: within twice the point's error bound
+// (|p_error|_1, the offset included) of the origin. Another surface met there passes through the hit point's
+// own rounding region, as the neighbouring wall does at a corner, where the rounded hit point may lie a rounding
+// error beyond it; the exact triangle test would report that crossing (at t near 1e-8), so the spawned ray
+// starts after it. Scale-free: the bound grows with the coordinates.
+inline float spawn_tmin(const glm::vec3& p_error, const glm::vec3& d) {
+  float reach = 2.f * (p_error.x + p_error.y + p_error.z);
+  float len = glm::length(d);
+  return len > 0.f ? reach / len : 0.f;
+}
+
 // A ray leaving the surface at p in direction w.
 inline Ray spawn_ray(const glm::vec3& p, const glm::vec3& p_error, const glm::vec3& n, const glm::vec3& w) {
   Ray r;
   r.origin = offset_ray_origin(p, p_error, n, w);
   r.direction = w;
-  r.tmin = 0.f;
+  r.tmin = spawn_tmin(p_error, w);
   r.tmax = kInfinity;
   return r;
 }
@@ -43,7 +54,7 @@ inline Ray spawn_ray_to(const glm::vec3& p, const glm::vec3& p_error, const glm:
   Ray r;
   r.origin = offset_ray_origin(p, p_error, n, to - p);
   r.direction = to - r.origin;
-  r.tmin = 0.f;
+  r.tmin = spawn_tmin(p_error, r.direction);
   r.tmax = 1.f - 1e-4f;
   return r;
 }
