@@ -1,7 +1,7 @@
 #include "raystep/geometry/exact.h"
 
-#include <cmath>
 #include <gmpxx.h>
+#include <cmath>
 
 #include "raystep/geometry/numerics.h"
 
@@ -10,7 +10,8 @@ namespace raystep {
 namespace {
 
 // Unit roundoff of double, and Shewchuk's bound for a 3x3 determinant whose columns are differences of
-// doubles computed with one rounding each: |computed - exact| <= kDetBound * permanent (orient3d's errboundA).
+// doubles computed with one rounding each: |computed - exact| <= kDetBound * permanent (orient3d's
+// errboundA).
 constexpr double kU = 0x1p-53;
 constexpr double kDetBound = (7.0 + 56.0 * kU) * kU;
 
@@ -24,11 +25,15 @@ DetD det3(const double x[3], const double y[3], const double z[3]) {
   double p0 = std::fabs(y[1] * z[2]) + std::fabs(y[2] * z[1]);
   double p1 = std::fabs(y[2] * z[0]) + std::fabs(y[0] * z[2]);
   double p2 = std::fabs(y[0] * z[1]) + std::fabs(y[1] * z[0]);
-  return {x[0] * m0 + x[1] * m1 + x[2] * m2, std::fabs(x[0]) * p0 + std::fabs(x[1]) * p1 + std::fabs(x[2]) * p2};
+  return {x[0] * m0 + x[1] * m1 + x[2] * m2,
+          std::fabs(x[0]) * p0 + std::fabs(x[1]) * p1 + std::fabs(x[2]) * p2};
 }
 
-// A value computed with an error of at most `bound` has a known sign: it exceeds the bound, or the bound is 0.
-bool decided(double value, double bound) { return std::fabs(value) > bound || bound == 0.0; }
+// A value computed with an error of at most `bound` has a known sign: it exceeds the bound, or the bound is
+// 0.
+bool decided(double value, double bound) {
+  return std::fabs(value) > bound || bound == 0.0;
+}
 
 // -1, 0 or +1.
 template <class T>
@@ -41,13 +46,15 @@ void exact_difference(const glm::vec3& p, const glm::vec3& q, mpq_class out[3]) 
   for (int i = 0; i < 3; ++i) out[i] = mpq_class(double(p[i])) - mpq_class(double(q[i]));
 }
 mpq_class exact_det(const mpq_class x[3], const mpq_class y[3], const mpq_class z[3]) {
-  return x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) + x[2] * (y[0] * z[1] - y[1] * z[0]);
+  return x[0] * (y[1] * z[2] - y[2] * z[1]) + x[1] * (y[2] * z[0] - y[0] * z[2]) +
+         x[2] * (y[0] * z[1] - y[1] * z[0]);
 }
 
 // The exact signs of G = N - tmin D and of D, in rational arithmetic (every float is a rational).
 void exact_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                  const glm::vec3& d, float tmin, int* sign_g, int* sign_d) {
-  mpq_class a[3], e1[3], e2[3], dir[3] = {mpq_class(double(d.x)), mpq_class(double(d.y)), mpq_class(double(d.z))};
+  mpq_class a[3], e1[3], e2[3],
+      dir[3] = {mpq_class(double(d.x)), mpq_class(double(d.y)), mpq_class(double(d.z))};
   exact_difference(p0, o, a);
   exact_difference(p1, p0, e1);
   exact_difference(p2, p0, e2);
@@ -57,7 +64,9 @@ void exact_signs(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, 
   *sign_d = sgn(den);
 }
 
-bool all_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool all_finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
@@ -121,9 +130,9 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   const double t0 = any_tmin ? 0.0 : double(tmin);
 
   // The double filter. N = det[a, b, c] with a = p0 - o, b = p1 - o, c = p2 - o (orient3d of the triangle and
-  // the origin); D = det[d, e1, e2] with e1 = p1 - p0, e2 = p2 - p0 (d exact). Each difference of two floats is
-  // rounded once in double, as Shewchuk's bound assumes; products of up to three floats neither overflow nor
-  // underflow in double.
+  // the origin); D = det[d, e1, e2] with e1 = p1 - p0, e2 = p2 - p0 (d exact). Each difference of two floats
+  // is rounded once in double, as Shewchuk's bound assumes; products of up to three floats neither overflow
+  // nor underflow in double.
   double a[3], b[3], c[3], e1[3], e2[3], dir[3];
   for (int i = 0; i < 3; ++i) {
     a[i] = double(p0[i]) - double(o[i]);
@@ -138,7 +147,8 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
   // G = N - tmin D: the two errors carried through, plus the product's and the difference's roundings.
   double tden = t0 * den.value;
   double g = num.value - tden;
-  double err_g = err_num + std::fabs(t0) * err_den + 2.0 * kU * (std::fabs(num.value) + 2.0 * std::fabs(tden));
+  double err_g =
+      err_num + std::fabs(t0) * err_den + 2.0 * kU * (std::fabs(num.value) + 2.0 * std::fabs(tden));
   err_g *= 1.0 + 4.0 * kU;
   // Decided when the value exceeds its bound, or when the bound is 0: then every product had an exactly zero
   // factor (a difference of two floats is 0 in double only when they are equal, and products of up to three
@@ -163,8 +173,8 @@ bool plane_hit_beyond(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3&
 bool triangle_hit_values(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
                          const glm::vec3& d, const int sign[3], float tmin, float tmax, float* t, float* b0,
                          float* b1, float* b2) {
-  // Barycentrics from the three edge determinants, t* = N / D (D is their sum), in double. An edge determinant
-  // whose double value disagrees with its exact sign is within its rounding of zero: it counts 0.
+  // Barycentrics from the three edge determinants, t* = N / D (D is their sum), in double. An edge
+  // determinant whose double value disagrees with its exact sign is within its rounding of zero: it counts 0.
   const glm::vec3* p[3] = {&p0, &p1, &p2};
   double v[3][3], dir[3] = {double(d.x), double(d.y), double(d.z)}, edge[3];
   for (int k = 0; k < 3; ++k)
@@ -191,21 +201,24 @@ bool triangle_hit_values(const glm::vec3& p0, const glm::vec3& p1, const glm::ve
 }
 
 bool exact_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
-                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1, float* b2) {
+                        const glm::vec3& d, float tmin, float tmax, float* t, float* b0, float* b1,
+                        float* b2) {
   int sign[3];
   edge_signs(p0, p1, p2, o, d, sign);
-  bool negative = sign[0] < 0 || sign[1] < 0 || sign[2] < 0, positive = sign[0] > 0 || sign[1] > 0 || sign[2] > 0;
+  bool negative =
+      sign[0] < 0 || sign[1] < 0 || sign[2]<0, positive = sign[0]> 0 || sign[1] > 0 || sign[2] > 0;
   if (negative == positive) return false;  // outside (mixed signs), or the ray lies in the plane (all zero)
   if (!plane_hit_beyond(p0, p1, p2, o, d, tmin)) return false;
   return triangle_hit_values(p0, p1, p2, o, d, sign, tmin, tmax, t, b0, b1, b2);
 }
 
 bool settle_triangle_hit(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, const glm::vec3& o,
-                         const glm::vec3& d, int det_sign, float tmin, float tmax, float* t, float* b0, float* b1,
-                         float* b2) {
+                         const glm::vec3& d, int det_sign, float tmin, float tmax, float* t, float* b0,
+                         float* b1, float* b2) {
   // With tmin = 0 (spawned rays testing the surface they leave), t* = N / D > 0 is the side of the plane the
   // origin lies on (orient3d: the sign of N) against the side the ray faces (the sign of D).
-  bool beyond = tmin == 0.f ? orientation(p0, p1, p2, o) * det_sign > 0 : plane_hit_beyond(p0, p1, p2, o, d, tmin);
+  bool beyond =
+      tmin == 0.f ? orientation(p0, p1, p2, o) * det_sign > 0 : plane_hit_beyond(p0, p1, p2, o, d, tmin);
   if (!beyond) return false;
   const int sign[3] = {det_sign, det_sign, det_sign};
   return triangle_hit_values(p0, p1, p2, o, d, sign, tmin, tmax, t, b0, b1, b2);

@@ -58,7 +58,8 @@ std::vector<Ray> rays_inside(const Prism& p, size_t count, uint32_t seed) {
     double len2 = glm::dot(d, d);
     if (len2 > 1.0 || len2 < 1e-4) continue;  // uniform directions: inside the unit ball, away from 0
     Ray r;
-    r.origin = glm::vec3(p.center + 0.45 * p.length * u(rng) * p.axis + 0.25 * inner * (u(rng) * p.u + u(rng) * p.v));
+    r.origin = glm::vec3(p.center + 0.45 * p.length * u(rng) * p.axis +
+                         0.25 * inner * (u(rng) * p.u + u(rng) * p.v));
     r.direction = glm::vec3(d / std::sqrt(len2));
     r.tmin = 0.f;
     r.tmax = kInfinity;

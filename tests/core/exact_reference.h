@@ -1,6 +1,7 @@
 // Exact rational references (GMP's mpq_class) for the tests that check a floating-point geometric kernel is
-// conservative or exact: the ray-triangle test, the slab test's interval, triangle-box overlap by the separating
-// axis theorem, and a triangle clipped to a box. Every float and double converts to a rational exactly, so these answer for the exact inputs.
+// conservative or exact: the ray-triangle test, the slab test's interval, triangle-box overlap by the
+// separating axis theorem, and a triangle clipped to a box. Every float and double converts to a rational
+// exactly, so these answer for the exact inputs.
 #pragma once
 
 #include <gmpxx.h>
@@ -24,19 +25,27 @@ struct QVec {
   const Q& operator[](int a) const { return c[a]; }
 };
 
-inline QVec to_q(const glm::vec3& v) { return QVec{{Q(double(v.x)), Q(double(v.y)), Q(double(v.z))}}; }
-inline QVec to_q(const glm::dvec3& v) { return QVec{{Q(v.x), Q(v.y), Q(v.z)}}; }
+inline QVec to_q(const glm::vec3& v) {
+  return QVec{{Q(double(v.x)), Q(double(v.y)), Q(double(v.z))}};
+}
+inline QVec to_q(const glm::dvec3& v) {
+  return QVec{{Q(v.x), Q(v.y), Q(v.z)}};
+}
 
-inline Q dot(const QVec& a, const QVec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline QVec sub(const QVec& a, const QVec& b) { return QVec{{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
+inline Q dot(const QVec& a, const QVec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline QVec sub(const QVec& a, const QVec& b) {
+  return QVec{{a[0] - b[0], a[1] - b[1], a[2] - b[2]}};
+}
 inline QVec cross(const QVec& a, const QVec& b) {
   return QVec{{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
 }
 
 // Does the closed triangle (p0, p1, p2) meet the closed box? The separating axis theorem on the 13 axes of
 // Akenine-Moeller's test, in exact arithmetic; it is also complete for degenerate triangles (a segment or a
-// point: the box normals and the segment's cross products with the box axes are among the 13), and a zero axis
-// separates nothing.
+// point: the box normals and the segment's cross products with the box axes are among the 13), and a zero
+// axis separates nothing.
 inline bool exact_triangle_overlaps_box(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
                                         const Bounds3& box) {
   QVec v[3] = {to_q(p0), to_q(p1), to_q(p2)};
@@ -104,10 +113,11 @@ inline bool exact_bounds(const std::vector<QVec>& poly, QVec* lo, QVec* hi) {
   return true;
 }
 
-// The exact part [enter, exit] of the closed interval [tmin, tmax] in which the line o + t d lies in the closed
-// box; false when it is empty. Infinite tmin or tmax count as unbounded (flags, as rationals cannot be infinite).
-inline bool exact_slab_interval(const Bounds3& box, const glm::vec3& o, const glm::vec3& d, float tmin, float tmax,
-                                Q* enter, Q* exit, bool* enter_unbounded, bool* exit_unbounded) {
+// The exact part [enter, exit] of the closed interval [tmin, tmax] in which the line o + t d lies in the
+// closed box; false when it is empty. Infinite tmin or tmax count as unbounded (flags, as rationals cannot be
+// infinite).
+inline bool exact_slab_interval(const Bounds3& box, const glm::vec3& o, const glm::vec3& d, float tmin,
+                                float tmax, Q* enter, Q* exit, bool* enter_unbounded, bool* exit_unbounded) {
   bool lo_free = std::isinf(tmin), hi_free = std::isinf(tmax);
   Q t0 = lo_free ? Q(0) : Q(double(tmin)), t1 = hi_free ? Q(0) : Q(double(tmax));
   for (int a = 0; a < 3; ++a) {
@@ -130,7 +140,9 @@ inline bool exact_slab_interval(const Bounds3& box, const glm::vec3& o, const gl
   return true;
 }
 
-inline Q det(const QVec& a, const QVec& b, const QVec& c) { return dot(a, cross(b, c)); }
+inline Q det(const QVec& a, const QVec& b, const QVec& c) {
+  return dot(a, cross(b, c));
+}
 
 struct ExactHit {
   bool hit = false;
@@ -141,7 +153,8 @@ struct ExactHit {
 
 // Does the ray o + t d, tmin < t (tmax = +inf), meet the closed triangle? Inside when the three edge
 // determinants share a sign (zeros allowed) and are not all zero; t* = n.(p0 - o) / n.d must exceed tmin.
-inline ExactHit exact_ray_triangle(const Ray& r, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
+inline ExactHit exact_ray_triangle(const Ray& r, const glm::vec3& p0, const glm::vec3& p1,
+                                   const glm::vec3& p2) {
   ExactHit h;
   QVec o = to_q(r.origin), d = to_q(r.direction), v0 = to_q(p0), v1 = to_q(p1), v2 = to_q(p2);
   QVec a = sub(v0, o), b = sub(v1, o), c = sub(v2, o);

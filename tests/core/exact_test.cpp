@@ -1,12 +1,12 @@
 // exact.h: the exact answers for decisions a float error bound cannot settle, checked against rational
-// arithmetic (exact_reference.h) on random inputs and on exactly degenerate ones (an origin on the plane, a ray
-// parallel to it, a ray through an edge or a vertex), where only the exact path can answer.
+// arithmetic (exact_reference.h) on random inputs and on exactly degenerate ones (an origin on the plane, a
+// ray parallel to it, a ray through an edge or a vertex), where only the exact path can answer.
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "raystep/geometry/exact.h"
 #include "exact_reference.h"
+#include "raystep/geometry/exact.h"
 
 namespace raystep {
 namespace {
@@ -61,9 +61,9 @@ TEST(Exact, RandomAndDegenerateInputsAgreeWithRationals) {
     Ray r = make_ray(o, d, tmin);
     exact_counters() = {};
     // orient3d: the side of the plane the origin is on, as the reference's det[p0 - o, p1 - o, p2 - o].
-    EXPECT_EQ(orientation(p0, p1, p2, o),
-              sgn(test::det(test::sub(test::to_q(p0), test::to_q(o)), test::sub(test::to_q(p1), test::to_q(o)),
-                            test::sub(test::to_q(p2), test::to_q(o)))))
+    EXPECT_EQ(orientation(p0, p1, p2, o), sgn(test::det(test::sub(test::to_q(p0), test::to_q(o)),
+                                                        test::sub(test::to_q(p1), test::to_q(o)),
+                                                        test::sub(test::to_q(p2), test::to_q(o)))))
         << "case " << i;
     bool b = plane_hit_beyond(p0, p1, p2, o, d, tmin);
     EXPECT_EQ(b, reference_beyond(r, p0, p1, p2)) << "case " << i;

@@ -1,5 +1,5 @@
-// prism.h: the thin closed prism is closed (every edge shared by exactly two triangles, in opposite directions),
-// has the promised counts and shape, and its inside rays start inside.
+// prism.h: the thin closed prism is closed (every edge shared by exactly two triangles, in opposite
+// directions), has the promised counts and shape, and its inside rays start inside.
 #include <gtest/gtest.h>
 
 #include <map>

@@ -1,5 +1,5 @@
-// An indexed triangle mesh: triangles index into shared positions, so neighbouring triangles use bit-identical
-// edges. The shape of the generated watertightness test meshes (icosphere.h, prism.h).
+// An indexed triangle mesh: triangles index into shared positions, so neighbouring triangles use
+// bit-identical edges. The shape of the generated watertightness test meshes (icosphere.h, prism.h).
 #pragma once
 
 #include <cstdint>

@@ -1,10 +1,12 @@
 // Watertight ray-triangle intersection (Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection",
 // JCGT 2013), in the form of pbrt-v4 (section 6.5.3): translate to the ray origin, permute so that the
-// dominant direction axis is z, shear so the ray is +z, then evaluate the three 2D edge functions, falling
-// back to double precision when one is exactly zero. Rays through a shared edge or vertex hit at least
-// one of the triangles that share it. Whether the hit lies beyond tmin is decided by pbrt-v4's error bound on t
-// (section 6.8.7) where the bound proves it either way, and exactly (exact.h) where it does not: a long thin
-// triangle seen from nearby has a loose bound, and a hit it cannot prove is still a hit.
+// dominant direction axis is z, shear so the ray is +z, then evaluate the three 2D edge functions,
+// each trusted only beyond its rounding error bound. Rays through a shared edge or vertex hit at least one of
+// the triangles that share it. Whether the hit lies beyond tmin is decided by pbrt-v4's error bound on t
+// (section 6.8.7) where the bound proves it either way. Where a bound cannot decide (a ray within rounding of
+// an edge's line, a hit within delta_t of tmin: a long thin triangle seen from nearby), the answer is settled
+// exactly (exact.h): a hit that cannot be proven is still a hit, and the exact line's triangle is the one
+// found.
 #pragma once
 
 #include <cmath>
@@ -28,7 +30,8 @@ struct WatertightRay {
   float tmin, tmax;
   glm::vec3 direction;  // for the exact decision, when the error bound cannot settle one
 
-  explicit WatertightRay(const Ray& r) : origin(r.origin), tmin(r.tmin), tmax(r.tmax), direction(r.direction) {
+  explicit WatertightRay(const Ray& r)
+      : origin(r.origin), tmin(r.tmin), tmax(r.tmax), direction(r.direction) {
     glm::vec3 ad = glm::abs(r.direction);
     kz = (ad.x > ad.y) ? (ad.x > ad.z ? 0 : 2) : (ad.y > ad.z ? 1 : 2);
     kx = kz + 1 == 3 ? 0 : kz + 1;
@@ -61,11 +64,12 @@ inline float max_abs3(float x, float y, float z) {
 
 // The test for one permutation (kx, ky, kz) of the axes, fixed at compile time so that every component is
 // read from a register (a permutation known only at run time goes through memory on each test).
-// Always inlined: its slow paths (calls into exact.h) made it large enough that the compiler stopped inlining it
-// into the traversal loops, which then cost a call per test (+33% instructions on a grid render).
+// Always inlined: its slow paths (calls into exact.h) made it large enough that the compiler stopped inlining
+// it into the traversal loops, which then cost a call per test (+33% instructions on a grid render).
 template <int kx, int ky, int kz>
-[[gnu::always_inline]] inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
-                                        const glm::vec3& p2, float tmax, TriangleHit* hit) {
+[[gnu::always_inline]] inline bool intersect_triangle_permuted(const WatertightRay& r, const glm::vec3& p0,
+                                                               const glm::vec3& p1, const glm::vec3& p2,
+                                                               float tmax, TriangleHit* hit) {
   // Translate the vertices to the ray origin, permute (kx, ky, kz) and shear so the ray runs along +z.
   glm::vec3 a = p0 - r.origin, b = p1 - r.origin, c = p2 - r.origin;
   float ax = component(a, kx) + r.sx * component(a, kz), ay = component(a, ky) + r.sy * component(a, kz);
@@ -79,9 +83,9 @@ template <int kx, int ky, int kz>
 
   // A conservative bound delta_e on each edge function's rounding error (after pbrt-v4, 6.8.7): an edge
   // function larger than it has the sign of the exact determinant det[p_j - o, p_k - o, d] / d_z. The sheared
-  // x' = x + sx z carries the roundings of the translation, of sx itself, of the product and of the sum: at most
-  // gamma(6) (|x'| + 2 |sx z|), with z the translated z BEFORE scaling by sz (pbrt-v4's code reuses the scaled
-  // one, and bounds |sx z| by |z|, which is loose for a ray nearly along its dominant axis).
+  // x' = x + sx z carries the roundings of the translation, of sx itself, of the product and of the sum: at
+  // most gamma(6) (|x'| + 2 |sx z|), with z the translated z BEFORE scaling by sz (pbrt-v4's code reuses the
+  // scaled one, and bounds |sx z| by |z|, which is loose for a ray nearly along its dominant axis).
   float max_z = max_abs3(component(a, kz), component(b, kz), component(c, kz));
   float max_xt = max_abs3(ax, bx, cx);
   float max_yt = max_abs3(ay, by, cy);
@@ -91,7 +95,8 @@ template <int kx, int ky, int kz>
   // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator
   // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
   // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
-  if (__builtin_expect((std::fabs(e0) <= delta_e) | (std::fabs(e1) <= delta_e) | (std::fabs(e2) <= delta_e), 0)) {
+  if (__builtin_expect((std::fabs(e0) <= delta_e) | (std::fabs(e1) <= delta_e) | (std::fabs(e2) <= delta_e),
+                       0)) {
     // The ray passes within rounding of an edge's line (or through it, or a vertex): the float edge functions
     // cannot be trusted there, so the test is settled exactly (exact.h). A ray through a long thin triangle's
     // edge then finds the triangle the exact line meets, not its neighbour, which the structures may not hold
@@ -119,19 +124,20 @@ template <int kx, int ky, int kz>
   float delta_z = gamma(3) * max_zt;
   float max_e = max_abs3(e0, e1, e2);
   float delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv_det);
-  // delta_t bounds the error of t near 0, where det's own error cannot change t's sign; away from 0 that error
-  // (each edge function's delta_e, and the division) moves t in proportion to it.
+  // delta_t bounds the error of t near 0, where det's own error cannot change t's sign; away from 0 that
+  // error (each edge function's delta_e, and the division) moves t in proportion to it.
   if (__builtin_expect(r.tmin != 0.f, 0))
     delta_t += std::fabs(t) * (gamma(4) + 3 * delta_e * std::fabs(inv_det));
   // Written so that a NaN bound goes to the exact decision too.
   if (__builtin_expect(!(t - delta_t > r.tmin), 0)) {
     if (t + delta_t < r.tmin) return false;  // proven before tmin (rounding is monotonic)
     // Not proven either way (a long thin triangle seen from nearby, an origin on or next to the surface):
-    // settled exactly, and the hit's t and barycentrics computed again in double, since they are as loose as the
-    // bound was. The edge functions are all proven, so their sum has the sign of n . d / d_z. (A tail call: no
-    // value of this function lives across it, so its fast path keeps its registers in the walks it is inlined in.)
-    return settle_triangle_hit(p0, p1, p2, r.origin, r.direction, (det > 0 ? 1 : -1) * r.dz_sign, r.tmin, tmax,
-                               &hit->t, &hit->b0, &hit->b1, &hit->b2);
+    // settled exactly, and the hit's t and barycentrics computed again in double, since they are as loose as
+    // the bound was. The edge functions are all proven, so their sum has the sign of n . d / d_z. (A tail
+    // call: no value of this function lives across it, so its fast path keeps its registers in the walks it
+    // is inlined in.)
+    return settle_triangle_hit(p0, p1, p2, r.origin, r.direction, (det > 0 ? 1 : -1) * r.dz_sign, r.tmin,
+                               tmax, &hit->t, &hit->b0, &hit->b1, &hit->b2);
   }
 
   hit->t = t;
