@@ -1,0 +1,44 @@
+// Reaching a lesson step's state without a display: load the scene, build the structure, trace the pixel, find
+// the event and the node, and answer the step's question, as the presenter does with its windows. Results are
+// kept while the state they depend on is unchanged, so a lesson's steps cost one build per structure.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "raystep/lesson/lesson.h"
+#include "raystep/lesson/question.h"
+#include "raystep/scene/scene.h"
+#include "raystep/trace/trace_file.h"
+
+namespace raystep {
+
+struct StepWorld {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const Accelerator> accel;
+  std::shared_ptr<const Trace> trace;  // null without a pixel
+  int width = 0, height = 0;           // the picture's size
+  int ray = 0, step = 0;               // the current ray and event (0 without a trace)
+  int node = -1;                       // the selected kd-tree node, -1: none
+  std::optional<Answer> answer;        // the step's question answered
+  QuestionContext context() const;
+};
+
+class LessonRunner {
+ public:
+  // Throws InputError("", 0, "what") when the state cannot be reached: the scene does not load, the pixel lies
+  // outside the picture, the ray or event does not exist, a node option without a kd-tree, the question does
+  // not apply.
+  StepWorld enter(const LessonState& state, std::optional<QuestionKind> ask = std::nullopt);
+
+ private:
+  struct Cache;
+  std::shared_ptr<Cache> cache_;
+};
+
+// Reaches every step of the lesson in order and answers every question; throws InputError(lesson path, line of
+// the failing step's setting or heading, what) on the first failure. Returns the number of questions answered.
+int check_lesson(const Lesson& lesson);
+
+}  // namespace raystep
