@@ -140,12 +140,14 @@ int main(int argc, char** argv) {
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
 
-  CLI::App* lesson_cmd = app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step");
+  CLI::App* lesson_cmd =
+      app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");
   lesson_cmd->require_subcommand(1);
   LessonCheckArgs lesson_check;
   CLI::App* lesson_check_cmd =
-      lesson_cmd->add_subcommand("check", "Enter every step of the lessons headless and answer every question");
-  lesson_check_cmd->add_option("lessons", lesson_check.paths, "lesson files (.md) or folders of them (default: lessons)");
+      lesson_cmd->add_subcommand("check", "Enter every step of lessons headless and answer every question");
+  lesson_check_cmd->add_option("lessons", lesson_check.paths,
+                               "lesson files (.md) or folders of them (default: lessons)");
   LessonCommandArgs lesson_command;
   CLI::App* lesson_command_cmd =
       lesson_cmd->add_subcommand("command", "Print the raystep-gui command line that shows a step");
