@@ -229,7 +229,9 @@ std::vector<std::string> lesson_files(const std::string& file_or_folder) {
   if (fs::is_directory(file_or_folder, ec)) {
     std::vector<std::string> files;
     for (const fs::directory_entry& e : fs::directory_iterator(file_or_folder, ec))
-      if (e.path().extension() == ".md" && e.is_regular_file(ec)) files.push_back(e.path().string());
+      // The folder's README.md is its index, not a lesson.
+      if (e.path().extension() == ".md" && e.path().filename() != "README.md" && e.is_regular_file(ec))
+        files.push_back(e.path().string());
     if (ec) throw InputError(file_or_folder, 0, "cannot list the folder: " + ec.message());
     if (files.empty()) throw InputError(file_or_folder, 0, "no lessons (*.md) in this folder");
     std::sort(files.begin(), files.end());

@@ -40,7 +40,7 @@ Lesson parse_lesson(const std::string& path);
 // The same from text; `path` names the file in messages and its folder resolves relative scene paths.
 Lesson parse_lesson_text(const std::string& text, const std::string& path);
 
-// The lesson files a `raystep lesson check` argument names: a file itself, or a folder's *.md in name order.
+// The lesson files a `raystep lesson check` argument names: a file itself, or a folder's *.md but README.md, in name order.
 std::vector<std::string> lesson_files(const std::string& file_or_folder);
 
 }  // namespace raystep
