@@ -15,7 +15,8 @@ HeatQuantity parse_heat_quantity(const std::string& name) {
   if (name == "cells" || name == "nodes") return HeatQuantity::cells;  // grid cells or tree nodes
   if (name == "tests") return HeatQuantity::tests;
   if (name == "mailbox") return HeatQuantity::mailbox;
-  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox)");
+  if (name == "samples") return HeatQuantity::samples;
+  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox, samples)");
 }
 
 const char* heat_quantity_label(HeatQuantity q) {
@@ -23,12 +24,29 @@ const char* heat_quantity_label(HeatQuantity q) {
     case HeatQuantity::cells: return "cells or nodes visited";
     case HeatQuantity::tests: return "ray-primitive tests";
     case HeatQuantity::mailbox: return "mailbox hits (tests skipped)";
+    case HeatQuantity::samples: return "samples (primary rays) per pixel";
   }
   return "";
 }
 
+namespace {
+
+void finish_statistics(HeatMap& heat) {
+  uint64_t sum = 0;
+  heat.max_value = 0;
+  for (uint32_t v : heat.values) {
+    heat.max_value = std::max(heat.max_value, v);
+    sum += v;
+  }
+  heat.mean_value = heat.values.empty() ? 0.0 : double(sum) / double(heat.values.size());
+}
+
+}  // namespace
+
 HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int width, int height, HeatQuantity q,
                         int threads) {
+  if (q == HeatQuantity::samples)
+    throw InputError("", 0, "the samples map comes from a render, not a traversal (samples_heatmap)");
   ProjectiveCamera cam(camera, width, height);
   HeatMap heat;
   heat.width = width;
@@ -50,12 +68,20 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
     tbb::parallel_for(tbb::blocked_range<int>(0, height),
                       [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
   });
-  uint64_t sum = 0;
-  for (uint32_t v : heat.values) {
-    heat.max_value = std::max(heat.max_value, v);
-    sum += v;
-  }
-  heat.mean_value = heat.values.empty() ? 0.0 : double(sum) / double(heat.values.size());
+  finish_statistics(heat);
+  return heat;
+}
+
+HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int height) {
+  if (width < 1 || height < 1 || samples.size() != size_t(width) * size_t(height))
+    throw InputError("", 0, "samples map: " + std::to_string(samples.size()) + " values for a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " picture");
+  HeatMap heat;
+  heat.width = width;
+  heat.height = height;
+  heat.quantity = HeatQuantity::samples;
+  heat.values = samples;
+  finish_statistics(heat);
   return heat;
 }
 

@@ -205,8 +205,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"heat",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v == "none") return void(s.heat.clear());
-                     if (v != "cells" && v != "tests" && v != "mailbox")
-                       bad(k, v, "cells, tests, mailbox or none");
+                     if (v != "cells" && v != "tests" && v != "mailbox" && v != "samples")
+                       bad(k, v, "cells, tests, mailbox, samples or none");
                      s.heat = v;
                    }},
                   {"pixel",

@@ -207,7 +207,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("size: 0x10\n")),
             f + "7: size '0x10': expected WxH with 1 <= W, H <= 16384, or scene");
   EXPECT_EQ(error_of(lesson_with("heat: nodes\n")),
-            f + "7: heat 'nodes': expected cells, tests, mailbox or none");
+            f + "7: heat 'nodes': expected cells, tests, mailbox, samples or none");
   EXPECT_EQ(error_of(lesson_with("ray: -1\n")), f + "7: ray '-1': expected a whole number >= 0");
   EXPECT_EQ(error_of(lesson_with("step: 1.5\n")),
             f + "7: step '1.5': expected an event index, a whole number >= 0");

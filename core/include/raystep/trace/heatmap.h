@@ -1,6 +1,7 @@
 // Heat maps of traversal work: one primary ray through each pixel's centre, counted by a CountingRecorder
 // (cells or nodes visited, primitive tests, or mailbox hits), shown on a perceptual colour ramp with a colour
-// bar beside the image. The picture of where a structure spends its effort.
+// bar beside the image. The picture of where a structure spends its effort; and, from a render, where
+// anti-aliasing spent its samples (adaptive sampling's rays per pixel).
 #pragma once
 
 #include <cstdint>
@@ -13,9 +14,10 @@
 
 namespace raystep {
 
-enum class HeatQuantity { cells, tests, mailbox };
+enum class HeatQuantity { cells, tests, mailbox, samples };
 
-// "cells" (cells or tree nodes visited), "tests" (ray-primitive tests), "mailbox" (tests skipped by mailboxes).
+// "cells" (cells or tree nodes visited), "tests" (ray-primitive tests), "mailbox" (tests skipped by mailboxes),
+// "samples" (primary rays per pixel under the picture's anti-aliasing: from a render, not a traversal).
 HeatQuantity parse_heat_quantity(const std::string& name);  // throws InputError for another name
 const char* heat_quantity_label(HeatQuantity q);
 
@@ -27,9 +29,13 @@ struct HeatMap {
   double mean_value = 0.0;
 };
 
-// Parallel over rows (threads 0: all cores); the same values whatever the thread count.
+// Parallel over rows (threads 0: all cores); the same values whatever the thread count. Traversal quantities
+// only: throws InputError("", 0, ...) for samples, which a render counts (samples_heatmap).
 HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int width, int height, HeatQuantity q,
                         int threads);
+
+// The samples map of a render (RenderResult::samples, row-major width x height) as a heat map of samples.
+HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int height);
 
 // The map on the colour ramp (0 .. max_value), with a colour bar (bottom 0, top max) in a strip on the right.
 Image heatmap_image(const HeatMap& heat);
