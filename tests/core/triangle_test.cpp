@@ -12,7 +12,9 @@
 #include "raystep/geometry/icosphere.h"
 #include "raystep/geometry/triangle.h"
 #include "raystep/geometry/triangle_moller.h"
+#include "raystep/render/camera.h"
 #include "raystep/scene/geometry.h"
+#include "raystep/scene/scene_loader.h"
 #include "raystep/scene/ray_sets.h"
 #include "exact_reference.h"
 
@@ -238,6 +240,61 @@ TEST(Triangle, MollerTrumboreAgreesAwayFromEdges) {
     }
   }
   EXPECT_GT(compared, 9000);
+}
+
+// moller_trumbore_values (the debugger's "why") computes the very values of the test: on rays aimed at edges,
+// vertices and near misses, it rejects exactly where intersect_triangle_moller does, and on a hit gives its t, u, v.
+TEST(Triangle, MollerTrumboreValuesAreTheTestsValues) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<float> u(-1.f, 1.f), w(0.f, 1.f);
+  int hits = 0, misses = 0;
+  for (int i = 0; i < 20000; ++i) {
+    glm::vec3 p0(u(rng), u(rng), u(rng)), p1(u(rng), u(rng), u(rng)), p2(u(rng), u(rng), u(rng));
+    glm::vec3 o = 3.f * glm::vec3(u(rng), u(rng), u(rng));
+    // A point on an edge (i % 3 == 0), at a vertex (1) or anywhere near the triangle (2).
+    float b1 = i % 3 == 1 ? 0.f : w(rng), b2 = i % 3 == 0 ? 1.f - b1 : (i % 3 == 1 ? 0.f : 1.5f * w(rng) - 0.2f);
+    Ray r = make_ray(o, (1.f - b1 - b2) * p0 + b1 * p1 + b2 * p2 - o);
+    float tmax = i % 5 == 0 ? 0.5f : kInfinity;
+    TriangleHit h;
+    bool hit = intersect_triangle_moller(r, p0, p1, p2, tmax, &h);
+    MollerTrumboreValues m = moller_trumbore_values(r, p0, p1, p2, tmax);
+    ASSERT_EQ(hit, m.failed == nullptr) << i << " " << (m.failed ? m.failed : "hit");
+    if (hit) {
+      ++hits;
+      EXPECT_EQ(h.t, m.t);
+      EXPECT_EQ(h.b1, m.u);
+      EXPECT_EQ(h.b2, m.v);
+    } else {
+      ++misses;
+    }
+  }
+  EXPECT_GT(hits, 3000);
+  EXPECT_GT(misses, 3000);
+}
+
+// Lesson 14's scene (scenes/leak.json): the rays of pixels (29, 29) and (33, 19) pass within rounding of a front
+// edge of the tilted octahedron. By brute force over all primitives, Möller–Trumbore rejects both triangles that
+// share the edge and finds the red wall through the closed solid; the watertight test finds the octahedron.
+TEST(Triangle, LeakSceneLeaksUnderMollerTrumboreOnly) {
+  Scene scene = load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/leak.json");
+  const Geometry& g = scene.geometry;
+  ProjectiveCamera camera(scene.camera, scene.render.width, scene.render.height);
+  for (auto [px, py] : {std::pair{29, 29}, std::pair{33, 19}}) {
+    Ray r = camera.generate(float(px) + 0.5f, float(py) + 0.5f);
+    uint32_t watertight = ~0u, moller = ~0u;
+    float t_watertight = r.tmax, t_moller = r.tmax;
+    for (uint32_t id = 0; id < g.size(); ++id) {
+      TriangleHit h;
+      if (intersect_triangle(WatertightRay(r), g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2), t_watertight, &h))
+        t_watertight = h.t, watertight = id;
+      if (intersect_triangle_moller(r, g.vertex(id, 0), g.vertex(id, 1), g.vertex(id, 2), t_moller, &h))
+        t_moller = h.t, moller = id;
+    }
+    ASSERT_NE(watertight, ~0u);
+    ASSERT_NE(moller, ~0u);
+    EXPECT_EQ(g.objects()[g.object_of(watertight)].name, "tilted octahedron") << px << "," << py;
+    EXPECT_EQ(g.objects()[g.object_of(moller)].name, "red wall") << px << "," << py;
+  }
 }
 
 // Any hit among all triangles of g (brute force), with the watertight test.

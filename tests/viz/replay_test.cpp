@@ -267,5 +267,73 @@ TEST(Replay, ATieGoesToTheLowerPrimitiveId) {
   EXPECT_NE(explainRule(ray, replayAt(ray, 3)).find("It becomes the nearest hit"), std::string::npos);
 }
 
+// The Why text of a triangle's test compares the watertight test with Möller–Trumbore on that ray and triangle.
+// Lesson 14's leak (scenes/leak.json, pixel 33,19): the ray (33.5, 28.5, 40) along -z passes within rounding of
+// the edge (28.70, 36.68, 6.29)-(38.93, 19.25, 12.73) shared by triangles 0 and 1. Möller–Trumbore rejects both:
+// triangle 0 finds u + v = 1 + 8.9e-08 > 1, triangle 1 u = -2.1e-08 < 0. The watertight test finds the edge
+// functions within their rounding error bound and settles them in the double-precision filter: 0 hit, 1 missed.
+TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
+  glm::vec3 v1(45.6170235f, 29.0892525f, -4.83244371f), v2(19.3059406f, 17.6921577f, 4.83244371f),
+      v3(28.6986485f, 36.6775398f, 6.29141855f), v5(38.9325066f, 19.2474918f, 12.7304964f);
+  Geometry g;
+  g.begin_object("tilted octahedron", 0);
+  g.add_triangle(v1, v3, v5);  // its faces 1 and 2 (octahedron.obj's order), sharing the edge v3-v5
+  g.add_triangle(v3, v2, v5);
+  GridOptions o;
+  o.resolution = std::array<int, 3>{1, 1, 1};
+  UniformGrid grid(o);
+  grid.build(g);
+  RayRequest r;
+  r.ray.origin = glm::vec3(33.5f, 28.5f, 40.f);
+  r.ray.direction = glm::vec3(0.f, 0.f, -1.f);
+  Trace t = record_grid_trace(g, grid, {r}, "leak.json", "fnv1a64:0123456789abcdef");
+  const TracedRay& ray = t.rays[0];
+  int first = nthEvent(ray, EventType::prim_test, 1), second = nthEvent(ray, EventType::prim_test, 2);
+  ASSERT_GE(second, 0);
+  ASSERT_EQ(ray.events[size_t(first)].prim, 0);
+  EXPECT_TRUE(ray.events[size_t(first)].hit);
+  EXPECT_FALSE(ray.events[size_t(second)].hit);
+  std::string why0 = explainRule(&t, ray, replayAt(ray, first)), why1 = explainRule(&t, ray, replayAt(ray, second));
+  EXPECT_NE(why0.find("\nThis ray and triangle alone: watertight hit (settled by the double-precision filter); "
+                      "Möller–Trumbore miss (u + v = 1 + 8.9e-08 > 1)."),
+            std::string::npos)
+      << why0;
+  EXPECT_NE(why1.find("\nThis ray and triangle alone: watertight miss (settled by the double-precision filter); "
+                      "Möller–Trumbore miss (u = -2.1e-08 < 0)."),
+            std::string::npos)
+      << why1;
+  // Without the trace's vertices there is nothing to compare.
+  EXPECT_EQ(explainRule(ray, replayAt(ray, first)).find("Möller"), std::string::npos);
+
+  // Away from edges both agree, in float alone: a hit inside, and a miss with u > 1 (u: p1's weight).
+  TracePrimitive tri;
+  tri.v[0] = glm::vec3(0.f, 0.f, 0.f), tri.v[1] = glm::vec3(1.f, 0.f, 0.f), tri.v[2] = glm::vec3(0.f, 1.f, 0.f);
+  TracedRay inside;
+  inside.ray.origin = glm::vec3(0.25f, 0.25f, 1.f);
+  inside.ray.direction = glm::vec3(0.f, 0.f, -1.f);
+  EXPECT_EQ(compareTriangleTests(inside, tri),
+            "This ray and triangle alone: watertight hit (float alone); Möller–Trumbore hit.");
+  TracedRay outside = inside;
+  outside.ray.origin.x = 2.f;
+  EXPECT_EQ(compareTriangleTests(outside, tri),
+            "This ray and triangle alone: watertight miss (float alone); Möller–Trumbore miss (u = 2 > 1).");
+  // A ray exactly through an edge of general coordinates: the edge function is exactly 0, which no error bound
+  // can prove, so rational arithmetic settles it (and the edge counts as inside).
+  TracePrimitive edge;
+  edge.v[0] = glm::vec3(0.7f, 0.9f, 0.1f);
+  edge.v[1] = glm::vec3(1.f - 0.7f, 1.f - 0.9f, -0.2f);  // exact: the edge's midpoint in x, y is (0.5, 0.5)
+  edge.v[2] = glm::vec3(0.05f, 0.85f, 0.3f);
+  TracedRay through = inside;
+  through.ray.origin = glm::vec3(0.5f, 0.5f, 1.f);
+  std::string line = compareTriangleTests(through, edge);
+  EXPECT_EQ(line.rfind("This ray and triangle alone: watertight hit (settled by exact rational arithmetic); ", 0), 0u)
+      << line;
+  // Not a triangle: no line.
+  TracePrimitive sphere;
+  sphere.type = PrimType::sphere;
+  sphere.radius = 1.f;
+  EXPECT_EQ(compareTriangleTests(inside, sphere), "");
+}
+
 }  // namespace
 }  // namespace raystep::viz

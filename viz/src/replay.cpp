@@ -6,6 +6,10 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "raystep/geometry/exact.h"
+#include "raystep/geometry/triangle.h"
+#include "raystep/geometry/triangle_moller.h"
+
 namespace raystep::viz {
 
 const char* primStateName(PrimState s) {
@@ -258,17 +262,75 @@ std::string describeEvent(const Event& e) {
 
 namespace {
 
-// A primitive test in a cell or leaf (`where`): a nearer hit, a tie lost to a lower id, or no nearer hit.
-std::string explainPrimTest(const Event& e, const ReplayState& s, const std::string& where) {
-  std::string head = "Primitive " + std::to_string(e.prim) + where;
-  if (e.hit && s.nearestPrim != e.prim)
-    return head + ": hit at t = " + num(e.t) + ", the same t as the nearest hit so far, primitive " +
-           std::to_string(s.nearestPrim) + ": a tie goes to the lower id, which stays the nearest.";
-  if (e.hit) return head + ": hit at t = " + num(e.t) + ", nearer than any hit so far. It becomes the nearest hit.";
-  return head + ": no hit nearer than the nearest so far.";
+// A barycentric in Möller–Trumbore's rejection: "u = -2.4e-08 < 0"; u + v > 1 by its excess over 1, which
+// two digits of u + v itself would hide.
+std::string mtReason(const MollerTrumboreValues& m) {
+  char buf[96];
+  std::string f = m.failed;
+  if (f == "u < 0" || f == "u > 1")
+    std::snprintf(buf, sizeof buf, "u = %.2g %s", double(m.u), f == "u < 0" ? "< 0" : "> 1");
+  else if (f == "v < 0")
+    std::snprintf(buf, sizeof buf, "v = %.2g < 0", double(m.v));
+  else if (f == "u + v > 1")
+    std::snprintf(buf, sizeof buf, "u + v = 1 + %.2g > 1", double((double(m.u) + double(m.v)) - 1.0));
+  else if (f == "t")
+    std::snprintf(buf, sizeof buf, "t = %.4g outside the ray's interval", double(m.t));
+  else
+    return "the ray is parallel to the plane, det = 0";
+  return buf;
 }
 
-std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
+}  // namespace
+
+std::string compareTriangleTests(const TracedRay& ray, const TracePrimitive& p) {
+  if (p.type != PrimType::triangle) return "";
+  // The watertight test again on the same float inputs; the exact counters tell how it decided (the most
+  // careful level it needed: an edge within its error bound goes to the double filter, and from there, if the
+  // filter cannot decide either, to rational arithmetic).
+  ExactCounters before = exact_counters();
+  TriangleHit h;
+  bool watertight = intersect_triangle(ray.ray, p.v[0], p.v[1], p.v[2], &h);
+  ExactCounters after = exact_counters();
+  const char* how = after.exact != before.exact           ? "settled by exact rational arithmetic"
+                    : after.filtered != before.filtered ? "settled by the double-precision filter"
+                                                        : "float alone";
+  MollerTrumboreValues m = moller_trumbore_values(ray.ray, p.v[0], p.v[1], p.v[2], ray.ray.tmax);
+  return std::string("This ray and triangle alone: watertight ") + (watertight ? "hit" : "miss") + " (" + how +
+         "); Möller–Trumbore " + (m.failed ? "miss (" + mtReason(m) + ")" : std::string("hit")) + ".";
+}
+
+namespace {
+
+const TracePrimitive* findPrimitive(const Trace* trace, int32_t id) {
+  if (!trace) return nullptr;
+  auto it = std::lower_bound(trace->primitives.begin(), trace->primitives.end(), id,
+                             [](const TracePrimitive& p, int32_t v) { return p.id < v; });
+  if (it != trace->primitives.end() && it->id == id) return &*it;
+  for (const TracePrimitive& p : trace->primitives)
+    if (p.id == id) return &p;
+  return nullptr;
+}
+
+// A primitive test in a cell or leaf (`where`): a nearer hit, a tie lost to a lower id, or no nearer hit; for a
+// triangle, a second line with the watertight test and Möller–Trumbore on this very ray and triangle.
+std::string explainPrimTest(const Trace* trace, const TracedRay& ray, const Event& e, const ReplayState& s,
+                            const std::string& where) {
+  std::string head = "Primitive " + std::to_string(e.prim) + where, text;
+  if (e.hit && s.nearestPrim != e.prim)
+    text = head + ": hit at t = " + num(e.t) + ", the same t as the nearest hit so far, primitive " +
+           std::to_string(s.nearestPrim) + ": a tie goes to the lower id, which stays the nearest.";
+  else if (e.hit)
+    text = head + ": hit at t = " + num(e.t) + ", nearer than any hit so far. It becomes the nearest hit.";
+  else
+    text = head + ": no hit nearer than the nearest so far.";
+  if (const TracePrimitive* p = findPrimitive(trace, e.prim)) {
+    std::string line = compareTriangleTests(ray, *p);
+    if (!line.empty()) text += "\n" + line;
+  }
+  return text;
+}
+
+std::string explainGridRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
   const Event* cell = s.cellEvent >= 0 ? &ray.events[size_t(s.cellEvent)] : nullptr;
   switch (e.type) {
@@ -300,7 +362,7 @@ std::string explainGridRule(const TracedRay& ray, const ReplayState& s) {
       std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," + std::to_string(cell->cell[1]) +
                                      "," + std::to_string(cell->cell[2]) + ")"
                                : "";
-      return explainPrimTest(e, s, where);
+      return explainPrimTest(trace, ray, e, s, where);
     }
     case EventType::mailbox_hit: {
       for (const MailboxEntry& m : s.mailbox)
@@ -409,7 +471,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
     }
     case EventType::prim_test: {
       std::string where = s.nodeEvent >= 0 ? " in leaf " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
-      return explainPrimTest(e, s, where);
+      return explainPrimTest(trace, ray, e, s, where);
     }
     case EventType::mailbox_hit:
       for (const MailboxEntry& m : s.mailbox)
@@ -439,7 +501,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
 
 std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   if (!s.event) return "";
-  return isTreeRay(ray) ? explainTreeRule(trace, ray, s) : explainGridRule(ray, s);
+  return isTreeRay(ray) ? explainTreeRule(trace, ray, s) : explainGridRule(trace, ray, s);
 }
 
 }  // namespace raystep::viz

@@ -108,9 +108,16 @@ int nthEvent(const TracedRay& ray, EventType type, int k);
 std::string describeEvent(const Event& e);
 // Why the walk does what the current event shows, with its numbers: the 3D-DDA's axis, the tree's t* and
 // children, the mailbox, and the stopping rule (grid: "tmin(cell) > tmax(ray)"; tree: the next node on the
-// stack starts beyond the hit). `trace` gives the nodes' split planes (null: t* is not shown).
+// stack starts beyond the hit). `trace` gives the nodes' split planes (null: t* is not shown) and the primitives'
+// vertices (null: a triangle's test is not compared with Möller–Trumbore).
 std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s);
 inline std::string explainRule(const TracedRay& ray, const ReplayState& s) { return explainRule(nullptr, ray, s); }
+
+// One line for a triangle's test (empty for another primitive): what the watertight test decides for this ray
+// and triangle alone (up to the ray's own tmax) and how (float alone, the double-precision filter or exact
+// rational arithmetic, by exact_counters()), and what Möller–Trumbore says, with the barycentric that rejects a
+// miss: "... watertight hit (settled by exact rational arithmetic); Möller–Trumbore miss (v = -3e-08 < 0)."
+std::string compareTriangleTests(const TracedRay& ray, const TracePrimitive& prim);
 
 const char* axisName(int axis);  // "x", "y", "z", or "none" for -1
 
