@@ -217,8 +217,8 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   aa_ = new QComboBox;
   aa_->setObjectName("aaCombo");
   aa_->setEditable(true);
-  aa_->addItems({"none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1"});
-  aa_->setToolTip(tr("none | regular:K | jitter:K | random:N | adaptive:T[:D]"));
+  aa_->addItems({"scene", "none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1"});
+  aa_->setToolTip(tr("scene (the scene file's) | none | regular:K | jitter:K | random:N | adaptive:T[:D]"));
   row1->addWidget(aa_);
   auto* render = new QPushButton(tr("Render"));
   row1->addWidget(render);

@@ -97,6 +97,7 @@ struct SahChart::Impl {
   vtkNew<vtkChartXY> chart;
   vtkSmartPointer<vtkTable> axisTable[3];  // the candidates per axis, as plotted
   QString message;
+  float scale = 1.f;
 };
 
 SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
@@ -140,6 +141,24 @@ SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
 
 SahChart::~SahChart() = default;
 
+void SahChart::setScale(double scale) {
+  Impl& d = *d_;
+  d.scale = float(scale);
+  d.chart->GetLegend()->GetLabelProperties()->SetFontSize(int(std::lround(11 * scale)));
+  for (vtkAxis* a : {d.chart->GetAxis(vtkAxis::BOTTOM), d.chart->GetAxis(vtkAxis::LEFT)}) {
+    a->GetTitleProperties()->SetFontSize(int(std::lround(11 * scale)));
+    a->GetLabelProperties()->SetFontSize(int(std::lround(10 * scale)));
+  }
+  d.chart->GetTitleProperties()->SetFontSize(int(std::lround(12 * scale)));
+  text_->setFixedWidth(int(230 * scale));
+  if (curve_) {
+    QString path = lastPath_;
+    setCurve(curve_, path, lastTi_, lastTt_, lastBonus_);
+  } else {
+    renderNow();
+  }
+}
+
 void SahChart::showMessage(const QString& text) {
   curve_.reset();
   d_->message = text;
@@ -154,6 +173,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
                         float empty_bonus) {
   Impl& d = *d_;
   curve_ = std::move(curve);
+  lastPath_ = path;
+  lastTi_ = t_i;
+  lastTt_ = t_t;
+  lastBonus_ = empty_bonus;
   d.message.clear();
   d.chart->ClearPlots();
   const SahCurve& c = *curve_;
@@ -178,27 +201,27 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
       hi = std::max(hi, double(s->cost));
     }
     if (byAxis[a].empty()) continue;  // an empty series draws nothing, but warns
-    vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f,
+    vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f * d.scale,
                          std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
     if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
       bool few = byAxis[a].size() <= 400;
       points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE
                                                                   : vtkPlotPoints::NONE);
-      points->SetMarkerSize(byAxis[a].size() == 1 ? 8.f : 5.f);
+      points->SetMarkerSize((byAxis[a].size() == 1 ? 8.f : 5.f) * d.scale);
     }
   }
   // The leaf cost: a split is made only below this line.
   auto leaf = makeTable("position", "leaf cost");
   addRow(leaf, 0.0, c.leaf_cost);
   addRow(leaf, 1.0, c.leaf_cost);
-  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f, "leaf cost N t_i");
+  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f * d.scale, "leaf cost N t_i");
   leafPlot->GetPen()->SetLineType(vtkPen::DASH_LINE);
   if (!c.leaf && c.axis >= 0) {
     auto chosen = makeTable("position", "chosen");
     double x = across(c.axis, c.position);
     addRow(chosen, x, lo - 0.02 * (hi - lo));
     addRow(chosen, x, hi);
-    addLine(d.chart, chosen, palette::sahChosen, 1.5f, std::string("chosen: ") + axisName(c.axis));
+    addLine(d.chart, chosen, palette::sahChosen, 1.5f * d.scale, std::string("chosen: ") + axisName(c.axis));
   }
   vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
   double pad =

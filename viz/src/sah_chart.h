@@ -35,6 +35,8 @@ class SahChart : public QWidget {
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }
 
+  // Presenter scale: the chart's fonts, lines and markers, and the text's width.
+  void setScale(double scale);
   void renderNow();
   QImage grabChart();
   // The chart as PNG, atomically (a temporary file, then renamed); false when it cannot be written.
@@ -47,6 +49,8 @@ class SahChart : public QWidget {
   std::unique_ptr<Impl> d_;
   std::shared_ptr<const SahCurve> curve_;
   QLabel* text_;
+  QString lastPath_;  // setCurve's arguments, to draw again at another scale
+  float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;
 };
 
 }  // namespace raystep::viz

@@ -166,7 +166,16 @@ struct SceneView::Impl {
   float sceneRadius = 1.f;
   bool translucent = false, follow = false, followZoom = false;
   int32_t followedNode = -1;  // the kd node the camera last framed while following
-  double lastMs = 0.0;
+  double scale = 1.0;
+  std::vector<std::pair<vtkActor*, float>> lineWidths;  // each line actor's width at scale 1
+  // The bounds the scene (or trace) was first framed with: "home" frames them again at the view's current
+  // aspect (the fit depends on it when the view is taller than wide, and the layout may have changed since).
+  double homeBounds[6] = {0, 0, 0, 0, 0, 0};
+  bool haveHome = false;
+  void saveHome() {
+    base->ComputeVisiblePropBounds(homeBounds);
+    haveHome = vtkMath::AreBoundsInitialized(homeBounds);
+  }  double lastMs = 0.0;
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
   bool rayDrawn = false;
@@ -320,6 +329,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
 
   connect(session_, &Session::sceneChanged, this, [this] {
     rebuildGeometry();
+    d_->saveHome();
     fitCamera();
     updateStep();
   });
@@ -329,6 +339,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
     if (!session_->scene()) {
       rebuildGeometry();
+      d_->saveHome();
       fitCamera();
     }
   });
@@ -730,7 +741,7 @@ void SceneView::updateStep() {
   if (ray && s.nearestPrim >= 0) {
     glm::vec3 p = ray->ray.at(s.nearestT);
     d.hitSphere->SetCenter(p.x, p.y, p.z);
-    d.hitSphere->SetRadius(0.03 * d.sceneRadius);
+    d.hitSphere->SetRadius(0.03 * d.sceneRadius * d.scale);
     setColor(d.hitActor, s.accepted ? palette::hitFinal : palette::hitCandidate);
     d.hitActor->SetVisibility(true);
   } else {
@@ -790,10 +801,16 @@ void SceneView::setFollowCell(bool on) {
 }
 
 void SceneView::fitCamera() {
+  double b[6];
+  d_->base->ComputeVisiblePropBounds(b);
+  fitCameraTo(b);
+}
+
+void SceneView::fitCameraTo(const double* bounds) {
   Impl& d = *d_;
   vtkCamera* cam = d.base->GetActiveCamera();
   double b[6];
-  d.base->ComputeVisiblePropBounds(b);
+  std::copy(bounds, bounds + 6, b);
   if (!vtkMath::AreBoundsInitialized(b)) return;
   glm::vec3 c(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
   // Look from the front, a little from the right and above, as the scene camera does (+z towards the viewer).
@@ -817,6 +834,26 @@ void SceneView::fitCamera() {
   cam->Zoom(1.15);
   d.base->ResetCameraClippingRange();
 }
+
+void SceneView::setScale(double scale) {
+  Impl& d = *d_;
+  if (d.lineWidths.empty())
+    for (vtkActor* a : {d.outlineActor.Get(), d.latticeActor.Get(), d.visitedActor.Get(), d.rayActor.Get(),
+                        d.aheadActor.Get(), d.segmentActor.Get(), d.cellActor.Get(), d.stackActor.Get(),
+                        d.splitActor.Get(), d.selectedActor.Get()})
+      d.lineWidths.push_back({a, a->GetProperty()->GetLineWidth()});
+  d.scale = scale;
+  for (auto& [actor, width] : d.lineWidths) actor->GetProperty()->SetLineWidth(float(width * scale));
+  updateStep();
+}
+
+void SceneView::restoreHomeCamera() {
+  d_->followedNode = -1;
+  if (d_->haveHome) fitCameraTo(d_->homeBounds);
+}
+
+bool SceneView::translucent() const { return d_->translucent; }
+bool SceneView::followCell() const { return d_->follow; }
 
 void SceneView::renderNow() {
   d_->base->ResetCameraClippingRange();

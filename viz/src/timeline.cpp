@@ -111,12 +111,17 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     auto* s = new QShortcut(QKeySequence(k), top);
     s->setContext(Qt::WindowShortcut);
     connect(s, &QShortcut::activated, this, fn);
+    return s;
   };
-  key(Qt::Key_Right, [this] { session_->stepBy(1); });
-  key(Qt::Key_Left, [this] { session_->stepBy(-1); });
+  forwardKey_ = key(Qt::Key_Right, [this] { session_->stepBy(1); });
+  backKey_ = key(Qt::Key_Left, [this] { session_->stepBy(-1); });
   key(Qt::Key_Space, [this] { setPlaying(!playing()); });
-  key(Qt::Key_Home, [this] { session_->setStep(0); });
-  key(Qt::Key_End, [this] { session_->setStep(session_->eventCount() - 1); });
+  firstKey_ = key(Qt::Key_Home, [this] { session_->setStep(0); });
+  lastKey_ = key(Qt::Key_End, [this] { session_->setStep(session_->eventCount() - 1); });
+  periodKey_ = key(Qt::Key_Period, [this] { session_->stepBy(1); });
+  commaKey_ = key(Qt::Key_Comma, [this] { session_->stepBy(-1); });
+  periodKey_->setEnabled(false);
+  commaKey_->setEnabled(false);
 
   connect(session_, &Session::traceChanged, this, [this] {
     setPlaying(false);
@@ -136,6 +141,16 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     if (!session_->ray() && session_->structure()) offerUnit(session_->structure()->kind != "grid");
   });
   refresh();
+}
+
+void Timeline::setLessonKeys(bool on) {
+  const Qt::KeyboardModifiers m = on ? Qt::ShiftModifier : Qt::NoModifier;
+  forwardKey_->setKey(QKeySequence(int(m) | Qt::Key_Right));
+  backKey_->setKey(QKeySequence(int(m) | Qt::Key_Left));
+  firstKey_->setKey(QKeySequence(int(m) | Qt::Key_Home));
+  lastKey_->setKey(QKeySequence(int(m) | Qt::Key_End));
+  periodKey_->setEnabled(on);
+  commaKey_->setEnabled(on);
 }
 
 bool Timeline::jump(const QString& kind, bool forward) {

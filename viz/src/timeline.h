@@ -15,6 +15,7 @@ class QToolButton;
 class QSlider;
 class QSpinBox;
 class QTimer;
+class QShortcut;
 
 namespace raystep::viz {
 
@@ -30,6 +31,9 @@ class Timeline : public QWidget {
   void setPlaying(bool on);
   bool playing() const;
   static std::vector<EventType> typesOf(const QString& kind);
+  // In a lesson the plain arrows, Home and End move between steps (a clicker sends them): the walk's keys
+  // become Shift+Right/Shift+Left (and . and ,), Shift+Home/Shift+End.
+  void setLessonKeys(bool on);
 
  private:
   void refresh();
@@ -43,6 +47,12 @@ class Timeline : public QWidget {
   QToolButton* play_;
   QSpinBox* speed_;
   QTimer* timer_;
+  QShortcut* forwardKey_;
+  QShortcut* backKey_;
+  QShortcut* firstKey_;
+  QShortcut* lastKey_;
+  QShortcut* periodKey_;
+  QShortcut* commaKey_;
 };
 
 }  // namespace raystep::viz
