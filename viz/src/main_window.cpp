@@ -1,5 +1,6 @@
 #include "main_window.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <QScrollArea>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QScreen>
 #include <QStyle>
 #include <QThread>
 #include <QTimer>
@@ -229,10 +231,15 @@ void MainWindow::fitLessonPane() {
   if (!lessonDock_) return;
   // The pane's width comes on top of the debugger's: the central widget keeps the width the window had. The
   // pane is held at its width while the window grows (else the central widget would take the growth).
-  const int debuggerWidth = width();
+  // Where the screen has no room for both, the window stays within it and the pane takes its width from the
+  // debugger (a projector's 1920 x 1080 full screen).
   const int pane = int(440 * scale_);
+  const int separator = style()->pixelMetric(QStyle::PM_DockWidgetSeparatorExtent);
+  const QScreen* screen = QApplication::primaryScreen();
+  const int room = screen ? screen->availableGeometry().width() : 1 << 20;
+  const int debuggerWidth = std::min(width(), room - pane - separator);
   lessonPane_->setFixedWidth(pane);
-  resize(debuggerWidth + pane + style()->pixelMetric(QStyle::PM_DockWidgetSeparatorExtent), height());
+  resize(debuggerWidth + pane + separator, height());
   for (int i = 0; i < 5; ++i) {  // the X server confirms the size asynchronously
     QApplication::processEvents();
     QThread::msleep(5);
@@ -515,11 +522,22 @@ void MainWindow::buildStructure() {
   StructureOptions o = structure_->options();
   QString key = structureOptionsKey();
   QString what = kind == "grid" ? tr("Building the grid...") : tr("Building the kd-tree...");
-  runTask("build", what, [this, scene, kind, o, key] {
-    auto built = buildStructureData(scene, kind, o);
-    return std::function<void()>([this, built, scene, key] {
+  // A structure built before for this scene with the same options is used again: a lesson that goes back
+  // and forth between a grid and a kd-tree (or two costs) builds each once.
+  std::shared_ptr<const StructureData> kept;
+  for (const KeptStructure& k : kept_)
+    if (k.scene == scene && k.key == key) kept = k.built;
+  runTask("build", what, [this, scene, kind, o, key, kept] {
+    auto built = kept ? kept : buildStructureData(scene, kind, o);
+    return std::function<void()>([this, built, scene, key, kept] {
       if (scene != session_->sceneShared()) return;  // built for a scene since replaced
       builtKey_ = key;
+      // Kept: the last few structures of this scene (those of another scene are let go).
+      kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
+                                 [&](const KeptStructure& k) { return k.scene != scene || k.key == key; }),
+                  kept_.end());
+      kept_.push_back({scene, key, built});
+      if (kept_.size() > 3) kept_.erase(kept_.begin());
       // Rebuilt with other settings: the same pixel is traced again through the new structure.
       const Trace* old = session_->trace();
       bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
@@ -578,7 +596,7 @@ void MainWindow::buildStructure() {
                                 .arg(st.sah_cost, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
       }
-      if (scripted_) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
+      if (scripted_ && !kept) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
       auto* grid = built.get();
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
                              sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);

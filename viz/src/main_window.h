@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include <QMainWindow>
 
@@ -25,6 +26,8 @@ struct Lesson;
 namespace raystep::viz {
 
 class Session;
+struct SceneData;
+struct StructureData;
 class StructurePanel;
 class ImageView;
 class SceneView;
@@ -139,7 +142,13 @@ class MainWindow : public QMainWindow {
   bool scripted_ = false;
   bool inPlace_ = false;
   QString pictureKey_, heatKey_;
-  QString builtKey_;  // structureOptionsKey() of the current structure  // what the picture and the heat map were made for (ensurePicture)
+  QString builtKey_;  // structureOptionsKey() of the current structure
+  struct KeptStructure {
+    std::shared_ptr<const SceneData> scene;
+    QString key;
+    std::shared_ptr<const StructureData> built;
+  };
+  std::vector<KeptStructure> kept_;  // the last structures built, for buildStructure to use again  // what the picture and the heat map were made for (ensurePicture)
   QString pictureKeyNow() const;
   QString heatKeyNow() const;
   std::map<QString, int> generation_;  // per kind: results of superseded work are dropped

@@ -150,6 +150,8 @@ struct SceneView::Impl {
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
+  const void* meshSource = nullptr;  // the scene (or trace) the scene mesh and `prims` were made from
+  Bounds3 meshBounds;
   glm::vec3 gridLo{0.f}, gridHi{1.f};
   int res[3] = {1, 1, 1};
   // A tree (kd): its root box is gridLo..gridHi; its nodes are the trace's, by id (those the walk names).
@@ -328,6 +330,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   layout->addWidget(d.legend);
 
   connect(session_, &Session::sceneChanged, this, [this] {
+    d_->meshSource = nullptr;  // another scene, even one allocated where the last one was
     rebuildGeometry();
     d_->saveHome();
     fitCamera();
@@ -338,6 +341,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d_->primBlockRay = nullptr;  // a new trace may live where the old one did
     // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
     if (!session_->scene()) {
+      d_->meshSource = nullptr;
       rebuildGeometry();
       d_->saveHome();
       fitCamera();
@@ -365,18 +369,25 @@ void SceneView::rebuildGeometry() {
   vtkNew<vtkCellArray> tris;
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetNumberOfComponents(3);
-  d.prims.clear();
   d.primBlockRay = nullptr;
   d.primBlock = -2;
   d.haveGrid = false;
-  Bounds3 bounds;
+  // The scene's mesh is made again only for another scene (or trace): a new structure over the same scene
+  // changes the outline and the lattice, and the bunny's 70k triangles cost a lesson step 100 ms.
+  const void* source = session_->scene() ? static_cast<const void*>(session_->scene())
+                                         : static_cast<const void*>(session_->trace());
+  const bool sameMesh = source && source == d.meshSource;
+  Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
+  if (!sameMesh) d.prims.clear();
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
     unsigned char rgb[3];
     for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
     for (vtkIdType i = 0; i < count; ++i) colors->InsertNextTypedTuple(rgb);
   };
 
-  if (const SceneData* sd = session_->scene()) {
+  if (sameMesh) {
+    // kept
+  } else if (const SceneData* sd = session_->scene()) {
     const Geometry& g = sd->scene.geometry;
     for (uint32_t id = 0; id < g.size(); ++id) {
       PrimShape p;
@@ -408,10 +419,14 @@ void SceneView::rebuildGeometry() {
     }
     bounds = t->structure.bounds;
   }
-  d.sceneData->SetPoints(pts);
-  d.sceneData->SetPolys(tris);
-  d.sceneData->GetCellData()->SetScalars(colors);
-  d.sceneData->Modified();
+  if (!sameMesh) {
+    d.sceneData->SetPoints(pts);
+    d.sceneData->SetPolys(tris);
+    d.sceneData->GetCellData()->SetScalars(colors);
+    d.sceneData->Modified();
+    d.meshSource = source;
+    d.meshBounds = bounds;
+  }
 
   // The structure: the scene's grid, or the one named by a trace opened on its own.
   const UniformGrid* liveGrid = session_->structure() ? session_->structure()->grid() : nullptr;

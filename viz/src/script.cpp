@@ -8,6 +8,7 @@
 
 #include <QApplication>
 #include <QDir>
+#include <QScreen>
 #include <QCommandLineParser>
 #include <QFile>
 #include <QJsonArray>
@@ -368,6 +369,9 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
   Lesson lesson = parse_lesson(p.value("lesson").toStdString());
   Presenter* presenter = window.openLesson(lesson);
   if (!anyScript) {
+    // Presenting: the whole screen (a projector's), unless --window says otherwise.
+    if (!p.isSet("window"))
+      if (const QScreen* screen = QApplication::primaryScreen()) window.resize(screen->availableGeometry().size());
     window.fitLessonPane();
     window.show();
     settle(window);
