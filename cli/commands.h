@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace raystep::cli {
 
@@ -87,6 +88,18 @@ struct TraceInfoArgs {
   std::string trace;
 };
 
+// lesson_commands.cpp: checking lessons headless, and a step as a raystep-gui command line.
+struct LessonCheckArgs {
+  std::vector<std::string> paths;  // lesson files or folders of them; none: lessons/
+};
+struct LessonCommandArgs {
+  std::string file;
+  int step = 0;  // 1-based
+};
+struct LessonAnswersArgs {
+  std::string file;
+};
+
 int run_render(const RenderArgs& args);
 int run_trace(const TraceArgs& args);
 int run_trace_info(const TraceInfoArgs& args);
@@ -95,5 +108,8 @@ int run_rays(const RaysArgs& args);
 int run_info(const InfoArgs& args);
 int run_sah(const SahArgs& args);
 int run_kdtree_stats(const KdStatsArgs& args);
+int run_lesson_check(const LessonCheckArgs& args);
+int run_lesson_command(const LessonCommandArgs& args);
+int run_lesson_answers(const LessonAnswersArgs& args);
 
 }  // namespace raystep::cli

@@ -140,6 +140,24 @@ int main(int argc, char** argv) {
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
 
+  CLI::App* lesson_cmd =
+      app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");
+  lesson_cmd->require_subcommand(1);
+  LessonCheckArgs lesson_check;
+  CLI::App* lesson_check_cmd =
+      lesson_cmd->add_subcommand("check", "Enter every step of lessons headless and answer every question");
+  lesson_check_cmd->add_option("lessons", lesson_check.paths,
+                               "lesson files (.md) or folders of them (default: lessons)");
+  LessonCommandArgs lesson_command;
+  CLI::App* lesson_command_cmd =
+      lesson_cmd->add_subcommand("command", "Print the raystep-gui command line that shows a step");
+  lesson_command_cmd->add_option("lesson", lesson_command.file, "lesson file (.md)")->required();
+  lesson_command_cmd->add_option("step", lesson_command.step, "the step, 1-based")->required();
+  LessonAnswersArgs lesson_answers;
+  CLI::App* lesson_answers_cmd =
+      lesson_cmd->add_subcommand("answers", "Print every question's computed answer and its reason");
+  lesson_answers_cmd->add_option("lesson", lesson_answers.file, "lesson file (.md)")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -162,6 +180,9 @@ int main(int argc, char** argv) {
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
+    if (*lesson_check_cmd) return run_lesson_check(lesson_check);
+    if (*lesson_command_cmd) return run_lesson_command(lesson_command);
+    if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);
   } catch (const raystep::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

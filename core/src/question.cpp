@@ -3,6 +3,19 @@
 // events in the words of the lecture, with the numbers that decide them (the "Why" text).
 #include "raystep/lesson/question.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/render/antialiasing.h"
+#include "raystep/render/camera.h"
+#include "raystep/render/whitted.h"
+#include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -28,7 +41,517 @@ constexpr KindInfo kKinds[] = {
      "Does adaptive sampling subdivide this pixel (more than its 5 first samples)?"},
 };
 
+[[noreturn]] void fail(const std::string& what) {
+  throw InputError("", 0, what);
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+const char* axis_name(int axis) {
+  static const char* names[] = {"x", "y", "z"};
+  return axis >= 0 && axis < 3 ? names[axis] : "none";
+}
+std::string cell_text(const int* c) {
+  return "(" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + ")";
+}
+std::string triple(const glm::vec3& v) {
+  return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+}
+
+bool is_tree_event(EventType t) {
+  return t == EventType::node || t == EventType::push || t == EventType::pop || t == EventType::leaf;
+}
+
+// The current ray and event of the context; throws when the question needs a walk and there is none.
+const TracedRay& current_ray(QuestionKind kind, const QuestionContext& c) {
+  const std::string name = question_kind_name(kind);
+  if (!c.trace || c.trace->rays.empty()) fail(name + ": no traced ray (choose a pixel: pixel: X,Y)");
+  if (c.ray < 0 || size_t(c.ray) >= c.trace->rays.size()) fail(name + ": no ray " + std::to_string(c.ray));
+  const TracedRay& r = c.trace->rays[size_t(c.ray)];
+  if (c.step < 0 || size_t(c.step) >= r.events.size())
+    fail(name + ": no event " + std::to_string(c.step) + " (the ray has " + std::to_string(r.events.size()) +
+         ")");
+  return r;
+}
+
+bool walks_tree(const TracedRay& r) {
+  for (const Event& e : r.events)
+    if (is_tree_event(e.type)) return true;
+  return false;
+}
+
+// ---- The grid: next-cell and dda-axis, from the cell events (the kernel logs tMax per axis with each cell).
+
+Answer grid_answer(QuestionKind kind, const QuestionContext& c) {
+  const TracedRay& r = current_ray(kind, c);
+  const std::string name = question_kind_name(kind);
+  if (walks_tree(r)) fail(name + ": the ray walks a kd-tree, not a grid (accel: grid)");
+  const std::vector<Event>& ev = r.events;
+  int cell = -1;  // the current cell: the last cell event up to the current event
+  for (int i = 0; i <= c.step; ++i)
+    if (ev[size_t(i)].type == EventType::cell) cell = i;
+  if (kind == QuestionKind::dda_axis && cell < 0)
+    fail(name + ": the walk is in no cell yet at event " + std::to_string(c.step) +
+         " (step to a cell event)");
+  int next = -1;
+  for (size_t i = size_t(cell + 1); i < ev.size() && next < 0; ++i)
+    if (ev[i].type == EventType::cell) next = int(i);
+
+  Answer a;
+  a.kind = kind;
+  a.stops = next < 0;
+  if (next >= 0) std::copy(ev[size_t(next)].cell, ev[size_t(next)].cell + 3, a.cell.begin());
+  if (cell < 0) {  // next-cell before the walk: the slab test's first cell, or a miss of the grid's box
+    a.text = a.stops ? "the walk stops: the ray misses the grid" : "cell " + cell_text(a.cell.data());
+    a.why = a.stops ? "Slab test: the ray misses the grid's box, so there is no cell to visit."
+                    : "Slab test: the ray enters the grid's box at t = " + num(ev[size_t(next)].t_enter) +
+                          "; the walk starts in the cell that contains that point, " +
+                          cell_text(a.cell.data()) + ".";
+    return a;
+  }
+  const Event& e = ev[size_t(cell)];
+  if (next >= 0)
+    for (int k = 0; k < 3; ++k)
+      if (ev[size_t(next)].cell[k] != e.cell[k]) a.axis = k;
+  const std::string tmax = "tMax = " + triple(e.t_max);
+  // The kernel's choice: the smallest tMax, ties to the lower axis.
+  const int smallest =
+      (e.t_max.x <= e.t_max.y && e.t_max.x <= e.t_max.z) ? 0 : (e.t_max.y <= e.t_max.z ? 1 : 2);
+  const float d = r.ray.direction[smallest];
+  const std::string step = d > 0.f ? "+1" : "-1";
+  if (next >= 0) {
+    a.why = tmax + ": the smallest is " + axis_name(smallest) + ", so the 3D-DDA steps " +
+            axis_name(smallest) + " by " + step + " into cell " + cell_text(a.cell.data()) + ".";
+  } else {
+    // Why the walk ends here: a hit inside the cell, a shadow ray's first hit, or the grid's far side.
+    const Event* accepted = nullptr;
+    for (size_t i = size_t(cell) + 1; i < ev.size() && !accepted; ++i)
+      if (ev[i].type == EventType::hit_accepted) accepted = &ev[i];
+    if (accepted && accepted->reason == AcceptReason::inside_cell)
+      a.why = "The hit at t = " + num(accepted->t) +
+              " lies inside this cell: tmin(next cell) = t_exit = " + num(e.t_exit) +
+              " > tmax(ray) = " + num(accepted->t) + ", so the walk stops here (" + tmax + ").";
+    else if (accepted && accepted->reason == AcceptReason::any_hit)
+      a.why =
+          "A shadow ray stops at its first hit, t = " + num(accepted->t) + ": the walk ends in this cell.";
+    else if (e.next_axis < 0)
+      a.why = tmax + ": the smallest, " + axis_name(smallest) + " = " + num(e.t_max[smallest]) +
+              ", lies beyond where the ray leaves the grid, t = " + num(e.t_exit) +
+              ": the walk ends in this cell.";
+    else
+      a.why = tmax + ": the smallest is " + axis_name(smallest) + ", but stepping " + axis_name(smallest) +
+              " by " + step + " leaves the grid: the walk ends in this cell.";
+  }
+  if (kind == QuestionKind::next_cell)
+    a.text = a.stops
+                 ? "the walk stops: there is no next cell"
+                 : "cell " + cell_text(a.cell.data()) + ": the ray steps along " + axis_name(a.axis) + ".";
+  else
+    a.text = a.stops ? "none: the walk ends in this cell"
+                     : std::string(axis_name(a.axis)) + ": the 3D-DDA steps " + axis_name(a.axis) + " by " +
+                           step + " into cell " + cell_text(a.cell.data()) + ".";
+  return a;
+}
+
+// ---- The kd-tree: first-child and next-pop, from the node, push and pop events.
+
+const TraceNode* find_node(const Trace& trace, int32_t id) {
+  for (const TraceNode& n : trace.nodes)
+    if (n.id == id) return &n;
+  return nullptr;
+}
+
+// The traversal's safety margin: 2^-12 of the larger of |t_min| and |t_max| of the ray in the root's box.
+float tree_margin(const TracedRay& r) {
+  for (const Event& e : r.events)
+    if (e.type == EventType::node)
+      return std::max(std::fabs(e.t_min_node), std::fabs(e.t_max_node)) * (1.f / 4096.f);
+  return 0.f;
+}
+
+std::string side(bool below) {
+  return below ? "below" : "above";
+}
+
+Answer first_child_answer(const QuestionContext& c) {
+  const TracedRay& r = current_ray(QuestionKind::first_child, c);
+  const std::vector<Event>& ev = r.events;
+  const Event& e = ev[size_t(c.step)];
+  const size_t next = size_t(c.step) + 1;
+  if (e.type != EventType::node)
+    fail(std::string("first-child: event ") + std::to_string(c.step) + " is a " + event_type_name(e.type) +
+         " event, not a node (step-to: node:K at an inner node)");
+  if (next >= ev.size() || ev[next].type == EventType::leaf)
+    fail("first-child: node " + std::to_string(e.node) + " is a leaf, not an inner node");
+  const TraceNode* n = c.trace ? find_node(*c.trace, e.node) : nullptr;
+  if (!n || n->leaf) fail("first-child: the trace has no split plane for node " + std::to_string(e.node));
+
+  Answer a;
+  a.kind = QuestionKind::first_child;
+  size_t first = next;
+  if (ev[next].type == EventType::push) {
+    a.far_pushed = true;
+    a.far_child = ev[next].node;
+    first = next + 1;
+  }
+  if (first >= ev.size() || ev[first].type != EventType::node)
+    fail("first-child: the walk does not go on from node " + std::to_string(e.node));
+  a.first_child = ev[first].node;
+  a.first_is_below = a.first_child == e.node + 1;  // depth-first order: the child below follows its parent
+
+  // The kernel's numbers: t* by the direction's reciprocal, the near side by the sign bit, the margin.
+  const int axis = n->axis;
+  const std::string an = axis_name(axis);
+  const float o = r.ray.origin[axis], d = r.ray.direction[axis];
+  const float t_star = (n->split - o) * (1.f / d);
+  const bool near_below = !std::signbit(d);
+  const float margin = tree_margin(r);
+  const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+  const std::string head = "Node " + std::to_string(e.node) + " splits " + an + " at " + num(n->split) +
+                           "; the ray's direction d." + an + " = " + num(d) + " makes the " +
+                           side(near_below) + " child the near one. ";
+  if (std::isnan(t_star))
+    a.why = head + "The ray lies in the split plane (t* undefined): Intersect(near = " + side(near_below) +
+            ") first, the far child is pushed with the whole " + interval + ".";
+  else if (t_star > e.t_max_node + margin)
+    a.why = head + "t* = " + num(t_star) + " > t_max = " + num(e.t_max_node) +
+            ": the ray leaves the node before the plane. Only the near child (" + side(near_below) +
+            ") is visited; nothing is pushed.";
+  else if (t_star < e.t_min_node - margin)
+    a.why = head + "t* = " + num(t_star) + " < t_min = " + num(e.t_min_node) +
+            ": the node's part of the ray lies beyond the plane. Only the far child (" + side(!near_below) +
+            ") is visited; nothing is pushed.";
+  else
+    a.why = head + "t* = " + num(t_star) + " within " + interval + ": Intersect(near = " + side(near_below) +
+            ", t_min, t*) first, the far child (t*, t_max) = (" +
+            num(std::clamp(t_star, e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ") is pushed.";
+  a.text = side(a.first_is_below) + " (node " + std::to_string(a.first_child) + ")" +
+           (a.far_pushed ? ", the far child, node " + std::to_string(a.far_child) + ", is pushed"
+                         : ", nothing is pushed");
+  return a;
+}
+
+Answer next_pop_answer(const QuestionContext& c) {
+  const TracedRay& r = current_ray(QuestionKind::next_pop, c);
+  const std::vector<Event>& ev = r.events;
+  if (!walks_tree(r)) fail("next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
+  // The leaf the walk is in: the current event is a leaf's node event, the leaf event or one of its tests.
+  int leaf = -1;
+  if (ev[size_t(c.step)].type == EventType::node && size_t(c.step) + 1 < ev.size() &&
+      ev[size_t(c.step) + 1].type == EventType::leaf)
+    leaf = c.step + 1;
+  for (int i = c.step; i >= 0 && leaf < 0; --i) {
+    EventType t = ev[size_t(i)].type;
+    if (t == EventType::leaf)
+      leaf = i;
+    else if (is_tree_event(t))
+      break;
+  }
+  if (leaf < 0)
+    fail(std::string("next-pop: the walk is not in a leaf at event ") + std::to_string(c.step) + " (a " +
+         event_type_name(ev[size_t(c.step)].type) + " event; step to a leaf or its tests)");
+
+  // The stack when the leaf is reached, and the nearest hit once its tests are done (ties to the lower id).
+  std::vector<const Event*> stack;
+  for (int i = 0; i < leaf; ++i) {
+    if (ev[size_t(i)].type == EventType::push) stack.push_back(&ev[size_t(i)]);
+    if (ev[size_t(i)].type == EventType::pop && !stack.empty()) stack.pop_back();
+  }
+  size_t after = size_t(leaf) + 1;  // the first event after the leaf's tests
+  while (after < ev.size() &&
+         (ev[after].type == EventType::prim_test || ev[after].type == EventType::mailbox_hit))
+    ++after;
+  int32_t hit_prim = -1;
+  float hit_t = 0.f;
+  for (size_t i = 0; i < after; ++i) {
+    const Event& t = ev[i];
+    if (t.type != EventType::prim_test || !t.hit) continue;
+    if (hit_prim >= 0 && (t.t > hit_t || (t.t == hit_t && t.prim > hit_prim))) continue;
+    hit_prim = t.prim;
+    hit_t = t.t;
+  }
+
+  // What the walk did next: the first popped node it visits, or the end (a pop skipped, a shadow ray's hit).
+  Answer a;
+  a.kind = QuestionKind::next_pop;
+  a.stops = true;
+  bool any_hit = false;
+  for (size_t i = after; i < ev.size(); ++i) {
+    if (ev[i].type == EventType::hit_accepted) {
+      any_hit = ev[i].reason == AcceptReason::any_hit;
+      break;
+    }
+    if (ev[i].type != EventType::pop) break;
+    if (i + 1 < ev.size() && ev[i + 1].type == EventType::node && ev[i + 1].node == ev[i].node) {
+      a.stops = false;
+      a.node = ev[i].node;
+      break;
+    }
+  }
+
+  const std::string hit = hit_prim >= 0 ? "the nearest hit so far, t = " + num(hit_t) + " (primitive " +
+                                              std::to_string(hit_prim) + ")"
+                                        : "no hit yet";
+  const std::string leaf_name = "Leaf " + std::to_string(ev[size_t(leaf)].node);
+  if (any_hit) {
+    a.why = leaf_name + ": a shadow ray stops at its first hit, t = " + num(hit_t) + ".";
+  } else if (stack.empty()) {
+    a.why = leaf_name +
+            ": the stack is empty, every node the ray crosses has been visited. The walk stops with " + hit +
+            ".";
+  } else {
+    const Event& top = *stack.back();
+    const float margin = tree_margin(r);
+    std::string head = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
+                       (stack.size() == 1 ? " node" : " nodes") + "; its top is node " +
+                       std::to_string(top.node) + " with [t_min, t_max] = [" + num(top.t_min_node) + ", " +
+                       num(top.t_max_node) + "]. ";
+    if (hit_prim < 0)
+      a.why = head + "No hit yet: pop node " + std::to_string(top.node) + " and visit it.";
+    else if (hit_t < top.t_min_node - margin)
+      a.why = head + "t(hit) = " + num(hit_t) + " < t_min = " + num(top.t_min_node) +
+              ": the node starts beyond the hit, and every node under it later still. Stop: the hit is final "
+              "(traverse until tmin(next node) > tmax(ray)).";
+    else if (hit_t < top.t_min_node)
+      a.why = head + "t(hit) = " + num(hit_t) + " lies before t_min = " + num(top.t_min_node) +
+              ", but within the walk's rounding margin " + num(margin) + ": pop node " +
+              std::to_string(top.node) + " and visit it, so that no hit is lost to rounding.";
+    else
+      a.why = head + "t(hit) = " + num(hit_t) + " >= t_min = " + num(top.t_min_node) +
+              ": a nearer hit may lie in it. Pop node " + std::to_string(top.node) + " and visit it.";
+  }
+  a.text = a.stops ? "the walk stops here" : "node " + std::to_string(a.node) + " is popped and visited";
+  return a;
+}
+
+// ---- The build: sah-plane, from the node's SAH curve (the builder rerun with a listener on that node).
+
+Answer sah_plane_answer(const QuestionContext& c) {
+  const KdTree* kd = dynamic_cast<const KdTree*>(c.accel);
+  if (!kd) fail("sah-plane: no kd-tree (accel: kd or kd-median)");
+  const KdTreeData& tree = kd->data();
+  if (c.node < 0 || size_t(c.node) >= tree.nodes.size())
+    fail("sah-plane: no node selected (node: ID, node-path: LR... or panel: sah)");
+  if (tree.nodes[size_t(c.node)].is_leaf())
+    fail("sah-plane: node " + std::to_string(c.node) + " is a leaf (select an inner node)");
+  const SahCurve curve = record_sah_curve(kd->geometry(), kd->options(), uint32_t(c.node));
+  Answer a;
+  a.kind = QuestionKind::sah_plane;
+  a.node = c.node;
+  a.axis = curve.leaf ? -1 : curve.axis;
+  a.position = curve.position;
+  if (a.axis >= 0) a.extent = curve.info.box.hi[a.axis] - curve.info.box.lo[a.axis];
+  const KdOptions& o = kd->options();
+  const std::string head = "Node " + std::to_string(c.node) + " holds N = " + std::to_string(curve.n_prims) +
+                           " primitives; a leaf would cost N t_i = " + std::to_string(curve.n_prims) + " x " +
+                           num(o.t_i) + " = " + num(curve.leaf_cost) + ". ";
+  if (a.axis < 0) {
+    a.text = "a leaf";
+    a.why = head + "No plane costs less (" + leaf_reason_name(curve.leaf_reason) + "): the node is a leaf.";
+    return a;
+  }
+  a.text = std::string(axis_name(a.axis)) + " = " + num(a.position);
+  std::string formula;
+  if (curve.chosen >= 0) {
+    const SahCandidate& s = curve.candidates[size_t(curve.chosen)];
+    const double pa = double(s.area_above) / s.area_node, pb = double(s.area_below) / s.area_node;
+    const bool bonus = o.empty_bonus > 0.f && (s.n_above == 0 || s.n_below == 0);
+    formula = "C = t_t + " + std::string(bonus ? "(1 - " + num(o.empty_bonus) + ") (" : "") +
+              "p_a N_a t_i + p_b N_b t_i" + (bonus ? ")" : "") + " = " + num(o.t_t) + " + " +
+              (bonus ? num(1.0 - o.empty_bonus) + " x (" : "") + num(pa) + " x " + std::to_string(s.n_above) +
+              " x " + num(o.t_i) + " + " + num(pb) + " x " + std::to_string(s.n_below) + " x " + num(o.t_i) +
+              (bonus ? ")" : "") + " = " + num(s.cost);
+  } else {
+    formula = "C = " + num(curve.cost);
+  }
+  if (o.builder == KdBuilder::median)
+    a.why = head + "The spatial-median builder cuts the node's longest axis in the middle, " + a.text +
+            ", whatever it costs: " + formula + ".";
+  else
+    a.why = head + "Of " + std::to_string(curve.candidates.size()) + " candidate planes the cheapest is " +
+            a.text + ": " + formula + " < " + num(curve.leaf_cost) + ", so the SAH splits there.";
+  return a;
+}
+
+// ---- The picture: subdivide, from the adaptive sampler run on the pixel with the renderer's radiance.
+
+Answer subdivide_answer(const QuestionContext& c) {
+  if (!c.scene || !c.accel) fail("subdivide: no scene");
+  const AntiAliasing aa = c.aa.empty() ? c.scene->render.aa : parse_antialiasing(c.aa);
+  if (aa.mode != AntiAliasing::Mode::adaptive)
+    fail("subdivide: the picture's anti-aliasing is " + to_string(aa) +
+         ", not adaptive (aa: adaptive:T[:D])");
+  const int x = c.pixel[0], y = c.pixel[1];
+  if (c.width < 1 || c.height < 1 || x < 0 || y < 0 || x >= c.width || y >= c.height)
+    fail("subdivide: pixel " + std::to_string(x) + "," + std::to_string(y) + " lies outside the " +
+         std::to_string(c.width) + "x" + std::to_string(c.height) + " picture");
+  // The renderer's radiance: the Whitted tracer along the camera's ray through a raster position.
+  const ProjectiveCamera camera(c.scene->camera, c.width, c.height);
+  const WhittedTracer tracer(*c.scene, *c.accel);
+  RayCounts counts;
+  const RadianceFn radiance = [&](float px, float py) {
+    return tracer.trace_primary(camera.generate(px, py), &counts);
+  };
+  Pcg32 rng(c.scene->render.seed, uint64_t(y) * uint64_t(c.width) + uint64_t(x));
+  const PixelEstimate e = estimate_pixel(aa, x, y, rng, radiance);
+
+  // The first level's five samples, where the sampler takes them: the corners and the centre.
+  const float fx = float(x), fy = float(y);
+  const glm::vec3 v[5] = {radiance(fx, fy), radiance(fx + 1.f, fy), radiance(fx, fy + 1.f),
+                          radiance(fx + 1.f, fy + 1.f), radiance(fx + 0.5f, fy + 0.5f)};
+  glm::vec3 contrast(0.f);
+  for (int ch = 0; ch < 3; ++ch) {
+    float lo = v[0][ch], hi = v[0][ch];
+    for (const glm::vec3& s : v) lo = std::min(lo, s[ch]), hi = std::max(hi, s[ch]);
+    contrast[ch] = hi + lo > 0.f ? (hi - lo) / (hi + lo) : 0.f;
+  }
+  const bool exceeds = contrast_exceeds(v, 5, aa.threshold);
+  Answer a;
+  a.kind = QuestionKind::subdivide;
+  a.samples = e.samples;
+  a.subdivided = e.samples > 5;
+  const std::string head =
+      "The 5 first samples (the 4 corners and the centre) have contrast (max - min) / "
+      "(max + min) = " +
+      triple(contrast) + " in (r, g, b); the threshold is T = " + num(aa.threshold) + ". ";
+  if (aa.max_depth == 0)
+    a.why = head + "With D = 0 levels the pixel is never split: 5 samples.";
+  else if (exceeds)
+    a.why =
+        head +
+        "A channel exceeds it, so the pixel is split into 4 quadrants and refined the same way, at most " +
+        std::to_string(aa.max_depth) + " levels deep: " + std::to_string(e.samples) + " samples in all.";
+  else
+    a.why = head + "No channel exceeds it: the pixel keeps its 5 samples.";
+  a.text = a.subdivided ? "yes: " + std::to_string(e.samples) + " samples" : "no: 5 samples";
+  return a;
+}
+
+std::string normalised(const std::string& s) {
+  std::string out;
+  for (char ch : s)
+    if (!std::isspace(static_cast<unsigned char>(ch)))
+      out += char(std::tolower(static_cast<unsigned char>(ch)));
+  return out;
+}
+
+bool parse_whole(const std::string& s, long long* v) {
+  if (s.empty() || s.size() > 12) return false;
+  size_t i = s[0] == '-' ? 1 : 0;
+  if (i == s.size()) return false;
+  for (size_t k = i; k < s.size(); ++k)
+    if (!std::isdigit(static_cast<unsigned char>(s[k]))) return false;
+  *v = std::stoll(s);
+  return true;
+}
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (;;) {
+    size_t comma = s.find(',', start);
+    parts.push_back(s.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return parts;
+    start = comma + 1;
+  }
+}
+
+int axis_of(const std::string& s) {
+  return s == "x" ? 0 : s == "y" ? 1 : s == "z" ? 2 : -2;
+}
+
 }  // namespace
+
+Answer answer_question(QuestionKind kind, const QuestionContext& context) {
+  switch (kind) {
+    case QuestionKind::next_cell:
+    case QuestionKind::dda_axis:
+      return grid_answer(kind, context);
+    case QuestionKind::first_child:
+      return first_child_answer(context);
+    case QuestionKind::next_pop:
+      return next_pop_answer(context);
+    case QuestionKind::sah_plane:
+      return sah_plane_answer(context);
+    case QuestionKind::subdivide:
+      return subdivide_answer(context);
+  }
+  fail("unknown question");
+}
+
+bool prediction_matches(const Answer& answer, const std::string& prediction) {
+  const std::string p = normalised(prediction);
+  const std::string name = question_kind_name(answer.kind);
+  auto bad = [&](const std::string& expected) -> bool {
+    fail(name + " '" + prediction + "': expected " + expected);
+  };
+  long long v = 0;
+  switch (answer.kind) {
+    case QuestionKind::next_cell: {
+      if (p == "stop") return answer.stops;
+      std::string q = p;
+      if (q.size() >= 2 && q.front() == '(' && q.back() == ')') q = q.substr(1, q.size() - 2);
+      std::vector<std::string> parts = split_commas(q);
+      long long c[3];
+      if (parts.size() != 3) return bad("i,j,k or stop");
+      for (int k = 0; k < 3; ++k)
+        if (!parse_whole(parts[size_t(k)], &c[k])) return bad("i,j,k or stop");
+      return !answer.stops && c[0] == answer.cell[0] && c[1] == answer.cell[1] && c[2] == answer.cell[2];
+    }
+    case QuestionKind::dda_axis:
+      if (p == "none") return answer.axis < 0;
+      if (axis_of(p) < 0) return bad("x, y, z or none");
+      return answer.axis == axis_of(p);
+    case QuestionKind::first_child: {
+      std::vector<std::string> parts = split_commas(p);
+      if (parts.size() > 2) return bad("below, above or a node id, optionally followed by ,push or ,no push");
+      bool match;
+      if (parts[0] == "below")
+        match = answer.first_is_below;
+      else if (parts[0] == "above")
+        match = !answer.first_is_below;
+      else if (parse_whole(parts[0], &v))
+        match = v == answer.first_child;
+      else
+        return bad("below, above or a node id, optionally followed by ,push or ,no push");
+      if (parts.size() == 2) {
+        if (parts[1] == "push")
+          match = match && answer.far_pushed;
+        else if (parts[1] == "nopush")
+          match = match && !answer.far_pushed;
+        else
+          return bad("below, above or a node id, optionally followed by ,push or ,no push");
+      }
+      return match;
+    }
+    case QuestionKind::next_pop:
+      if (p == "stop") return answer.stops;
+      if (!parse_whole(p, &v)) return bad("a node id or stop");
+      return !answer.stops && v == answer.node;
+    case QuestionKind::sah_plane: {
+      if (p == "leaf") return answer.axis < 0;
+      std::vector<std::string> parts = split_commas(p);
+      if (parts.size() > 2 || axis_of(parts[0]) < 0) return bad("x, y or z, optionally ,POSITION, or leaf");
+      if (answer.axis != axis_of(parts[0])) return false;
+      if (parts.size() == 1) return true;
+      char* end = nullptr;
+      double pos = std::strtod(parts[1].c_str(), &end);
+      if (parts[1].empty() || end != parts[1].c_str() + parts[1].size() || !std::isfinite(pos))
+        return bad("x, y or z, optionally ,POSITION, or leaf");
+      double tolerance = 1e-4 * (answer.extent > 0.f ? double(answer.extent)
+                                                     : std::max(1.0, std::fabs(double(answer.position))));
+      return std::fabs(pos - double(answer.position)) <= tolerance;
+    }
+    case QuestionKind::subdivide:
+      if (p == "yes") return answer.subdivided;
+      if (p == "no") return !answer.subdivided;
+      return bad("yes or no");
+  }
+  return false;
+}
 
 const char* question_kind_name(QuestionKind kind) {
   for (const KindInfo& k : kKinds)

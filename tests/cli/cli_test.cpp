@@ -10,9 +10,9 @@
 #include <fstream>
 #include <regex>
 #include <set>
-#include <vector>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -97,13 +97,15 @@ TEST_F(Cli, MalformedJsonNamesTheLine) {
 
 TEST_F(Cli, WrongTypeNamesTheLine) {
   std::string scene = write("type.json",
-                            "{\n  \"objects\": [\n    {\"type\": \"sphere\", \"center\": [0, 0, 0],\n     \"radius\": \"big\"}\n  ]\n}\n");
+                            "{\n  \"objects\": [\n    {\"type\": \"sphere\", \"center\": [0, 0, 0],\n     "
+                            "\"radius\": \"big\"}\n  ]\n}\n");
   expect_error(run("info " + scene), scene + ":4:");
 }
 
 TEST_F(Cli, UnknownKeyNamesTheLine) {
   std::string scene = write("key.json",
-                            "{\n  \"objects\": [ {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1} ],\n  \"camra\": {}\n}\n");
+                            "{\n  \"objects\": [ {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": "
+                            "1} ],\n  \"camra\": {}\n}\n");
   Outcome r = run("info " + scene);
   expect_error(r, scene + ":3:");
   EXPECT_NE(r.err.find("camra"), std::string::npos);
@@ -153,7 +155,7 @@ TEST_F(Cli, BadOptions) {
 TEST_F(Cli, RenderWritesTheImageAndCountsRays) {
   std::string mesh = octahedron();
   Outcome r = run("render " + mesh + " -o " + path("a.png") + " --size 32x24 --aa jitter:2 --samples-map " +
-              path("s.png"));
+                  path("s.png"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("a.png")));
   EXPECT_TRUE(fs::exists(path("s.png")));
@@ -171,8 +173,8 @@ TEST_F(Cli, RaysAndCastAgreeAcrossAccelerators) {
   EXPECT_EQ(fs::file_size(path("r.rays")), 5000u * 32u);
   std::string brute, bvol;
   for (const char* accel : {"brute", "bvol"}) {
-    Outcome r = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path(std::string(accel) + ".hits") +
-                " --accel " + accel + " --reps 2");
+    Outcome r = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " +
+                    path(std::string(accel) + ".hits") + " --accel " + accel + " --reps 2");
     ASSERT_EQ(r.code, 0) << r.err;
     // The last line is the key=value summary.
     std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
@@ -357,14 +359,16 @@ TEST_F(Cli, HeatMapAndGridOptions) {
   EXPECT_TRUE(fs::exists(path("heat.png")));
   EXPECT_NE(r.out.find("scale: 0"), std::string::npos) << r.out;
   ASSERT_EQ(run("rays " + mesh + " --kind random --count 3000 -o " + path("r.rays")).code, 0);
-  ASSERT_EQ(run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code, 0);
+  ASSERT_EQ(
+      run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code,
+      0);
   for (const char* opts : {"--grid-res 4,4,4", "--grid-res 1,7,2 --grid-insert bbox", "--grid-density 0.5"}) {
-    Outcome c = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("g.hits") + " --accel grid " + opts);
+    Outcome c = run("cast " + mesh + " --rays " + path("r.rays") + " --hits " + path("g.hits") +
+                    " --accel grid " + opts);
     ASSERT_EQ(c.code, 0) << c.err;
     EXPECT_EQ(slurp(path("g.hits")), slurp(path("b.hits"))) << opts;
   }
 }
-
 
 // Rows of a CSV file as fields (no quoting: raystep's CSVs have none).
 std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
@@ -384,13 +388,18 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 TEST_F(Cli, KdTreesCastLikeBruteForce) {
   std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/torus_knot.json";
   ASSERT_EQ(run("rays " + scene + " --kind random --count 5000 --seed 5 -o " + path("r.rays")).code, 0);
-  ASSERT_EQ(run("cast " + scene + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code, 0);
+  ASSERT_EQ(
+      run("cast " + scene + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute")
+          .code,
+      0);
   for (const char* opts : {"--accel kd", "--accel kd-median", "--accel kd --mailbox off --leaf-size 4",
                            "--accel kd --ti 10 --tt 2 --empty-bonus 0.5 --max-depth 12"}) {
     Outcome c = run("cast " + scene + " --rays " + path("r.rays") + " --hits " + path("k.hits") + " " + opts);
     ASSERT_EQ(c.code, 0) << c.err;
-    EXPECT_NE(c.out.find(std::string("accel=") + (std::string(opts).find("median") != std::string::npos ? "kd-median" : "kd ")),
-              std::string::npos) << c.out;
+    EXPECT_NE(c.out.find(std::string("accel=") +
+                         (std::string(opts).find("median") != std::string::npos ? "kd-median" : "kd ")),
+              std::string::npos)
+        << c.out;
     EXPECT_EQ(slurp(path("k.hits")), slurp(path("b.hits"))) << opts;
   }
 }
@@ -402,7 +411,8 @@ TEST_F(Cli, SahCurveFollowsTheLecturesFormula) {
     ASSERT_EQ(r.code, 0) << r.err;
     auto rows = csv_rows(slurp(path("c.csv")));
     ASSERT_GT(rows.size(), 2u) << node;
-    std::string header = "axis,position,n_below,n_above,n_planar,area_below,area_above,area_node,cost,chosen\n";
+    std::string header =
+        "axis,position,n_below,n_above,n_planar,area_below,area_above,area_node,cost,chosen\n";
     EXPECT_EQ(slurp(path("c.csv")).substr(0, header.size()), header);
     int chosen = -1;
     double min_cost = 1e30;
@@ -447,7 +457,8 @@ TEST_F(Cli, SahAndKdOptionsRejectBadInput) {
   expect_error(run("sah " + scene + " --node 0 -o " + path("c.txt")), path("c.txt"));
   expect_error(run("sah " + scene + " --node 0 --ti -1 -o " + path("c.csv")), "kd-tree");
   expect_error(run("sah " + scene + " --node 0 --empty-bonus 1 -o " + path("c.csv")), "kd-tree");
-  expect_error(run("trace " + scene + " --accel kd --pixel 1,1 --max-depth 99 -o " + path("t.json")), "kd-tree");
+  expect_error(run("trace " + scene + " --accel kd --pixel 1,1 --max-depth 99 -o " + path("t.json")),
+               "kd-tree");
   expect_error(run("trace " + scene + " --accel grid --pixel 1,1 --build-events -o " + path("t.json")),
                "trace: --build-events");
   EXPECT_FALSE(fs::exists(path("c.csv")));
@@ -473,11 +484,13 @@ TEST_F(Cli, KdTreeStatsPredictsEntryProbabilities) {
 
 TEST_F(Cli, KdTraceWithBuildEvents) {
   std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
-  Outcome r = run("trace " + scene + " --accel kd --pixel 100,80 --secondary --build-events -o " + path("t.json"));
+  Outcome r =
+      run("trace " + scene + " --accel kd --pixel 100,80 --secondary --build-events -o " + path("t.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::string text = slurp(path("t.json"));
-  for (const char* key : {"\"build\": [", "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"",
-                          "\"kind\":\"kd\"", "\"nodes\": [", "\"type\":\"push\"", "\"type\":\"leaf\""})
+  for (const char* key :
+       {"\"build\": [", "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"",
+        "\"kind\":\"kd\"", "\"nodes\": [", "\"type\":\"push\"", "\"type\":\"leaf\""})
     EXPECT_NE(text.find(key), std::string::npos) << key;
   Outcome info = run("trace-info " + path("t.json"));
   ASSERT_EQ(info.code, 0) << info.err;
@@ -490,3 +503,83 @@ TEST_F(Cli, KdTraceWithBuildEvents) {
 }
 
 }  // namespace
+
+// `raystep lesson`: a good lesson checks; a damaged one gives one line naming the file and the setting's
+// line.
+class LessonCli : public Cli {
+ protected:
+  std::string lesson(const std::string& name, const std::string& block, const std::string& more = "") const {
+    return write(name, "# A lesson\n\nIntro.\n\n## One\n\nText.\n\n```raystep\nscene: " +
+                           std::string(RAYSTEP_SOURCE_DIR) +
+                           "/scenes/cornell.json\npixel: 160,200\nstep-to: cell:1\n" + block +
+                           "```\n\n## Two\n\n```raystep\n" + "ask: dda-axis\n```\n" + more);
+  }
+};
+
+TEST_F(LessonCli, CheckPassesAGoodLesson) {
+  std::string file = lesson("good.md", "");
+  Outcome r = run("lesson check " + file);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, file + ": 2 steps, 1 question: ok\n");
+  EXPECT_EQ(r.err, "");
+  // A folder: its lessons in name order.
+  lesson("another.md", "", "## Three\n\n```raystep\naccel: kd\nstep-to: node:1\nask: first-child\n```\n");
+  std::remove(file.c_str());
+  r = run("lesson check " + dir_.string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, path("another.md") + ": 3 steps, 2 questions: ok\n");
+}
+
+TEST_F(LessonCli, CheckReportsTheLineOfTheDamage) {
+  const std::string src = RAYSTEP_SOURCE_DIR;
+  expect_error(run("lesson check " + lesson("unknown.md", "colour: red\n")),
+               path("unknown.md") + ":13: unknown setting 'colour' (known: scene, accel,");
+  expect_error(run("lesson check " + lesson("pixel.md", "pixel: 3,x\n")),
+               path("pixel.md") + ":13: pixel '3,x': expected X,Y whole numbers >= 0, or none");
+  expect_error(run("lesson check " + lesson("outside.md", "pixel: 999,3\n")),
+               path("outside.md") + ":13: step 'One': pixel 999,3: outside the 320x320 picture");
+  expect_error(
+      run("lesson check " + lesson("apply.md", "accel: kd\nstep-to: node:1\n")),
+      path("apply.md") + ":20: step 'Two': dda-axis: the ray walks a kd-tree, not a grid (accel: grid)");
+  expect_error(
+      run("lesson check " + write("noscene.md", "# T\n\n## S\n\n```raystep\nscene: missing.json\n```\n")),
+      path("noscene.md") + ":6: scene 'missing.json': no such file (" + path("missing.json") + ")");
+  expect_error(run("lesson check " + write("fence.md", "# T\n\n## S\n\n```raystep\nscene: x.json\n")),
+               path("fence.md") + ":5: unclosed code fence ```raystep");
+  // The first failure ends the check: the good lesson before it was reported, nothing after it.
+  std::string good = lesson("a.md", "");
+  Outcome r = run("lesson check " + good + " " + path("pixel.md") + " " + good);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.out, good + ": 2 steps, 1 question: ok\n");
+  expect_error(r, path("pixel.md") + ":13: ");
+  expect_error(run("lesson check " + path("none.md")), path("none.md") + ": no such lesson file or folder");
+}
+
+TEST_F(LessonCli, CommandPrintsTheStepsGuiArguments) {
+  std::string file =
+      lesson("good.md", "accel: kd\nzoom: 8\n", "## Three\n\n```raystep\nnode-path: LR\n```\n");
+  Outcome r = run("lesson command " + file + " 3");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "raystep-gui " + std::string(RAYSTEP_SOURCE_DIR) +
+                "/scenes/cornell.json --accel kd --pixel 160,200 --step-to cell:1 --node-path LR --zoom 8\n");
+  expect_error(run("lesson command " + file + " 0"), file + ": step 0: the lesson has 3 steps (1..3)");
+  expect_error(run("lesson command " + file + " 4"), file + ": step 4: the lesson has 3 steps (1..3)");
+  EXPECT_EQ(run("lesson command " + file + " two").code, 2);
+  // A path with a space is quoted for the shell.
+  fs::create_directories(dir_ / "my lessons");
+  std::string spaced = write(
+      "my lessons/x.md",
+      "# T\n## S\n```raystep\nscene: ../../../" +
+          fs::relative(fs::path(RAYSTEP_SOURCE_DIR) / "scenes/cornell.json", dir_.parent_path()).string() +
+          "\n```\n");
+  r = run("lesson command '" + spaced + "' 1");
+  EXPECT_EQ(r.code, 0) << r.err;
+}
+
+TEST_F(LessonCli, AnswersPrintsEachQuestion) {
+  Outcome r = run("lesson answers " + lesson("good.md", ""));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("step 2 'Two' (dda-axis, line 18): ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\n  tMax = ("), std::string::npos) << r.out;
+}

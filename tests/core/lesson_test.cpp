@@ -5,10 +5,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include <unistd.h>
 
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_runner.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -408,6 +410,47 @@ TEST(LessonState, ApplySettingRejectsAskAndUnknownKeys) {
         std::string(e.what()).rfind("unknown setting 'foo' (known: scene, accel, grid-res, grid-density,", 0),
         0u);
   }
+}
+
+// Damaged lessons (characters dropped, duplicated or replaced, lines swapped) are refused with an InputError
+// or read; they never crash, and a lesson that reads is checked the same way.
+TEST(Lesson, DamagedLessonsGiveInputErrors) {
+  const std::string good =
+      "# T\n\nIntro.\n\n## A\n\n```raystep\nscene: ../scenes/cornell.json\naccel: kd\npixel: 160,200\n"
+      "step-to: node:2\nask: first-child\n```\n\n## B\n\n````md\n## x\n```raystep\n````\n\n```raystep\n"
+      "step-to: leaf:1\nask: next-pop\npanel: sah\n```\n## C\n```raystep\nask: sah-plane\nnode-path: "
+      "LR\n```\n";
+  check_lesson(parse_lesson_text(good, kLesson));
+  std::mt19937 rng(5);
+  const std::string alphabet = "#`~:, \nLR0123456789-abcxyz";
+  int read = 0, refused = 0;
+  for (int n = 0; n < 600; ++n) {
+    std::string text = good;
+    for (int k = 0, edits = 1 + int(rng() % 3); k < edits; ++k) {
+      size_t at = rng() % text.size();
+      switch (rng() % 3) {
+        case 0:
+          text.erase(at, 1 + rng() % 4);
+          break;
+        case 1:
+          text.insert(at, 1, alphabet[rng() % alphabet.size()]);
+          break;
+        default:
+          text[at] = alphabet[rng() % alphabet.size()];
+          break;
+      }
+    }
+    try {
+      check_lesson(parse_lesson_text(text, kLesson));
+      ++read;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), kLesson);
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GT(read, 50);
+  EXPECT_GT(refused, 50);
 }
 
 }  // namespace

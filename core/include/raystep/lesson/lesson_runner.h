@@ -3,6 +3,7 @@
 // kept while the state they depend on is unchanged, so a lesson's steps cost one build per structure.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,8 @@ struct StepWorld {
   std::shared_ptr<const Accelerator> accel;
   std::shared_ptr<const Trace> trace;  // null without a pixel
   int width = 0, height = 0;           // the picture's size
+  std::string aa;                      // the picture's anti-aliasing spec ("": the scene's)
+  std::optional<std::array<int, 2>> pixel;  // the traced pixel
   int ray = 0, step = 0;               // the current ray and event (0 without a trace)
   int node = -1;                       // the selected kd-tree node, -1: none
   std::optional<Answer> answer;        // the step's question answered

@@ -48,6 +48,7 @@ struct Answer {
   // next-pop: the node popped next (or stops = true); sah-plane: axis and position (axis -1: the SAH makes a leaf)
   int32_t node = -1;
   float position = 0.f;
+  float extent = 0.f;  // sah-plane: the node's extent along the chosen axis (a typed position's tolerance)
   // subdivide
   bool subdivided = false;
   uint32_t samples = 0;  // the pixel's samples under the settings

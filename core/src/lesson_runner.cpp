@@ -1,0 +1,233 @@
+// Entering a lesson step headless (lesson_runner.h): the same loading, building and tracing as the debugger's
+// session (viz/src/session.cpp: loadSceneData, buildStructureData, tracePixel), the event and node resolved
+// as its scripted mode does, with its messages. Scene, structure and trace are kept while their inputs are
+// unchanged.
+#include "raystep/lesson/lesson_runner.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/trace/pixel_rays.h"
+#include "raystep/trace/record_trace.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+namespace {
+
+// A failure and the settings that caused it, so that check_lesson can point at the line that set one of them.
+class StepError : public InputError {
+ public:
+  StepError(std::vector<std::string> keys, const std::string& what)
+      : InputError("", 0, what), keys_(std::move(keys)) {}
+  const std::vector<std::string>& keys() const { return keys_; }
+
+ private:
+  std::vector<std::string> keys_;
+};
+
+[[noreturn]] void fail(std::vector<std::string> keys, const std::string& what) {
+  throw StepError(std::move(keys), what);
+}
+
+// Every build option, as text: equal keys build equal structures.
+std::string structure_key(const std::string& accel, const StructureOptions& o) {
+  char buf[256];
+  const GridOptions& g = o.grid;
+  std::snprintf(buf, sizeof buf, "%s|%.9g|%d,%d,%d|%d|%.9g|%.9g|%.9g|%d|%d|%.9g|%d", accel.c_str(),
+                double(g.density), g.resolution ? (*g.resolution)[0] : 0,
+                g.resolution ? (*g.resolution)[1] : 0, g.resolution ? (*g.resolution)[2] : 0,
+                int(g.exact_insert), double(o.kd.t_i), double(o.kd.t_t), double(o.kd.empty_bonus),
+                o.kd.max_depth, o.kd.leaf_size, double(o.kd.reference_budget), int(o.kd_mailboxes));
+  return buf;
+}
+
+// The accelerator keeps the scene alive: it refers to the scene's geometry.
+struct Built {
+  std::shared_ptr<const Scene> scene;
+  std::unique_ptr<Accelerator> accel;
+};
+
+}  // namespace
+
+struct LessonRunner::Cache {
+  std::string scene_path, scene_hash;
+  std::shared_ptr<const Scene> scene;
+  std::string structure;
+  std::shared_ptr<const Accelerator> accel;
+  std::string trace_key;
+  std::shared_ptr<const Trace> trace;
+};
+
+QuestionContext StepWorld::context() const {
+  QuestionContext c;
+  c.scene = scene.get();
+  c.accel = accel.get();
+  c.trace = trace.get();
+  c.ray = ray;
+  c.step = step;
+  c.node = node;
+  c.aa = aa;
+  c.width = width;
+  c.height = height;
+  if (pixel) c.pixel = *pixel;
+  return c;
+}
+
+StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKind> ask) {
+  if (!cache_) cache_ = std::make_shared<Cache>();
+  Cache& cache = *cache_;
+  StepWorld w;
+
+  // The scene, loaded once per file.
+  if (state.scene.empty()) fail({"scene"}, "no scene (scene: FILE)");
+  if (!cache.scene || cache.scene_path != state.scene) {
+    cache = Cache{};
+    try {
+      auto scene = std::make_shared<Scene>(load_scene(state.scene));
+      cache.scene_hash = file_content_hash(state.scene);
+      cache.scene = std::move(scene);
+      cache.scene_path = state.scene;
+    } catch (const InputError& e) {
+      fail({"scene"}, std::string("scene: ") + e.what());
+    }
+  }
+  w.scene = cache.scene;
+
+  // The structure, built once per set of options.
+  const std::string key = structure_key(state.accel, state.structure);
+  if (!cache.accel || cache.structure != key) {
+    cache.accel.reset();
+    cache.trace.reset();
+    cache.trace_key.clear();
+    auto built = std::make_shared<Built>();
+    built->scene = cache.scene;
+    try {
+      built->accel = make_accelerator(state.accel, state.structure);
+      built->accel->build(cache.scene->geometry);
+    } catch (const InputError& e) {
+      fail({"accel", "grid-res", "grid-density", "grid-insert", "ti", "tt", "empty-bonus", "max-depth",
+            "leaf-size", "mailbox"},
+           std::string("building the ") + state.accel + ": " + e.detail());
+    }
+    cache.accel = std::shared_ptr<const Accelerator>(built, built->accel.get());
+    cache.structure = key;
+  }
+  w.accel = cache.accel;
+
+  // The picture's size and anti-aliasing.
+  w.width = state.size ? (*state.size)[0] : cache.scene->render.width;
+  w.height = state.size ? (*state.size)[1] : cache.scene->render.height;
+  w.aa = state.aa;
+  w.pixel = state.pixel;
+
+  // The pixel's trace, exactly as the debugger records it when the pixel is clicked.
+  if (state.pixel) {
+    const int px = (*state.pixel)[0], py = (*state.pixel)[1];
+    if (px >= w.width || py >= w.height)
+      fail({"pixel", "size"}, "pixel " + std::to_string(px) + "," + std::to_string(py) + ": outside the " +
+                                  std::to_string(w.width) + "x" + std::to_string(w.height) + " picture");
+    const std::string tkey = std::to_string(w.width) + "x" + std::to_string(w.height) + "@" +
+                             std::to_string(px) + "," + std::to_string(py) + (state.secondary ? "+" : "");
+    if (!cache.trace || cache.trace_key != tkey) {
+      std::vector<RayRequest> requests =
+          pixel_rays(*cache.scene, *cache.accel, w.width, w.height, px, py, state.secondary);
+      cache.trace = std::make_shared<Trace>(
+          record_trace(cache.scene->geometry, *cache.accel, requests, cache.scene_path, cache.scene_hash));
+      cache.trace_key = tkey;
+    }
+    w.trace = cache.trace;
+  }
+
+  // The ray and the event, with the scripted mode's messages.
+  if (!w.trace) {
+    if (state.ray != 0) fail({"ray"}, "ray " + std::to_string(state.ray) + ": no traced pixel (pixel: X,Y)");
+    if (state.event.by != EventSpec::By::start)
+      fail({"step", "step-to"}, std::string(state.event.by == EventSpec::By::index ? "step " : "step-to ") +
+                                    state.event.text + ": no traced pixel (pixel: X,Y)");
+  } else {
+    const int rays = int(w.trace->rays.size());
+    if (state.ray >= rays)
+      fail({"ray", "secondary", "pixel"},
+           "ray " + std::to_string(state.ray) + ": the pixel's trace has " + std::to_string(rays) +
+               (rays == 1 ? " ray (0)" : " rays (0.." + std::to_string(rays - 1) + ")"));
+    w.ray = state.ray;
+    const TracedRay& r = w.trace->rays[size_t(w.ray)];
+    const int n = int(r.events.size());
+    if (state.event.by == EventSpec::By::index) {
+      if (state.event.index >= n)
+        fail({"step"}, "step " + std::to_string(state.event.index) + ": the ray has " + std::to_string(n) +
+                           " events (0.." + std::to_string(n - 1) + ")");
+      w.step = state.event.index;
+    } else if (state.event.by == EventSpec::By::nth) {
+      int seen = 0, found = -1;
+      for (int i = 0; i < n && found < 0; ++i)
+        if (r.events[size_t(i)].type == state.event.type && ++seen == state.event.k) found = i;
+      if (found < 0) fail({"step-to"}, "step-to " + state.event.text + ": the ray has fewer such events");
+      w.step = found;
+    }
+  }
+
+  // The kd-tree's selected node: by id, by path, or the root for the SAH panel.
+  const KdTree* kd = dynamic_cast<const KdTree*>(cache.accel.get());
+  if (state.node.by != NodeSpec::By::none || state.panel == "sah" || state.panel == "kd") {
+    const char* what = state.node.by == NodeSpec::By::id     ? "node"
+                       : state.node.by == NodeSpec::By::path ? "node-path"
+                                                             : "panel";
+    if (!kd) fail({what, "accel"}, std::string(what) + ": no kd-tree (accel: kd or kd-median)");
+    const size_t count = kd->data().nodes.size();
+    w.node = state.panel == "sah" ? 0 : -1;
+    if (state.node.by == NodeSpec::By::id) {
+      if (size_t(state.node.id) >= count)
+        fail({"node"}, "node " + std::to_string(state.node.id) + ": the kd-tree has " +
+                           std::to_string(count) + " nodes (0.." + std::to_string(count - 1) + ")");
+      w.node = state.node.id;
+    }
+    if (state.node.by == NodeSpec::By::path) {
+      try {
+        w.node = int(kd_node_by_path(kd->data(), state.node.path));
+      } catch (const InputError& e) {
+        std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
+        if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)
+          why = why.substr(colon + 3);
+        fail({"node-path"}, "node-path '" + state.node.path + "': " + why);
+      }
+    }
+  }
+
+  if (ask) {
+    try {
+      w.answer = answer_question(*ask, w.context());
+    } catch (const InputError& e) {
+      fail({"ask"}, e.detail());
+    }
+  }
+  return w;
+}
+
+int check_lesson(const Lesson& lesson) {
+  LessonRunner runner;
+  int questions = 0;
+  for (const LessonStep& step : lesson.steps) {
+    try {
+      StepWorld w = runner.enter(step.state, step.ask);
+      if (w.answer) ++questions;
+    } catch (const StepError& e) {
+      // The line of this step's last setting among those responsible; else the step's heading.
+      int line = 0;
+      for (const std::string& key : e.keys()) {
+        if (key == "ask" && step.ask) line = std::max(line, step.ask_line);
+        for (const LessonSetting& s : step.changes)
+          if (s.key == key) line = std::max(line, s.line);
+      }
+      throw InputError(lesson.path, line ? line : step.line, "step '" + step.title + "': " + e.detail());
+    } catch (const InputError& e) {
+      throw InputError(lesson.path, step.line, "step '" + step.title + "': " + e.what());
+    }
+  }
+  return questions;
+}
+
+}  // namespace raystep
