@@ -14,6 +14,7 @@
 #include <set>
 
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_runner.h"
 #include "viz_test_util.h"
 
 namespace {
@@ -345,6 +346,67 @@ TEST(Lesson, HandoutHasAFigurePerStepAndFoldedAnswers) {
     if (show == "window") EXPECT_GT(img.width, 1280) << i + 1;
     if (show == "picture") EXPECT_TRUE(img.width != viewWidth && img.width < 1280) << i + 1;
   }
+}
+
+// The quiz: a prediction typed for the step's question is marked by core's prediction_matches against the
+// answer core computes (here computed again headless by LessonRunner), the answer and why are shown, the walk
+// steps to what was asked, and the score counts. Predict mode does the same for the next cell of any ray.
+TEST(Lesson, QuizMarksRightAndWrongPredictions) {
+  const std::string path = kSourceDir + "/tests/viz/data/grid-walk.md";
+  raystep::Lesson lesson = raystep::parse_lesson(path);
+  raystep::LessonRunner runner;
+  // Step 2 asks next-cell, step 5 dda-axis.
+  raystep::StepWorld w2 = runner.enter(lesson.steps[1].state, lesson.steps[1].ask);
+  raystep::StepWorld w5 = runner.enter(lesson.steps[4].state, lesson.steps[4].ask);
+  ASSERT_TRUE(w2.answer && w5.answer);
+  const raystep::Answer& cell = *w2.answer;
+  std::string right = cell.stops ? "stop"
+                                 : std::to_string(cell.cell[0]) + "," + std::to_string(cell.cell[1]) + "," +
+                                       std::to_string(cell.cell[2]);
+  std::string wrong = cell.stops ? "0,0,0" : "stop";
+  struct Case {
+    int step;
+    std::string prediction;
+    bool right;
+  };
+  const std::string axis = std::string(w5.answer->axis < 0 ? "none" : std::string(1, "xyz"[w5.answer->axis]));
+  for (const Case& c : {Case{2, right, true}, Case{2, wrong, false}, Case{5, axis, true},
+                        Case{5, axis == "x" ? "y" : "x", false}}) {
+    SCOPED_TRACE("step " + std::to_string(c.step) + " predicting " + c.prediction);
+    std::string st = kOut + "/quiz.json";
+    GuiRun r = gui("--lesson " + quote(path) + " --lesson-step " + std::to_string(c.step) + " --predict " +
+                       quote(c.prediction) + " --dump-state " + quote(st) + " --quit",
+                   "lesson_quiz");
+    ASSERT_EQ(r.code, 0) << r.err;
+    json j = readJson(st);
+    const json& quiz = j["lesson"]["pane"]["quiz"];
+    EXPECT_EQ(quiz["right"], c.right) << quiz.dump(1);
+    EXPECT_EQ(j["lesson"]["right"], c.right ? 1 : 0);
+    EXPECT_EQ(j["lesson"]["asked"], 1);
+    const raystep::Answer& answer = c.step == 2 ? cell : *w5.answer;
+    EXPECT_NE(quiz["result"].get<std::string>().find(answer.text.substr(0, 12)), std::string::npos)
+        << quiz["result"];
+    EXPECT_NE(quiz["result"].get<std::string>().find("Debugger:"), std::string::npos) << quiz["result"];
+    EXPECT_EQ(j["lesson"]["away"], true) << "the walk stepped to what was asked";
+    if (c.step == 2 && !cell.stops) {  // ... to the cell the answer names
+      EXPECT_EQ(j["event_type"], "cell");
+      EXPECT_EQ(j["view"]["current_cell"]["cell"], json({cell.cell[0], cell.cell[1], cell.cell[2]}));
+    }
+  }
+  // Predict mode on step 1's ray (at its first cell): the next cell is step 2's (cell:2), then a wrong guess.
+  const json next = freshRun(lesson, 2).state["view"]["current_cell"]["cell"];
+  std::string second = std::to_string(next[0].get<int>()) + "," + std::to_string(next[1].get<int>()) + "," +
+                       std::to_string(next[2].get<int>());
+  std::string st = kOut + "/quiz_predict.json";
+  GuiRun r = gui("--lesson " + quote(path) + " --lesson-step 1 --predict-next " + quote(second + ";stop") +
+                     " --dump-state " + quote(st) + " --quit",
+                 "lesson_quiz_predict");
+  ASSERT_EQ(r.code, 0) << r.err;
+  json j = readJson(st);
+  EXPECT_EQ(j["lesson"]["right"], 1);
+  EXPECT_EQ(j["lesson"]["asked"], 2);
+  EXPECT_EQ(j["lesson"]["pane"]["quiz"]["right"], false);
+  EXPECT_EQ(j["lesson"]["pane"]["quiz"]["score"], "Score: 1 / 2");
 }
 
 }  // namespace

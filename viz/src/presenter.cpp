@@ -213,6 +213,7 @@ void Presenter::predictNext(const QString& prediction) {
   QuizPanel* quiz = pane_->quiz();
   Session* s = window_.session();
   const TracedRay* r = s->ray();
+  if (!quiz->predicting()) quiz->setPredicting(true, r && isTreeRay(*r) ? tr("node") : tr("cell"));
   if (!r) {
     quiz->showResult(std::nullopt, tr("Click a pixel first: Predict follows its ray."));
     return;

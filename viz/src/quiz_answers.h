@@ -1,20 +1,16 @@
-// The quiz's two calls into core (question.h), in one place: until core's answer_question lands on this
-// branch they say so instead of answering.
+// The quiz's two calls into core (question.h), in one place: the answer computed from the walk or the build,
+// and whether a typed prediction matches it.
 #pragma once
 
 #include "raystep/lesson/question.h"
-#include "raystep/util/error.h"
 
 namespace raystep::viz {
 
-inline Answer computeAnswer(QuestionKind kind, const QuestionContext&) {
-  Answer a;
-  a.kind = kind;
-  a.text = "(the answer needs core's answer_question, not merged yet)";
-  return a;
+inline Answer computeAnswer(QuestionKind kind, const QuestionContext& context) {
+  return answer_question(kind, context);
 }
-inline bool predictionMatches(const Answer&, const std::string&) {
-  throw InputError("", 0, "the quiz needs core's prediction_matches (not merged yet)");
+inline bool predictionMatches(const Answer& answer, const std::string& prediction) {
+  return prediction_matches(answer, prediction);
 }
 
 }  // namespace raystep::viz

@@ -175,6 +175,8 @@ void defineOptions(QCommandLineParser& p) {
                         "DIR/step-N.png (as --screenshot-3d).", "DIR");
   opt("export-handout", "lesson: write each step's figure and an index.html a student can read alone.", "DIR");
   opt("predict", "lesson: type this prediction into the step's question and reveal the answer.", "ANSWER");
+  opt("predict-next", "lesson: Predict mode: for each of these predictions (;-separated: i,j,k or a node id, or "
+                      "stop), predict the next cell or node, then step there.", "LIST");
   opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).", "FILE");
   opt("quit", "Quit when done (scripted mode).");
 }
@@ -413,6 +415,8 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
     enter(1);
   }
   if (p.isSet("predict")) presenter->predictAndReveal(p.value("predict"));
+  if (p.isSet("predict-next"))  // Predict mode: each prediction, then the step it is about
+    for (const QString& guess : p.value("predict-next").split(';')) presenter->predictNext(guess);
   runActions(window, p);
   if (p.isSet("export-handout")) exportHandout(window, *presenter, p.value("export-handout"));
   finish(window);
@@ -439,7 +443,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
                                 "screenshot",  "screenshot-3d", "dump-state",   "export-trace", "open-bad",
                                 "panel",       "node",         "node-path",     "pick-3d",      "export-sah",
                                 "screenshot-sah", "edit-ti",   "lesson-step",   "lesson-walk",  "export-handout",
-                                "open-lesson-bad", "predict"};
+                                "open-lesson-bad", "predict", "predict-next"};
   bool anyScript = quit;
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
