@@ -135,6 +135,10 @@ struct SceneView::Impl {
   // kd-tree: the nodes waiting on the stack, the current node's split plane.
   vtkNew<vtkPolyData> stackData, splitData;
   vtkSmartPointer<vtkActor> stackActor, splitActor;
+  // The primitive being tested: its outline (its face shows the test's result, known at the test's event, so
+  // that a leaf's or cell's last test is seen with its result before the walk moves on).
+  vtkNew<vtkPolyData> testingData;
+  vtkSmartPointer<vtkActor> testingActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
   // The node selected in the tree view (its box, in the live kd-tree), and the click that picks the scene.
@@ -306,6 +310,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.hitActor->GetProperty()->SetLighting(false);
   }
   d.stackActor = unlitActor(d.stackData, palette::stackNode, 3.f);
+  d.testingActor = unlitActor(d.testingData, palette::primTesting, 3.f);
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
   // On a layer of its own: over the scene (which stays the same from step to step, see BackdropCache) and under
@@ -319,7 +324,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.picker->AddPickList(d.sceneActor);
   // (Watched in Qt: once the camera's style has the mouse, VTK gives the release to the style alone.)
   d.widget->installEventFilter(this);
-  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
+  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.testingActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
 
@@ -496,7 +501,7 @@ void SceneView::rebuildGeometry() {
   QString walk = swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) +
                  swatch(palette::segment, tr("current [tmin, tmax]"));
   QString hits = swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit"));
-  QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested")) +
+  QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested (outline)")) +
                        swatch(palette::primHit, tr("hit")) + swatch(palette::primMissed, tr("missed")) +
                        swatch(palette::primSkipped, tr("skipped (mailbox)"));
   if (d.haveTree)
@@ -685,17 +690,48 @@ void SceneView::updateStep() {
   {
     auto* pcolors = vtkUnsignedCharArray::SafeDownCast(d.primData->GetCellData()->GetScalars());
     vtkIdType cell = 0;
+    vtkNew<vtkPoints> tpts;
+    vtkNew<vtkCellArray> tlines;
     for (size_t i = 0; i < s.prims.size() && i < d.primCells.size(); ++i) {
       const PrimMark& m = s.prims[i];
       QColor c = m.state == PrimState::pending   ? palette::primPending
-                 : m.state == PrimState::testing ? palette::primTesting
+                 : m.state == PrimState::testing ? (m.hit ? palette::primHit : palette::primMissed)
                  : m.state == PrimState::hit     ? palette::primHit
                  : m.state == PrimState::missed  ? palette::primMissed
                                                  : palette::primSkipped;
+      if (auto it = d.prims.find(m.prim); m.state == PrimState::testing && it != d.prims.end()) {
+        const PrimShape& p = it->second;
+        if (p.sphere) {  // three great circles
+          for (int axis = 0; axis < 3; ++axis) {
+            vtkIdType first = tpts->GetNumberOfPoints();
+            const int n = 48;
+            for (int k = 0; k <= n; ++k) {
+              double a = 2.0 * M_PI * k / n;
+              glm::vec3 q(0.f);
+              q[(axis + 1) % 3] = float(std::cos(a)) * p.radius;
+              q[(axis + 2) % 3] = float(std::sin(a)) * p.radius;
+              q += p.v[0];
+              tpts->InsertNextPoint(q.x, q.y, q.z);
+              if (k > 0) {
+                vtkIdType seg[2] = {first + k - 1, first + k};
+                tlines->InsertNextCell(2, seg);
+              }
+            }
+          }
+        } else {
+          vtkIdType ids[4];
+          for (int k = 0; k < 3; ++k) ids[k] = tpts->InsertNextPoint(p.v[k].x, p.v[k].y, p.v[k].z);
+          ids[3] = ids[0];
+          tlines->InsertNextCell(4, ids);
+        }
+      }
       unsigned char rgb[3] = {(unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue()};
       for (int k = 0; k < d.primCells[i]; ++k) pcolors->SetTypedTuple(cell++, rgb);
     }
     pcolors->Modified();
+    d.testingData->SetPoints(tpts);
+    d.testingData->SetLines(tlines);
+    d.testingData->Modified();
   }
   d.primData->Modified();
   // Translucent, so that a big hit triangle does not hide the cells and the ray behind it.
@@ -853,7 +889,7 @@ void SceneView::fitCameraTo(const double* bounds) {
 void SceneView::setScale(double scale) {
   Impl& d = *d_;
   if (d.lineWidths.empty())
-    for (vtkActor* a : {d.outlineActor.Get(), d.latticeActor.Get(), d.visitedActor.Get(), d.rayActor.Get(),
+    for (vtkActor* a : {d.outlineActor.Get(), d.latticeActor.Get(), d.visitedActor.Get(), d.testingActor.Get(), d.rayActor.Get(),
                         d.aheadActor.Get(), d.segmentActor.Get(), d.cellActor.Get(), d.stackActor.Get(),
                         d.splitActor.Get(), d.selectedActor.Get()})
       d.lineWidths.push_back({a, a->GetProperty()->GetLineWidth()});
