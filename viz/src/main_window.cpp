@@ -68,7 +68,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   auto* stateScroll = new QScrollArea;
   stateScroll->setWidget(statePanel_);
   stateScroll->setWidgetResizable(true);
-  auto* right = new QSplitter(Qt::Vertical);
+  auto* right = rightSplit_ = new QSplitter(Qt::Vertical);
   right->addWidget(stateScroll);
   right->addWidget(statePanel_->mailboxWidget());
   right->addWidget(eventList_);
@@ -138,7 +138,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
                                   "3D view, shows its nodes and SAH curves"));
-    else if (!kd) kdDock_->hide();
+    else if (!kd) hideKdPanel();
     showSahCurve();
   });
   connect(session_, &Session::stepChanged, this, [this] {
@@ -278,10 +278,18 @@ void MainWindow::setPresenterScale(double scale) {
 void MainWindow::showKdPanel() {
   if (kdDock_->isVisible()) return;
   kdDock_->show();
-  resizeDocks({kdDock_}, {270}, Qt::Vertical);
+  resizeDocks({kdDock_}, {int(250 * scale_)}, Qt::Vertical);
+  // Below 900 pixels the dock leaves the state column too little room for the node, t* and the stack: the
+  // mailbox table (the event list says the same per test) gives its room up while the dock is open.
+  if (height() < 900) rightSplit_->setSizes({1000, 0, int(110 * scale_)});
 }
 
-void MainWindow::hideKdPanel() { kdDock_->hide(); }
+void MainWindow::hideKdPanel() {
+  if (!kdDock_->isVisible()) return;
+  kdDock_->hide();
+  rightSplit_->setSizes({440, 110, 180});
+}
+
 
 bool MainWindow::kdPanelVisible() const { return kdDock_->isVisible(); }
 

@@ -13,6 +13,7 @@
 #include <QMainWindow>
 
 class QDockWidget;
+class QSplitter;
 
 #include <string>
 
@@ -134,6 +135,7 @@ class MainWindow : public QMainWindow {
   TreeView* treeView_;
   SahChart* sahChart_;
   QDockWidget* kdDock_;
+  QSplitter* rightSplit_ = nullptr;  // the state panel, the mailbox table, the event list
   QDockWidget* lessonDock_ = nullptr;
   LessonPane* lessonPane_ = nullptr;
   Presenter* presenter_ = nullptr;
