@@ -64,6 +64,12 @@ EventList::EventList(Session* session, QWidget* parent) : QWidget(parent), sessi
   connect(session_, &Session::stepChanged, this, &EventList::sync);
 }
 
+void EventList::setScale(double scale) {
+  QFont f = QFontDatabase::systemFont(QFontDatabase::FixedFont);
+  if (f.pointSizeF() > 0) f.setPointSizeF(f.pointSizeF() * scale);
+  view_->setFont(f);
+}
+
 int EventList::currentRow() const { return view_->currentIndex().row(); }
 
 void EventList::resizeEvent(QResizeEvent* event) {

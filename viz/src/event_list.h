@@ -16,6 +16,7 @@ class EventList : public QWidget {
  public:
   explicit EventList(Session* session, QWidget* parent = nullptr);
   int currentRow() const;
+  void setScale(double scale);  // the fixed-width font, times the presenter scale
 
  protected:
   // The list shrinks when a panel opens below it: the current event is brought back into view.

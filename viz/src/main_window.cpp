@@ -59,7 +59,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   statePanel_ = new StatePanel(session_);
   eventList_ = new EventList(session_);
 
-  auto* left = new QSplitter(Qt::Vertical);
+  auto* left = leftSplit_ = new QSplitter(Qt::Vertical);
   left->addWidget(structure_);
   left->addWidget(imageView_);
   left->setStretchFactor(0, 0);
@@ -224,6 +224,9 @@ Presenter* MainWindow::openLesson(const Lesson& lesson) {
   lessonDock_->show();
   lessonPane_->setScale(scale_);
   setWindowTitle(tr("raystep - lesson: %1").arg(QString::fromStdString(lesson.title)));
+  if (scale_ == 1.0)
+    statusBar()->showMessage(tr("Presenting to a room? View > Presenter scale 1.5 (or --scale 1.5) is readable from "
+                                "the back; F5: full screen."));
   return presenter_;
 }
 
@@ -233,7 +236,7 @@ void MainWindow::fitLessonPane() {
   // pane is held at its width while the window grows (else the central widget would take the growth).
   // Where the screen has no room for both, the window stays within it and the pane takes its width from the
   // debugger (a projector's 1920 x 1080 full screen).
-  const int pane = int(440 * scale_);
+  const int pane = int((scale_ > 1.0 ? 380 : 440) * scale_);
   const int separator = style()->pixelMetric(QStyle::PM_DockWidgetSeparatorExtent);
   const QScreen* screen = QApplication::primaryScreen();
   const int room = screen ? screen->availableGeometry().width() : 1 << 20;
@@ -272,6 +275,12 @@ void MainWindow::setPresenterScale(double scale) {
   QApplication::setFont(f);
   sceneView_->setScale(scale);
   sahChart_->setScale(scale);
+  eventList_->setScale(scale);
+  statePanel_->setScale(scale);
+  structure_->setCompact(scale > 1.0);
+  timeline_->setCompact(scale > 1.0);
+  imageView_->setCompact(scale > 1.0);
+  if (scale > 1.0) leftSplit_->setSizes({structure_->sizeHint().height(), 10000});  // the picture takes the rest
   if (lessonPane_) lessonPane_->setScale(scale);
 }
 

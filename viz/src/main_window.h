@@ -135,7 +135,8 @@ class MainWindow : public QMainWindow {
   TreeView* treeView_;
   SahChart* sahChart_;
   QDockWidget* kdDock_;
-  QSplitter* rightSplit_ = nullptr;  // the state panel, the mailbox table, the event list
+  QSplitter* rightSplit_ = nullptr;
+  QSplitter* leftSplit_ = nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
   QDockWidget* lessonDock_ = nullptr;
   LessonPane* lessonPane_ = nullptr;
   Presenter* presenter_ = nullptr;

@@ -281,7 +281,7 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   int rows = int(s.stack.size());
   stack_->setRowCount(rows);
   // As tall as its rows (at least one, at most eight), so that the panel below it stays in view.
-  stack_->setFixedHeight(stack_->horizontalHeader()->height() + 18 * std::clamp(rows, 1, 8) + 4);
+  stack_->setFixedHeight(stack_->horizontalHeader()->height() + rowHeight_ * std::clamp(rows, 1, 8) + 4);
   for (int row = 0; row < rows; ++row) {
     const StackEntry& e = s.stack[size_t(rows - 1 - row)];
     QString cells[4] = {QString::number(e.node), QString::number(e.depth), num(e.tMin), num(e.tMax)};
@@ -298,6 +298,13 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
       item->setFont(f);
     }
   }
+}
+
+void StatePanel::setScale(double scale) {
+  rowHeight_ = int(std::lround(18 * scale));
+  stack_->verticalHeader()->setDefaultSectionSize(rowHeight_);
+  stack_->setMinimumHeight(stack_->horizontalHeader()->sizeHint().height() + 5 * rowHeight_ + 4);
+  refresh();
 }
 
 QJsonObject StatePanel::dumpState() const {

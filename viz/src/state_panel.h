@@ -31,6 +31,8 @@ class StatePanel : public QWidget {
   QJsonObject dumpState() const;
   // The mailbox table, which the window places on its own (it wants height).
   QWidget* mailboxWidget() const { return mailboxBox_; }
+  // The stack table's rows follow the presenter scale (their height was set for the desk's font).
+  void setScale(double scale);
 
  private:
   void refresh();
@@ -52,6 +54,7 @@ class StatePanel : public QWidget {
   QWidget* mailboxBox_;
   QTableView* mailboxView_;
   MailboxModel* mailbox_;
+  int rowHeight_ = 18;
 };
 
 }  // namespace raystep::viz

@@ -52,6 +52,13 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   speed_->setSuffix(tr(" ev/s"));
   row->addWidget(speed_);
   row->addSpacing(16);
+  // Jump to and Ray: one group, on the first row, or on the slider's row when the timeline is compact.
+  jumpBox_ = new QWidget;
+  auto* jumpRow = new QHBoxLayout(jumpBox_);
+  jumpRow->setContentsMargins(0, 0, 0, 0);
+  row->addWidget(jumpBox_);
+  QHBoxLayout* buttons = row;
+  row = jumpRow;
   row->addWidget(new QLabel(tr("Jump to")));
   QToolButton* prevKind = button(tr("< prev"), tr("Previous event of this kind"));
   kind_ = new QComboBox;
@@ -74,9 +81,10 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   ray_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
   ray_->setMinimumContentsLength(14);
   row->addWidget(ray_);
+  row = buttons;
   row->addStretch();
   layout->addLayout(row);
-  auto* row2 = new QHBoxLayout;
+  auto* row2 = row2_ = new QHBoxLayout;
   position_ = new QLabel;
   position_->setObjectName("timelinePosition");
   position_->setMinimumWidth(230);
@@ -141,6 +149,15 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     if (!session_->ray() && session_->structure()) offerUnit(session_->structure()->kind != "grid");
   });
   refresh();
+}
+
+void Timeline::setCompact(bool on) {
+  // The group moves between rows: at presenter scales one row of everything is wider than a projector.
+  auto* row1 = static_cast<QBoxLayout*>(layout()->itemAt(0)->layout());
+  row1->removeWidget(jumpBox_);
+  row2_->removeWidget(jumpBox_);
+  if (on) row2_->insertWidget(0, jumpBox_);
+  else row1->insertWidget(row1->count() - 1, jumpBox_);  // before the stretch
 }
 
 void Timeline::setLessonKeys(bool on) {
