@@ -9,6 +9,7 @@
 #include "quiz_panel.h"
 #include "raystep/util/error.h"
 #include "replay.h"
+#include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
 #include "timeline.h"
@@ -68,6 +69,11 @@ Presenter::Presenter(MainWindow& window, LessonPane* pane, Lesson lesson)
                          .arg(grid->cell_of(p[0], 0))
                          .arg(grid->cell_of(p[1], 1))
                          .arg(grid->cell_of(p[2], 2)));
+  });
+  // A candidate clicked on the SAH chart answers "which plane" (axis,position).
+  connect(window_.sahChart(), &SahChart::candidateClicked, this, [this](int axis, float position) {
+    if (pane_->quiz()->question() == QuestionKind::sah_plane)
+      pane_->quiz()->setPrediction(QString("%1,%2").arg(QChar("xyz"[axis])).arg(double(position), 0, 'g', 7));
   });
   // Anything that changes the walk or the selection outside entering a step leaves the step.
   Session* s = window_.session();

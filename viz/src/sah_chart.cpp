@@ -6,6 +6,7 @@
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QSaveFile>
 #include <QVBoxLayout>
 
@@ -136,10 +137,54 @@ SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
     a->GetLabelProperties()->SetFontSize(10);
   }
   layout->addWidget(d.widget, 1);
+  d.widget->installEventFilter(this);  // a click picks the nearest candidate
   showMessage(tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH cost curve."));
 }
 
 SahChart::~SahChart() = default;
+
+bool SahChart::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == d_->widget && event->type() == QEvent::MouseButtonRelease) {
+    auto* e = static_cast<QMouseEvent*>(event);
+    int axis = 0;
+    float position = 0.f;
+    if (e->button() == Qt::LeftButton && candidateAt(e->pos(), &axis, &position))
+      Q_EMIT candidateClicked(axis, position);
+  }
+  return QWidget::eventFilter(watched, event);
+}
+
+bool SahChart::candidateAt(const QPoint& at, int* axis, float* position) const {
+  const Impl& d = *d_;
+  if (!curve_) return false;
+  // The axes' ends in the scene's pixels (origin bottom left) map the chart's values to the widget.
+  vtkAxis* bottom = d.chart->GetAxis(vtkAxis::BOTTOM);
+  vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
+  const float* b1 = bottom->GetPoint1();
+  const float* b2 = bottom->GetPoint2();
+  const float* l1 = left->GetPoint1();
+  const float* l2 = left->GetPoint2();
+  const double ratio = d.widget->devicePixelRatioF();
+  const double px = at.x() * ratio, py = (d.widget->height() - at.y()) * ratio;
+  const Bounds3& box = curve_->info.box;
+  double best = 20.0 * ratio;
+  bool found = false;
+  for (const SahCandidate& c : curve_->candidates) {
+    if (c.axis < 0 || c.axis > 2) continue;
+    float extent = box.hi[c.axis] - box.lo[c.axis];
+    double x = extent > 0.f ? double(c.position - box.lo[c.axis]) / double(extent) : 0.5;
+    double sx = b1[0] + (x - bottom->GetMinimum()) / (bottom->GetMaximum() - bottom->GetMinimum()) * (b2[0] - b1[0]);
+    double sy = l1[1] + (double(c.cost) - left->GetMinimum()) / (left->GetMaximum() - left->GetMinimum()) * (l2[1] - l1[1]);
+    double dist = std::hypot(sx - px, sy - py);
+    if (dist < best) {
+      best = dist;
+      *axis = c.axis;
+      *position = c.position;
+      found = true;
+    }
+  }
+  return found;
+}
 
 void SahChart::setScale(double scale) {
   Impl& d = *d_;

@@ -43,6 +43,16 @@ class SahChart : public QWidget {
   bool saveChart(const QString& path);
   // What the chart shows: the node, points per axis, the chosen split, the colours and where it is on screen.
   QJsonObject dumpState() const;
+  // The candidate nearest to widget position `at` of the chart (a click): its axis and position; false
+  // without a curve or when nothing is within 20 pixels.
+  bool candidateAt(const QPoint& at, int* axis, float* position) const;
+
+ Q_SIGNALS:
+  // A click on the chart near a candidate (the quiz's sah-plane answer).
+  void candidateClicked(int axis, float position);
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
   struct Impl;
