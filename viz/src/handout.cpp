@@ -74,7 +74,8 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
       fail("cannot write " + (tmp.path() + "/" + png).toStdString());
 
     html += QString("<section id=\"step-%1\">\n<h2>%1. %2</h2>\n").arg(i + 1).arg(esc(step.title));
-    html += markdownToHtmlBody(QString::fromStdString(step.narration)) + "\n";
+    if (!QString::fromStdString(step.narration).trimmed().isEmpty())
+      html += markdownToHtmlBody(QString::fromStdString(step.narration)) + "\n";
     html +=
         QString("<figure><img src=\"%1\" alt=\"Step %2: %3\"><figcaption>Step %2: %4</figcaption></figure>\n")
             .arg(png)

@@ -23,7 +23,14 @@ QString markdownToHtmlBody(const QString& markdown) {
   int open = html.indexOf("<body");
   int start = open >= 0 ? html.indexOf('>', open) + 1 : 0;
   int end = html.lastIndexOf("</body>");
-  return html.mid(start, end > start ? end - start : -1).trimmed();
+  QString body = html.mid(start, end > start ? end - start : -1).trimmed();
+  // Qt's own style properties mean nothing to a browser, and its paragraph margins and zero indents are what
+  // a browser does anyway.
+  static const QRegularExpression qtOnly(
+      R"((-qt-[a-z-]+:[^;"]*;|margin-(top|bottom):[^;"]*;|margin-(left|right):0px;|text-indent:0px;)\s*)");
+  body.remove(qtOnly);
+  body.remove(QRegularExpression(R"( style="\s*")"));
+  return body;
 }
 
 LessonPane::LessonPane(QWidget* parent) : QWidget(parent) {
