@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -41,12 +42,15 @@ std::string joinArgs(const std::vector<std::string>& args) {
 //   backdrop  whether the 3D view's scene layer is an image yet depends on how many renders found it
 //             unchanged (BackdropImageDrawsLikeTheScene checks the pixels are the same either way);
 //   sah/viewport while the kd dock is closed: where the hidden chart was last laid out (a fresh run never
-//             laid it out; a walk may have shown the dock at an earlier step).
+//             laid it out; a walk may have shown the dock at an earlier step);
+//   sah/concealed, sah/plots at a sah-plane question: the chart hides the SAH's choice (one plot fewer)
+//             until the answer is revealed.
 json withoutLessonFields(json j) {
   j.erase("window");
   j.erase("lesson");
   if (j.contains("view")) j["view"].erase("backdrop");
   if (j.contains("sah") && j["sah"].value("visible", true) == false) j["sah"].erase("viewport");
+  if (j.contains("sah")) j["sah"].erase("concealed");
   return j;
 }
 
@@ -185,8 +189,13 @@ void checkWalk(const raystep::Lesson& lesson, const std::vector<int>& steps, con
     ASSERT_TRUE(entered.contains("lesson"));
     EXPECT_EQ(entered["lesson"]["step"], n);
     EXPECT_EQ(entered["lesson"]["away"], false);
+    json a = withoutLessonFields(entered), b = withoutLessonFields(f.state);
+    if (entered["sah"].value("concealed", false)) {
+      a["sah"].erase("plots");
+      b["sah"].erase("plots");
+    }
     std::string where;
-    EXPECT_TRUE(sameJson(withoutLessonFields(entered), withoutLessonFields(f.state), &where)) << where;
+    EXPECT_TRUE(sameJson(a, b, &where)) << where;
     raystep::Rgb8Image view = raystep::read_png_rgb8(dir + "/step-" + std::to_string(n) + ".png");
     EXPECT_EQ(differingPixels(view, f.view), 0u) << "3D view differs from the scripted run's";
   }
@@ -397,6 +406,25 @@ TEST(Lesson, QuizMarksRightAndWrongPredictions) {
       EXPECT_EQ(j["view"]["current_cell"]["cell"], json({cell.cell[0], cell.cell[1], cell.cell[2]}));
     }
   }
+  // sah-plane (the kd lesson's step 2): the chart hides the SAH's choice until the answer is revealed.
+  const std::string kdPath = kSourceDir + "/tests/viz/data/kd-walk.md";
+  raystep::Lesson kd = raystep::parse_lesson(kdPath);
+  raystep::StepWorld root = runner.enter(kd.steps[1].state, kd.steps[1].ask);
+  ASSERT_TRUE(root.answer && root.answer->axis >= 0);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%c,%.9g", "xyz"[root.answer->axis], double(root.answer->position));
+  for (bool reveal : {false, true}) {
+    std::string st = kOut + "/quiz_sah.json";
+    GuiRun r = gui("--lesson " + quote(kdPath) + " --lesson-step 2" +
+                       (reveal ? " --predict " + quote(buf) : "") + " --dump-state " + quote(st) + " --quit",
+                   "lesson_quiz_sah");
+    ASSERT_EQ(r.code, 0) << r.err;
+    json j = readJson(st);
+    EXPECT_EQ(j["sah"]["concealed"], !reveal);
+    EXPECT_EQ(j["sah"]["node"], 0);
+    if (reveal) EXPECT_EQ(j["lesson"]["pane"]["quiz"]["right"], true) << j["lesson"]["pane"]["quiz"].dump(1);
+  }
+
   // Predict mode on step 1's ray (at its first cell): the next cell is step 2's (cell:2), then a wrong guess.
   const json next = freshRun(lesson, 2).state["view"]["current_cell"]["cell"];
   std::string second = std::to_string(next[0].get<int>()) + "," + std::to_string(next[1].get<int>()) + "," +

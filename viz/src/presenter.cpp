@@ -116,6 +116,7 @@ void Presenter::goTo(int index) {
   revealed_ = false;
   pane_->showStep(lesson_, index);
   pane_->quiz()->setQuestion(step.ask);
+  window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane);
   entering_ = true;
   try {
     enterState(window_, step.state);
@@ -180,6 +181,7 @@ void Presenter::predictAndReveal(const QString& prediction) {
     quiz->showResult(std::nullopt, tr("Not understood: %1").arg(html(asSetting(e.what()))));
     return;
   }
+  window_.sahChart()->setConceal(false);
   if (!revealed_) {  // the first answer counts; trying again after the reveal does not
     revealed_ = true;
     ++asked_;

@@ -186,6 +186,12 @@ bool SahChart::candidateAt(const QPoint& at, int* axis, float* position) const {
   return found;
 }
 
+void SahChart::setConceal(bool on) {
+  if (on == conceal_) return;
+  conceal_ = on;
+  if (curve_) setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
+}
+
 void SahChart::setScale(double scale) {
   Impl& d = *d_;
   d.scale = float(scale);
@@ -261,7 +267,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
   addRow(leaf, 1.0, c.leaf_cost);
   vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f * d.scale, "leaf cost N t_i");
   leafPlot->GetPen()->SetLineType(vtkPen::DASH_LINE);
-  if (!c.leaf && c.axis >= 0) {
+  if (!c.leaf && c.axis >= 0 && !conceal_) {
     auto chosen = makeTable("position", "chosen");
     double x = across(c.axis, c.position);
     addRow(chosen, x, lo - 0.02 * (hi - lo));
@@ -289,6 +295,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
            .arg(byAxis[1].size())
            .arg(byAxis[2].size());
   t += tr("leaf cost N t_i = %1 &times; %2 = %3<br>").arg(c.n_prims).arg(double(t_i)).arg(fmt(c.leaf_cost));
+  const QString header = t;
   if (c.leaf) {
     t += tr("<b>leaf</b>: %1 (%2)").arg(leaf_reason_name(c.leaf_reason)).arg(leafReasonText(c.leaf_reason));
     if (!c.candidates.empty()) {
@@ -329,6 +336,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     d.chart->SetTitle("node " + std::to_string(c.node) + ": split " + axisName(c.axis) + " = " +
                       fmt(c.position).toStdString());
   }
+  if (conceal_) {  // the quiz asks for this choice: the curves only, until the answer is revealed
+    t = header + tr("<i>The SAH's choice stays hidden until the answer is revealed.</i>");
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": which plane does the SAH choose?");
+  }
   text_->setText(t);
   renderNow();
 }
@@ -359,6 +370,7 @@ QJsonObject SahChart::dumpState() const {
                             {"leaf_cost", jsonColor(palette::sahLeafCost)},
                             {"chosen", jsonColor(palette::sahChosen)}};
   o["message"] = d.message;
+  o["concealed"] = conceal_;
   if (!curve_) return o;
   const SahCurve& c = *curve_;
   o["node"] = int(c.node);

@@ -35,6 +35,10 @@ class SahChart : public QWidget {
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }
 
+  // The quiz's sah-plane question: the chosen plane (its line, the title, the decision in the text) hidden
+  // until the answer is revealed, so that neither the room nor the handout's figure gives it away.
+  void setConceal(bool on);
+  bool concealed() const { return conceal_; }
   // Presenter scale: the chart's fonts, lines and markers, and the text's width.
   void setScale(double scale);
   void renderNow();
@@ -61,6 +65,7 @@ class SahChart : public QWidget {
   QLabel* text_;
   QString lastPath_;  // setCurve's arguments, to draw again at another scale
   float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;
+  bool conceal_ = false;
 };
 
 }  // namespace raystep::viz
