@@ -2,6 +2,7 @@
 
 #include <QShortcut>
 
+#include "event_list.h"
 #include "lesson_enter.h"
 #include "lesson_pane.h"
 #include "main_window.h"
@@ -12,6 +13,7 @@
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
+#include "state_panel.h"
 #include "timeline.h"
 
 namespace raystep::viz {
@@ -117,6 +119,7 @@ void Presenter::goTo(int index) {
   pane_->showStep(lesson_, index);
   pane_->quiz()->setQuestion(step.ask);
   window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane);
+  concealWalk(false);
   entering_ = true;
   try {
     enterState(window_, step.state);
@@ -129,6 +132,10 @@ void Presenter::goTo(int index) {
   entering_ = false;
   away_ = false;
   pane_->setAway(false);
+  // A question about the walk's next move: the panels that say it wait for Reveal.
+  const bool walkQuestion =
+      step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide;
+  concealWalk(walkQuestion);
   if (step.ask) {
     Session* s = window_.session();
     QuestionContext c;
@@ -158,8 +165,14 @@ void Presenter::goToReportingErrors(int index) {
   }
 }
 
+void Presenter::concealWalk(bool on) {
+  window_.statePanel()->setConceal(on);
+  window_.eventList()->setConcealAfter(on ? window_.session()->step() : -1);
+}
+
 void Presenter::markAway() {
   if (entering_ || away_ || current_ < 0) return;
+  concealWalk(false);  // the class walks on: nothing is left to predict here
   away_ = true;
   pane_->setAway(true);
 }
@@ -182,6 +195,8 @@ void Presenter::predictAndReveal(const QString& prediction) {
     return;
   }
   window_.sahChart()->setConceal(false);
+  concealWalk(false);
+  quiz->setPrediction(prediction);
   if (!revealed_) {  // the first answer counts; trying again after the reveal does not
     revealed_ = true;
     ++asked_;

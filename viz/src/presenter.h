@@ -52,6 +52,7 @@ class Presenter : public QObject {
  private:
   void setLessonKeys(bool on);
   void markAway();
+  void concealWalk(bool on);  // the Why text, the next axis and the events to come, at a walk question
   void showScore();
   MainWindow& window_;
   LessonPane* pane_;
