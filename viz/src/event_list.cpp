@@ -3,6 +3,7 @@
 #include <QAbstractListModel>
 #include <QFont>
 #include <QFontDatabase>
+#include <QRegularExpression>
 #include <QLabel>
 #include <QListView>
 #include <QResizeEvent>
@@ -21,11 +22,26 @@ class EventModel : public QAbstractListModel {
     ray_ = ray;
     endResetModel();
   }
+  // Rows after `step` show no event (-1: all shown): the quiz asks what comes next.
+  void setConcealAfter(int step) {
+    if (step == concealAfter_) return;
+    concealAfter_ = step;
+    if (rowCount() > 0) Q_EMIT dataChanged(index(0), index(rowCount() - 1));
+  }
   int rowCount(const QModelIndex& = {}) const override { return ray_ ? int(ray_->events.size()) : 0; }
   QVariant data(const QModelIndex& index, int role) const override {
     if (!ray_ || index.row() >= int(ray_->events.size())) return {};
+    if (concealAfter_ >= 0 && index.row() > concealAfter_) {
+      if (role == Qt::DisplayRole) return QString("%1  ?").arg(index.row());
+      if (role == Qt::ForegroundRole) return QColor(150, 150, 150);
+      return {};
+    }
     const Event& e = ray_->events[size_t(index.row())];
-    if (role == Qt::DisplayRole) return QString::fromStdString(describeEvent(e));
+    if (role == Qt::DisplayRole) {
+      QString line = QString::fromStdString(describeEvent(e));
+      if (concealAfter_ >= 0 && index.row() == concealAfter_) line.remove(QRegularExpression("\\s+next \\w+$"));
+      return line;
+    }
     if (role == Qt::ForegroundRole) {
       switch (e.type) {
         case EventType::cell: return QColor(90, 140, 255);
@@ -41,6 +57,7 @@ class EventModel : public QAbstractListModel {
 
  private:
   const TracedRay* ray_ = nullptr;
+  int concealAfter_ = -1;
 };
 
 EventList::EventList(Session* session, QWidget* parent) : QWidget(parent), session_(session) {
@@ -62,6 +79,14 @@ EventList::EventList(Session* session, QWidget* parent) : QWidget(parent), sessi
     sync();
   });
   connect(session_, &Session::stepChanged, this, &EventList::sync);
+}
+
+void EventList::setConcealAfter(int step) { model_->setConcealAfter(step); }
+
+void EventList::setScale(double scale) {
+  QFont f = QFontDatabase::systemFont(QFontDatabase::FixedFont);
+  if (f.pointSizeF() > 0) f.setPointSizeF(f.pointSizeF() * scale);
+  view_->setFont(f);
 }
 
 int EventList::currentRow() const { return view_->currentIndex().row(); }

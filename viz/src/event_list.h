@@ -16,6 +16,9 @@ class EventList : public QWidget {
  public:
   explicit EventList(Session* session, QWidget* parent = nullptr);
   int currentRow() const;
+  void setScale(double scale);
+  // The quiz: the events after `step` are not shown until the answer is revealed (-1: all shown).
+  void setConcealAfter(int step);  // the fixed-width font, times the presenter scale
 
  protected:
   // The list shrinks when a panel opens below it: the current event is brought back into view.

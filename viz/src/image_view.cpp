@@ -217,8 +217,8 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   aa_ = new QComboBox;
   aa_->setObjectName("aaCombo");
   aa_->setEditable(true);
-  aa_->addItems({"none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1"});
-  aa_->setToolTip(tr("none | regular:K | jitter:K | random:N | adaptive:T[:D]"));
+  aa_->addItems({"scene", "none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1"});
+  aa_->setToolTip(tr("scene (the scene file's) | none | regular:K | jitter:K | random:N | adaptive:T[:D]"));
   row1->addWidget(aa_);
   auto* render = new QPushButton(tr("Render"));
   row1->addWidget(render);
@@ -243,12 +243,16 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   secondary_->setToolTip(tr("A click traces the pixel's shadow, reflected and refracted rays too"));
   row2->addWidget(secondary_);
   row2->addStretch();
+  zoomBox_ = new QWidget;
+  auto* zoom = new QHBoxLayout(zoomBox_);
+  zoom->setContentsMargins(0, 0, 0, 0);
   for (auto [text, z] : {std::pair{"Fit", 0.0}, std::pair{"1:1", 1.0}, std::pair{"8x", 8.0}}) {
     auto* b = new QToolButton;
     b->setText(tr(text));
     connect(b, &QPushButton::clicked, this, [this, z = z] { canvas_->setZoom(z); });
-    row2->addWidget(b);
+    zoom->addWidget(b);
   }
+  row2->addWidget(zoomBox_);
   layout->addLayout(row2);
 
   canvas_ = new ImageCanvas;
@@ -270,6 +274,16 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
     bool mine = t && !t->rays.empty() && t->rays[0].has_pixel && session_->scene();
     canvas_->setSelected(mine ? t->rays[0].pixel[0] : -1, mine ? t->rays[0].pixel[1] : -1);
   });
+}
+
+void ImageView::setCompact(bool on) {
+  auto* row1 = static_cast<QBoxLayout*>(layout()->itemAt(0)->layout());
+  auto* row2 = static_cast<QBoxLayout*>(layout()->itemAt(1)->layout());
+  row1->removeWidget(zoomBox_);
+  row2->removeWidget(zoomBox_);
+  (on ? row1 : row2)->addWidget(zoomBox_);
+  heat_->setItemText(1, on ? tr("cells/nodes") : tr("cells or nodes visited"));
+  heat_->setItemText(2, on ? tr("tests") : tr("primitive tests"));
 }
 
 void ImageView::refreshHeat() { canvas_->setHeat(session_->heat(), opacity_->value() / 100.0); }

@@ -71,6 +71,8 @@ class ImageView : public QWidget {
   bool secondaryRays() const;
   void setSecondaryRays(bool on);
   void setStatus(const QString& text);
+  // Compact (presenter scales): the zoom buttons join the first row, the heat map's names are short.
+  void setCompact(bool on);
   ImageCanvas* canvas() const { return canvas_; }
 
  Q_SIGNALS:
@@ -87,6 +89,7 @@ class ImageView : public QWidget {
   QSlider* opacity_;
   QCheckBox* secondary_;
   QLabel* status_;
+  QWidget* zoomBox_;
 };
 
 }  // namespace raystep::viz

@@ -1,5 +1,6 @@
 #include "main_window.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -15,6 +16,9 @@
 #include <QScrollArea>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QScreen>
+#include <QStyle>
+#include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
 #include <QtConcurrent>
@@ -22,6 +26,9 @@
 #include "event_list.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
+#include "lesson_pane.h"
+#include "presenter.h"
+#include "raystep/lesson/lesson.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "sah_chart.h"
 #include "raystep/trace/trace_file.h"
@@ -34,18 +41,14 @@
 #include "tree_view.h"
 
 namespace raystep::viz {
-namespace {
-
 // A trace names its format in its first key; anything else is a scene or a mesh.
-bool looksLikeTrace(const QString& path) {
+bool MainWindow::isTraceFile(const QString& path) {
   std::ifstream in(path.toStdString(), std::ios::binary);
   std::string head(4096, '\0');
   in.read(&head[0], long(head.size()));
   head.resize(size_t(in.gcount()));
   return head.find("\"raystep-trace\"") != std::string::npos;
 }
-
-}  // namespace
 
 MainWindow::MainWindow() : session_(new Session(this)) {
   setWindowTitle("raystep step-debugger");
@@ -56,7 +59,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   statePanel_ = new StatePanel(session_);
   eventList_ = new EventList(session_);
 
-  auto* left = new QSplitter(Qt::Vertical);
+  auto* left = leftSplit_ = new QSplitter(Qt::Vertical);
   left->addWidget(structure_);
   left->addWidget(imageView_);
   left->setStretchFactor(0, 0);
@@ -65,7 +68,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   auto* stateScroll = new QScrollArea;
   stateScroll->setWidget(statePanel_);
   stateScroll->setWidgetResizable(true);
-  auto* right = new QSplitter(Qt::Vertical);
+  auto* right = rightSplit_ = new QSplitter(Qt::Vertical);
   right->addWidget(stateScroll);
   right->addWidget(statePanel_->mailboxWidget());
   right->addWidget(eventList_);
@@ -135,7 +138,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
                                   "3D view, shows its nodes and SAH curves"));
-    else if (!kd) kdDock_->hide();
+    else if (!kd) hideKdPanel();
     showSahCurve();
   });
   connect(session_, &Session::stepChanged, this, [this] {
@@ -145,7 +148,8 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   });
 }
 
-MainWindow::~MainWindow() = default;
+// The presenter first, while the timeline and the shortcuts it gives back their keys to still exist.
+MainWindow::~MainWindow() { delete presenter_; }
 
 void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
@@ -154,6 +158,10 @@ void MainWindow::buildMenus() {
                                                 tr("Scenes and traces (*.json *.obj);;All files (*)"));
     if (!path.isEmpty()) openFileReportingErrors(path);
   }, QKeySequence::Open);
+  file->addAction(tr("Open &lesson..."), this, [this] {
+    QString path = QFileDialog::getOpenFileName(this, tr("Open a lesson"), "lessons", tr("Lessons (*.md);;All files (*)"));
+    if (!path.isEmpty()) openLessonReportingErrors(path);
+  });
   file->addAction(tr("Export &trace..."), this, [this] {
     if (!session_->trace()) return showError(tr("No trace to export: click a pixel first."));
     QString path = QFileDialog::getSaveFileName(this, tr("Export trace"), "trace.json", tr("Traces (*.json)"));
@@ -184,12 +192,138 @@ void MainWindow::buildMenus() {
   QAction* dock = kdDock_->toggleViewAction();
   dock->setText(tr("kd-tree and SAH &inspector"));
   view->addAction(dock);
+  view->addSeparator();
+  QAction* full = view->addAction(tr("&Full screen"), this, [this] {
+    if (isFullScreen()) showNormal();
+    else showFullScreen();
+  });
+  full->setShortcut(QKeySequence(Qt::Key_F5));
+  full->setShortcutContext(Qt::WindowShortcut);
+  full->setObjectName("fullScreenAction");
+  addAction(full);  // works with the menu bar hidden too
+  QMenu* scale = view->addMenu(tr("Presenter &scale"));
+  for (double s : {1.0, 1.25, 1.5, 2.0})
+    scale->addAction(s == 1.0 ? tr("1 (desk)") : s == 1.5 ? tr("1.5 (lecture room)") : QString::number(s), this,
+                     [this, s] { setPresenterScale(s); });
+}
+
+Presenter* MainWindow::openLesson(const Lesson& lesson) {
+  if (!lessonDock_) {
+    lessonPane_ = new LessonPane;
+    lessonDock_ = new QDockWidget(tr("Lesson"), this);
+    lessonDock_->setObjectName("lessonDock");
+    lessonDock_->setWidget(lessonPane_);
+    lessonDock_->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+    // On the right, full height: the debugger's columns and the kd dock below them keep their places.
+    setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
+    setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
+    addDockWidget(Qt::RightDockWidgetArea, lessonDock_);
+  }
+  delete presenter_;
+  presenter_ = new Presenter(*this, lessonPane_, lesson);
+  lessonDock_->show();
+  lessonPane_->setScale(scale_);
+  setWindowTitle(tr("raystep - lesson: %1").arg(QString::fromStdString(lesson.title)));
+  if (scale_ == 1.0)
+    statusBar()->showMessage(tr("Presenting to a room? View > Presenter scale 1.5 (or --scale 1.5) is readable from "
+                                "the back; F5: full screen."));
+  return presenter_;
+}
+
+void MainWindow::fitLessonPane() {
+  if (!lessonDock_) return;
+  // The pane's width comes on top of the debugger's: the central widget keeps the width the window had. The
+  // pane is held at its width while the window grows (else the central widget would take the growth).
+  // Where the screen has no room for both, the window stays within it and the pane takes its width from the
+  // debugger (a projector's 1920 x 1080 full screen).
+  const int pane = int((scale_ > 1.0 ? 380 : 440) * scale_);
+  const int separator = style()->pixelMetric(QStyle::PM_DockWidgetSeparatorExtent);
+  const QScreen* screen = QApplication::primaryScreen();
+  const int room = screen ? screen->availableGeometry().width() : 1 << 20;
+  const int debuggerWidth = std::min(width(), room - pane - separator);
+  lessonPane_->setFixedWidth(pane);
+  resize(debuggerWidth + pane + separator, height());
+  for (int i = 0; i < 5; ++i) {  // the X server confirms the size asynchronously
+    QApplication::processEvents();
+    QThread::msleep(5);
+  }
+}
+
+void MainWindow::releaseLessonPaneWidth() {
+  if (!lessonPane_) return;
+  lessonPane_->setMinimumWidth(200);
+  lessonPane_->setMaximumWidth(QWIDGETSIZE_MAX);
+}
+
+void MainWindow::openLessonReportingErrors(const QString& path) {
+  try {
+    Lesson lesson = parse_lesson(path.toStdString());  // all of it checked before anything changes
+    bool hadPane = lessonDock_ && lessonDock_->isVisible();
+    Presenter* p = openLesson(lesson);
+    if (!hadPane) fitLessonPane();
+    p->goToReportingErrors(0);
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+  }
+}
+
+void MainWindow::setPresenterScale(double scale) {
+  QFont f = QApplication::font();
+  if (baseFontPt_ <= 0) baseFontPt_ = f.pointSize() > 0 ? f.pointSize() : 9;
+  scale_ = scale;
+  f.setPointSizeF(baseFontPt_ * scale);
+  QApplication::setFont(f);
+  sceneView_->setScale(scale);
+  sahChart_->setScale(scale);
+  eventList_->setScale(scale);
+  statePanel_->setScale(scale);
+  structure_->setCompact(scale > 1.0);
+  timeline_->setCompact(scale > 1.0);
+  imageView_->setCompact(scale > 1.0);
+  if (scale > 1.0) leftSplit_->setSizes({structure_->sizeHint().height(), 10000});  // the picture takes the rest
+  if (lessonPane_) lessonPane_->setScale(scale);
 }
 
 void MainWindow::showKdPanel() {
   if (kdDock_->isVisible()) return;
   kdDock_->show();
-  resizeDocks({kdDock_}, {270}, Qt::Vertical);
+  resizeDocks({kdDock_}, {int(250 * scale_)}, Qt::Vertical);
+  // Below 900 pixels the dock leaves the state column too little room for the node, t* and the stack: the
+  // mailbox table (the event list says the same per test) gives its room up while the dock is open.
+  if (height() < 900) rightSplit_->setSizes({1000, 0, int(110 * scale_)});
+}
+
+void MainWindow::hideKdPanel() {
+  if (!kdDock_->isVisible()) return;
+  kdDock_->hide();
+  rightSplit_->setSizes({440, 110, 180});
+}
+
+
+bool MainWindow::kdPanelVisible() const { return kdDock_->isVisible(); }
+
+QString MainWindow::pictureKeyNow() const {
+  return QString("%1 %2x%3 %4")
+      .arg(quintptr(session_->structure()))
+      .arg(session_->imageWidth())
+      .arg(session_->imageHeight())
+      .arg(imageView_->antiAliasing());
+}
+
+QString MainWindow::heatKeyNow() const {
+  return QString("%1 %2x%3 %4")
+      .arg(quintptr(session_->structure()))
+      .arg(session_->imageWidth())
+      .arg(session_->imageHeight())
+      .arg(imageView_->heatQuantity());
+}
+
+void MainWindow::ensurePicture() {
+  if (session_->structure() && pictureKey_ != pictureKeyNow()) renderPicture();
+}
+
+void MainWindow::ensureHeat() {
+  if (heatKey_ != heatKeyNow()) computeHeat();
 }
 
 void MainWindow::showSahCurve() {
@@ -248,7 +382,7 @@ void MainWindow::showError(const QString& message) {
 
 void MainWindow::runTask(const QString& kind, const QString& what,
                          std::function<std::function<void()>()> work) {
-  if (scripted_) {
+  if (scripted_ || inPlace_) {
     work()();  // errors propagate to the script
     return;
   }
@@ -279,7 +413,7 @@ void MainWindow::runTask(const QString& kind, const QString& what,
 }
 
 void MainWindow::openFile(const QString& path) {
-  if (looksLikeTrace(path)) openTrace(path);
+  if (isTraceFile(path)) openTrace(path);
   else openScene(path);
 }
 
@@ -367,9 +501,35 @@ void MainWindow::setStructureOptions(const std::string& accelName, const Structu
   structure_->setStructure(accelName, o);
 }
 
+QString MainWindow::builtStructureKey() const { return session_->structure() ? builtKey_ : QString(); }
+
+QString MainWindow::structureOptionsKey() const {
+  StructureOptions o = structure_->options();
+  QString res = o.grid.resolution ? QString("%1,%2,%3")
+                                        .arg((*o.grid.resolution)[0])
+                                        .arg((*o.grid.resolution)[1])
+                                        .arg((*o.grid.resolution)[2])
+                                  : QString("-");
+  return QString("%1 %2 %3 %4 %5 %6 %7 %8 %9 %10")
+      .arg(QString::fromStdString(structure_->accelName()))
+      .arg(double(o.grid.density), 0, 'g', 9)
+      .arg(res)
+      .arg(o.grid.exact_insert)
+      .arg(double(o.kd.t_i), 0, 'g', 9)
+      .arg(double(o.kd.t_t), 0, 'g', 9)
+      .arg(double(o.kd.empty_bonus), 0, 'g', 9)
+      .arg(o.kd.max_depth)
+      .arg(o.kd.leaf_size)
+      .arg(o.kd_mailboxes);
+}
+
 void MainWindow::setImageSize(int w, int h) {
   sizeW_ = w;
   sizeH_ = h;
+  // With a structure built, the picture takes the new size at once (the caller renders it again).
+  if (const StructureData* built = session_->structure())
+    session_->setImageSize(w > 0 ? w : built->scene->scene.render.width,
+                           h > 0 ? h : built->scene->scene.render.height);
 }
 
 void MainWindow::buildStructure() {
@@ -377,11 +537,24 @@ void MainWindow::buildStructure() {
   if (!scene) return showError(tr("Open a scene first: a trace replays the structure it recorded."));
   std::string kind = structure_->accelName();
   StructureOptions o = structure_->options();
+  QString key = structureOptionsKey();
   QString what = kind == "grid" ? tr("Building the grid...") : tr("Building the kd-tree...");
-  runTask("build", what, [this, scene, kind, o] {
-    auto built = buildStructureData(scene, kind, o);
-    return std::function<void()>([this, built, scene] {
+  // A structure built before for this scene with the same options is used again: a lesson that goes back
+  // and forth between a grid and a kd-tree (or two costs) builds each once.
+  std::shared_ptr<const StructureData> kept;
+  for (const KeptStructure& k : kept_)
+    if (k.scene == scene && k.key == key) kept = k.built;
+  runTask("build", what, [this, scene, kind, o, key, kept] {
+    auto built = kept ? kept : buildStructureData(scene, kind, o);
+    return std::function<void()>([this, built, scene, key, kept] {
       if (scene != session_->sceneShared()) return;  // built for a scene since replaced
+      builtKey_ = key;
+      // Kept: the last few structures of this scene (those of another scene are let go).
+      kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
+                                 [&](const KeptStructure& k) { return k.scene != scene || k.key == key; }),
+                  kept_.end());
+      kept_.push_back({scene, key, built});
+      if (kept_.size() > 3) kept_.erase(kept_.begin());
       // Rebuilt with other settings: the same pixel is traced again through the new structure.
       const Trace* old = session_->trace();
       bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
@@ -440,7 +613,7 @@ void MainWindow::buildStructure() {
                                 .arg(st.sah_cost, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
       }
-      if (scripted_) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
+      if (scripted_ && !kept) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
       auto* grid = built.get();
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
                              sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);
@@ -456,13 +629,15 @@ void MainWindow::renderPicture() {
   if (!grid) return;
   std::string aa = imageView_->antiAliasing().toStdString();
   int w = session_->imageWidth(), h = session_->imageHeight();
+  QString key = pictureKeyNow();
   imageView_->setStatus(tr("Rendering %1x%2 (%3)...").arg(w).arg(h).arg(QString::fromStdString(aa)));
-  runTask("render", tr("Rendering..."), [this, grid, aa, w, h] {
+  runTask("render", tr("Rendering..."), [this, grid, aa, w, h, key] {
     double ms = 0;
     QImage img = viz::renderPicture(*grid, aa, w, h, &ms);
-    return std::function<void()>([this, grid, img, ms, w, h, aa] {
+    return std::function<void()>([this, grid, img, ms, w, h, aa, key] {
       if (grid != session_->structureShared()) return;  // made for a structure since replaced
       session_->setPicture(img);
+      pictureKey_ = key;
       imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
                             took(tr(", rendered"), ms) + tr(". Click a pixel to trace its ray."));
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
@@ -475,16 +650,19 @@ void MainWindow::computeHeat() {
   QString q = imageView_->heatQuantity();
   if (!grid || q == "off") {
     session_->setHeat(nullptr);
+    heatKey_ = heatKeyNow();
     return;
   }
+  QString key = heatKeyNow();
   HeatQuantity quantity = parse_heat_quantity(q.toStdString());
   int w = session_->imageWidth(), h = session_->imageHeight();
-  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, w, h] {
+  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, w, h, key] {
     double ms = 0;
     auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, w, h, &ms));
-    return std::function<void()>([this, grid, heat, ms] {
+    return std::function<void()>([this, grid, heat, ms, key] {
       if (grid != session_->structureShared()) return;
       session_->setHeat(heat);
+      heatKey_ = key;
       statusBar()->showMessage(tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
                                tr(" (max %1, mean %2)")
                                    .arg(heat->max_value)

@@ -8,10 +8,12 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include <QMainWindow>
 
 class QDockWidget;
+class QSplitter;
 
 #include <string>
 
@@ -19,11 +21,14 @@ class QDockWidget;
 
 namespace raystep {
 struct Trace;
+struct Lesson;
 }
 
 namespace raystep::viz {
 
 class Session;
+struct SceneData;
+struct StructureData;
 class StructurePanel;
 class ImageView;
 class SceneView;
@@ -32,6 +37,8 @@ class StatePanel;
 class EventList;
 class TreeView;
 class SahChart;
+class LessonPane;
+class Presenter;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -41,6 +48,13 @@ class MainWindow : public QMainWindow {
 
   // Scripted mode: work runs on the calling thread, and errors are thrown instead of shown.
   void setScripted(bool on) { scripted_ = on; }
+  bool scripted() const { return scripted_; }
+  // Work runs on the calling thread and its errors are thrown, without the rest of the scripted mode (times
+  // stay in the status bar): entering a lesson step is one synchronous change of the whole state.
+  void setWorkInPlace(bool on) { inPlace_ = on; }
+  bool workInPlace() const { return inPlace_; }
+  // Whether the file is a trace written by `raystep trace` (its format key), not a scene or a mesh.
+  static bool isTraceFile(const QString& path);
 
   // Open a scene (.json scene or .obj mesh) or a trace written by `raystep trace`. Throws InputError in
   // scripted mode; shows the error in a dialog otherwise (the window keeps what it had).
@@ -48,6 +62,10 @@ class MainWindow : public QMainWindow {
   // The GUI path of opening, in every mode: an error goes to a dialog (auto-closed in scripted mode).
   void openFileReportingErrors(const QString& path);
   void setStructureOptions(const std::string& accelName, const StructureOptions& o);
+  // The structure panel's accelerator and options, as text; and those the current structure was built with
+  // ("" : none built). Equal when a build would make the same structure again.
+  QString structureOptionsKey() const;
+  QString builtStructureKey() const;
   void setImageSize(int w, int h);  // the picture's size (default: the scene's)
   void buildStructure();
   void renderPicture();
@@ -56,7 +74,32 @@ class MainWindow : public QMainWindow {
   void exportTrace(const QString& path);
   // The SAH inspector: the dock with the tree and the chart; the selected node's curve as CSV (core's columns).
   void showKdPanel();
+  void hideKdPanel();
+  bool kdPanelVisible() const;
+  // The picture and the heat map for the current structure, size, anti-aliasing and heat quantity: made again
+  // only when one of these differs from what they were made for (entering a lesson step changes the pixel far
+  // more often than the picture).
+  void ensurePicture();
+  void ensureHeat();
   void exportSahCsv(const QString& path);
+
+  // Presenter mode: the lesson pane docked on the right, beside the debugger, and the presenter that enters
+  // the lesson's steps (none entered yet). A second lesson replaces the first.
+  Presenter* openLesson(const Lesson& lesson);
+  // File > Open lesson...: a damaged lesson goes to a dialog and the window stays as it was.
+  void openLessonReportingErrors(const QString& path);
+  Presenter* presenter() const { return presenter_; }
+  LessonPane* lessonPane() const { return lessonPane_; }
+  // Widens the window by the lesson pane, so that the debugger keeps the size it has without a lesson (a
+  // step then shows what the same state shows in a window without the pane, pixel for pixel).
+  void fitLessonPane();
+  // Lets the user resize the pane (scripted runs keep it at the width fitLessonPane gave it).
+  void releaseLessonPaneWidth();
+  // Fonts, line widths and the 3D view's markers times `scale` (a lecture room wants 1.5).
+  void setPresenterScale(double scale);
+  double presenterScale() const { return scale_; }
+  // An error in a dialog (auto-closed in scripted mode); the window goes on.
+  void reportError(const QString& message) { showError(message); }
 
   Session* session() const { return session_; }
   SceneView* sceneView() const { return sceneView_; }
@@ -92,7 +135,25 @@ class MainWindow : public QMainWindow {
   TreeView* treeView_;
   SahChart* sahChart_;
   QDockWidget* kdDock_;
+  QSplitter* rightSplit_ = nullptr;
+  QSplitter* leftSplit_ = nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
+  QDockWidget* lessonDock_ = nullptr;
+  LessonPane* lessonPane_ = nullptr;
+  Presenter* presenter_ = nullptr;
+  double scale_ = 1.0;
+  int baseFontPt_ = 0;
   bool scripted_ = false;
+  bool inPlace_ = false;
+  QString pictureKey_, heatKey_;
+  QString builtKey_;  // structureOptionsKey() of the current structure
+  struct KeptStructure {
+    std::shared_ptr<const SceneData> scene;
+    QString key;
+    std::shared_ptr<const StructureData> built;
+  };
+  std::vector<KeptStructure> kept_;  // the last structures built, for buildStructure to use again  // what the picture and the heat map were made for (ensurePicture)
+  QString pictureKeyNow() const;
+  QString heatKeyNow() const;
   std::map<QString, int> generation_;  // per kind: results of superseded work are dropped
   int running_ = 0;
   int sizeW_ = 0, sizeH_ = 0;

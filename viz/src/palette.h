@@ -16,13 +16,16 @@ inline const QColor ray{0, 230, 255};            // the ray up to where the walk
 inline const QColor rayAhead{0, 105, 125};       // the rest of the ray, not walked yet: dark cyan
 inline const QColor segment{255, 255, 255};      // the current [tmin, tmax] interval: white, thick
 inline const QColor hitFinal{255, 40, 200};      // the accepted hit point: magenta
-inline const QColor hitCandidate{255, 150, 40};  // the nearest hit so far, not yet accepted: orange
-inline const QColor primPending{200, 200, 200};  // referenced by the current cell, not reached yet
-inline const QColor primTesting{255, 120, 0};    // being tested now
-inline const QColor primHit{40, 220, 60};        // tested: hit
-inline const QColor primMissed{230, 40, 40};     // tested: missed
-inline const QColor primSkipped{170, 90, 255};   // skipped: already tested (mailbox)
-inline const QColor selectedNode{0, 255, 140};   // kd-tree: the node chosen in the tree view / inspector: green
+// The primitive states and the hit markers share no hue with the Cornell box's red and green walls, and stay
+// apart for deuteranopes and protanopes (tests/viz/palette_test.cpp: CIE76 distance >= 15 between the walk's
+// colours, >= 20 among the primitive states, the markers and the walls, under Machado et al.'s matrices).
+inline const QColor hitCandidate{255, 240, 140};  // the nearest hit so far, not yet accepted: pale yellow
+inline const QColor primPending{150, 150, 150};   // referenced by the current cell, not reached yet: grey
+inline const QColor primTesting{255, 255, 255};   // being tested now: white outline (the face shows the result)
+inline const QColor primHit{40, 220, 60};         // tested: hit
+inline const QColor primMissed{70, 80, 110};      // tested: missed: dark slate
+inline const QColor primSkipped{170, 90, 255};    // skipped: already tested (mailbox)
+inline const QColor selectedNode{0, 158, 115};    // kd-tree: the node chosen in the tree view / inspector: teal
 inline const QColor background{28, 30, 36};
 
 // The SAH inspector's chart (drawn on white): the cost curves per split axis, the leaf cost, the chosen split.

@@ -151,6 +151,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
       else if (int(i) == step) p.state = PrimState::testing;
       else p.state = e.hit ? PrimState::hit : PrimState::missed;
       p.t = e.t;
+      p.hit = e.type == EventType::prim_test && e.hit;
       s.prims.push_back(p);
     }
   }

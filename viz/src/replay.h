@@ -19,6 +19,7 @@ struct PrimMark {
   int32_t prim = -1;
   PrimState state = PrimState::pending;
   float t = 0.f;  // for hit
+  bool hit = false;  // a test's result, known at its own event: the one being tested is drawn with it
 };
 
 // One mailbox entry: a primitive tested for this ray, where and with what result.

@@ -6,6 +6,7 @@
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
+#include <QMouseEvent>
 #include <QSaveFile>
 #include <QVBoxLayout>
 
@@ -97,6 +98,7 @@ struct SahChart::Impl {
   vtkNew<vtkChartXY> chart;
   vtkSmartPointer<vtkTable> axisTable[3];  // the candidates per axis, as plotted
   QString message;
+  float scale = 1.f;
 };
 
 SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
@@ -135,10 +137,78 @@ SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
     a->GetLabelProperties()->SetFontSize(10);
   }
   layout->addWidget(d.widget, 1);
+  d.widget->installEventFilter(this);  // a click picks the nearest candidate
   showMessage(tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH cost curve."));
 }
 
 SahChart::~SahChart() = default;
+
+bool SahChart::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == d_->widget && event->type() == QEvent::MouseButtonRelease) {
+    auto* e = static_cast<QMouseEvent*>(event);
+    int axis = 0;
+    float position = 0.f;
+    if (e->button() == Qt::LeftButton && candidateAt(e->pos(), &axis, &position))
+      Q_EMIT candidateClicked(axis, position);
+  }
+  return QWidget::eventFilter(watched, event);
+}
+
+bool SahChart::candidateAt(const QPoint& at, int* axis, float* position) const {
+  const Impl& d = *d_;
+  if (!curve_) return false;
+  // The axes' ends in the scene's pixels (origin bottom left) map the chart's values to the widget.
+  vtkAxis* bottom = d.chart->GetAxis(vtkAxis::BOTTOM);
+  vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
+  const float* b1 = bottom->GetPoint1();
+  const float* b2 = bottom->GetPoint2();
+  const float* l1 = left->GetPoint1();
+  const float* l2 = left->GetPoint2();
+  const double ratio = d.widget->devicePixelRatioF();
+  const double px = at.x() * ratio, py = (d.widget->height() - at.y()) * ratio;
+  const Bounds3& box = curve_->info.box;
+  double best = 20.0 * ratio;
+  bool found = false;
+  for (const SahCandidate& c : curve_->candidates) {
+    if (c.axis < 0 || c.axis > 2) continue;
+    float extent = box.hi[c.axis] - box.lo[c.axis];
+    double x = extent > 0.f ? double(c.position - box.lo[c.axis]) / double(extent) : 0.5;
+    double sx = b1[0] + (x - bottom->GetMinimum()) / (bottom->GetMaximum() - bottom->GetMinimum()) * (b2[0] - b1[0]);
+    double sy = l1[1] + (double(c.cost) - left->GetMinimum()) / (left->GetMaximum() - left->GetMinimum()) * (l2[1] - l1[1]);
+    double dist = std::hypot(sx - px, sy - py);
+    if (dist < best) {
+      best = dist;
+      *axis = c.axis;
+      *position = c.position;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void SahChart::setConceal(bool on) {
+  if (on == conceal_) return;
+  conceal_ = on;
+  if (curve_) setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
+}
+
+void SahChart::setScale(double scale) {
+  Impl& d = *d_;
+  d.scale = float(scale);
+  d.chart->GetLegend()->GetLabelProperties()->SetFontSize(int(std::lround(11 * scale)));
+  for (vtkAxis* a : {d.chart->GetAxis(vtkAxis::BOTTOM), d.chart->GetAxis(vtkAxis::LEFT)}) {
+    a->GetTitleProperties()->SetFontSize(int(std::lround(11 * scale)));
+    a->GetLabelProperties()->SetFontSize(int(std::lround(10 * scale)));
+  }
+  d.chart->GetTitleProperties()->SetFontSize(int(std::lround(12 * scale)));
+  text_->setFixedWidth(int(230 * scale));
+  if (curve_) {
+    QString path = lastPath_;
+    setCurve(curve_, path, lastTi_, lastTt_, lastBonus_);
+  } else {
+    renderNow();
+  }
+}
 
 void SahChart::showMessage(const QString& text) {
   curve_.reset();
@@ -154,6 +224,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
                         float empty_bonus) {
   Impl& d = *d_;
   curve_ = std::move(curve);
+  lastPath_ = path;
+  lastTi_ = t_i;
+  lastTt_ = t_t;
+  lastBonus_ = empty_bonus;
   d.message.clear();
   d.chart->ClearPlots();
   const SahCurve& c = *curve_;
@@ -178,27 +252,27 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
       hi = std::max(hi, double(s->cost));
     }
     if (byAxis[a].empty()) continue;  // an empty series draws nothing, but warns
-    vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f,
+    vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f * d.scale,
                          std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
     if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
       bool few = byAxis[a].size() <= 400;
       points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE
                                                                   : vtkPlotPoints::NONE);
-      points->SetMarkerSize(byAxis[a].size() == 1 ? 8.f : 5.f);
+      points->SetMarkerSize((byAxis[a].size() == 1 ? 8.f : 5.f) * d.scale);
     }
   }
   // The leaf cost: a split is made only below this line.
   auto leaf = makeTable("position", "leaf cost");
   addRow(leaf, 0.0, c.leaf_cost);
   addRow(leaf, 1.0, c.leaf_cost);
-  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f, "leaf cost N t_i");
+  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f * d.scale, "leaf cost N t_i");
   leafPlot->GetPen()->SetLineType(vtkPen::DASH_LINE);
-  if (!c.leaf && c.axis >= 0) {
+  if (!c.leaf && c.axis >= 0 && !conceal_) {
     auto chosen = makeTable("position", "chosen");
     double x = across(c.axis, c.position);
     addRow(chosen, x, lo - 0.02 * (hi - lo));
     addRow(chosen, x, hi);
-    addLine(d.chart, chosen, palette::sahChosen, 1.5f, std::string("chosen: ") + axisName(c.axis));
+    addLine(d.chart, chosen, palette::sahChosen, 1.5f * d.scale, std::string("chosen: ") + axisName(c.axis));
   }
   vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
   double pad =
@@ -221,6 +295,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
            .arg(byAxis[1].size())
            .arg(byAxis[2].size());
   t += tr("leaf cost N t_i = %1 &times; %2 = %3<br>").arg(c.n_prims).arg(double(t_i)).arg(fmt(c.leaf_cost));
+  const QString header = t;
   if (c.leaf) {
     t += tr("<b>leaf</b>: %1 (%2)").arg(leaf_reason_name(c.leaf_reason)).arg(leafReasonText(c.leaf_reason));
     if (!c.candidates.empty()) {
@@ -261,6 +336,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     d.chart->SetTitle("node " + std::to_string(c.node) + ": split " + axisName(c.axis) + " = " +
                       fmt(c.position).toStdString());
   }
+  if (conceal_) {  // the quiz asks for this choice: the curves only, until the answer is revealed
+    t = header + tr("<i>The SAH's choice stays hidden until the answer is revealed.</i>");
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": which plane does the SAH choose?");
+  }
   text_->setText(t);
   renderNow();
 }
@@ -291,6 +370,7 @@ QJsonObject SahChart::dumpState() const {
                             {"leaf_cost", jsonColor(palette::sahLeafCost)},
                             {"chosen", jsonColor(palette::sahChosen)}};
   o["message"] = d.message;
+  o["concealed"] = conceal_;
   if (!curve_) return o;
   const SahCurve& c = *curve_;
   o["node"] = int(c.node);

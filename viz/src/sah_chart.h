@@ -35,18 +35,37 @@ class SahChart : public QWidget {
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }
 
+  // The quiz's sah-plane question: the chosen plane (its line, the title, the decision in the text) hidden
+  // until the answer is revealed, so that neither the room nor the handout's figure gives it away.
+  void setConceal(bool on);
+  bool concealed() const { return conceal_; }
+  // Presenter scale: the chart's fonts, lines and markers, and the text's width.
+  void setScale(double scale);
   void renderNow();
   QImage grabChart();
   // The chart as PNG, atomically (a temporary file, then renamed); false when it cannot be written.
   bool saveChart(const QString& path);
   // What the chart shows: the node, points per axis, the chosen split, the colours and where it is on screen.
   QJsonObject dumpState() const;
+  // The candidate nearest to widget position `at` of the chart (a click): its axis and position; false
+  // without a curve or when nothing is within 20 pixels.
+  bool candidateAt(const QPoint& at, int* axis, float* position) const;
+
+ Q_SIGNALS:
+  // A click on the chart near a candidate (the quiz's sah-plane answer).
+  void candidateClicked(int axis, float position);
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> d_;
   std::shared_ptr<const SahCurve> curve_;
   QLabel* text_;
+  QString lastPath_;  // setCurve's arguments, to draw again at another scale
+  float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;
+  bool conceal_ = false;
 };
 
 }  // namespace raystep::viz

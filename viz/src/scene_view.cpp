@@ -135,6 +135,10 @@ struct SceneView::Impl {
   // kd-tree: the nodes waiting on the stack, the current node's split plane.
   vtkNew<vtkPolyData> stackData, splitData;
   vtkSmartPointer<vtkActor> stackActor, splitActor;
+  // The primitive being tested: its outline (its face shows the test's result, known at the test's event, so
+  // that a leaf's or cell's last test is seen with its result before the walk moves on).
+  vtkNew<vtkPolyData> testingData;
+  vtkSmartPointer<vtkActor> testingActor;
   vtkNew<vtkSphereSource> hitSphere;
   vtkSmartPointer<vtkActor> hitActor;
   // The node selected in the tree view (its box, in the live kd-tree), and the click that picks the scene.
@@ -150,6 +154,8 @@ struct SceneView::Impl {
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
+  const void* meshSource = nullptr;  // the scene (or trace) the scene mesh and `prims` were made from
+  Bounds3 meshBounds;
   glm::vec3 gridLo{0.f}, gridHi{1.f};
   int res[3] = {1, 1, 1};
   // A tree (kd): its root box is gridLo..gridHi; its nodes are the trace's, by id (those the walk names).
@@ -166,7 +172,16 @@ struct SceneView::Impl {
   float sceneRadius = 1.f;
   bool translucent = false, follow = false, followZoom = false;
   int32_t followedNode = -1;  // the kd node the camera last framed while following
-  double lastMs = 0.0;
+  double scale = 1.0;
+  std::vector<std::pair<vtkActor*, float>> lineWidths;  // each line actor's width at scale 1
+  // The bounds the scene (or trace) was first framed with: "home" frames them again at the view's current
+  // aspect (the fit depends on it when the view is taller than wide, and the layout may have changed since).
+  double homeBounds[6] = {0, 0, 0, 0, 0, 0};
+  bool haveHome = false;
+  void saveHome() {
+    base->ComputeVisiblePropBounds(homeBounds);
+    haveHome = vtkMath::AreBoundsInitialized(homeBounds);
+  }  double lastMs = 0.0;
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
   bool rayDrawn = false;
@@ -295,6 +310,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d.hitActor->GetProperty()->SetLighting(false);
   }
   d.stackActor = unlitActor(d.stackData, palette::stackNode, 3.f);
+  d.testingActor = unlitActor(d.testingData, palette::primTesting, 3.f);
   d.splitActor = unlitActor(d.splitData, palette::splitPlane, 1.f);
   d.splitActor->GetProperty()->SetOpacity(0.35);
   // On a layer of its own: over the scene (which stays the same from step to step, see BackdropCache) and under
@@ -308,7 +324,7 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.picker->AddPickList(d.sceneActor);
   // (Watched in Qt: once the camera's style has the mouse, VTK gives the release to the style alone.)
   d.widget->installEventFilter(this);
-  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
+  for (vtkActor* a : {d.stackActor.Get(), d.primActor.Get(), d.testingActor.Get(), d.visitedActor.Get(), d.rayActor.Get(), d.aheadActor.Get(), d.segmentActor.Get(),
                       d.cellActor.Get(), d.hitActor.Get()})
     d.overlay->AddActor(a);
 
@@ -319,7 +335,9 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   layout->addWidget(d.legend);
 
   connect(session_, &Session::sceneChanged, this, [this] {
+    d_->meshSource = nullptr;  // another scene, even one allocated where the last one was
     rebuildGeometry();
+    d_->saveHome();
     fitCamera();
     updateStep();
   });
@@ -328,7 +346,9 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
     d_->primBlockRay = nullptr;  // a new trace may live where the old one did
     // A trace opened on its own brings its own geometry; one traced in the scene changes only the walk.
     if (!session_->scene()) {
+      d_->meshSource = nullptr;
       rebuildGeometry();
+      d_->saveHome();
       fitCamera();
     }
   });
@@ -354,18 +374,25 @@ void SceneView::rebuildGeometry() {
   vtkNew<vtkCellArray> tris;
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetNumberOfComponents(3);
-  d.prims.clear();
   d.primBlockRay = nullptr;
   d.primBlock = -2;
   d.haveGrid = false;
-  Bounds3 bounds;
+  // The scene's mesh is made again only for another scene (or trace): a new structure over the same scene
+  // changes the outline and the lattice, and the bunny's 70k triangles cost a lesson step 100 ms.
+  const void* source = session_->scene() ? static_cast<const void*>(session_->scene())
+                                         : static_cast<const void*>(session_->trace());
+  const bool sameMesh = source && source == d.meshSource;
+  Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
+  if (!sameMesh) d.prims.clear();
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
     unsigned char rgb[3];
     for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
     for (vtkIdType i = 0; i < count; ++i) colors->InsertNextTypedTuple(rgb);
   };
 
-  if (const SceneData* sd = session_->scene()) {
+  if (sameMesh) {
+    // kept
+  } else if (const SceneData* sd = session_->scene()) {
     const Geometry& g = sd->scene.geometry;
     for (uint32_t id = 0; id < g.size(); ++id) {
       PrimShape p;
@@ -397,10 +424,14 @@ void SceneView::rebuildGeometry() {
     }
     bounds = t->structure.bounds;
   }
-  d.sceneData->SetPoints(pts);
-  d.sceneData->SetPolys(tris);
-  d.sceneData->GetCellData()->SetScalars(colors);
-  d.sceneData->Modified();
+  if (!sameMesh) {
+    d.sceneData->SetPoints(pts);
+    d.sceneData->SetPolys(tris);
+    d.sceneData->GetCellData()->SetScalars(colors);
+    d.sceneData->Modified();
+    d.meshSource = source;
+    d.meshBounds = bounds;
+  }
 
   // The structure: the scene's grid, or the one named by a trace opened on its own.
   const UniformGrid* liveGrid = session_->structure() ? session_->structure()->grid() : nullptr;
@@ -470,7 +501,7 @@ void SceneView::rebuildGeometry() {
   QString walk = swatch(palette::ray, tr("ray walked")) + swatch(palette::rayAhead, tr("ray ahead")) +
                  swatch(palette::segment, tr("current [tmin, tmax]"));
   QString hits = swatch(palette::hitCandidate, tr("nearest hit so far")) + swatch(palette::hitFinal, tr("accepted hit"));
-  QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested")) +
+  QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested (outline)")) +
                        swatch(palette::primHit, tr("hit")) + swatch(palette::primMissed, tr("missed")) +
                        swatch(palette::primSkipped, tr("skipped (mailbox)"));
   if (d.haveTree)
@@ -659,17 +690,48 @@ void SceneView::updateStep() {
   {
     auto* pcolors = vtkUnsignedCharArray::SafeDownCast(d.primData->GetCellData()->GetScalars());
     vtkIdType cell = 0;
+    vtkNew<vtkPoints> tpts;
+    vtkNew<vtkCellArray> tlines;
     for (size_t i = 0; i < s.prims.size() && i < d.primCells.size(); ++i) {
       const PrimMark& m = s.prims[i];
       QColor c = m.state == PrimState::pending   ? palette::primPending
-                 : m.state == PrimState::testing ? palette::primTesting
+                 : m.state == PrimState::testing ? (m.hit ? palette::primHit : palette::primMissed)
                  : m.state == PrimState::hit     ? palette::primHit
                  : m.state == PrimState::missed  ? palette::primMissed
                                                  : palette::primSkipped;
+      if (auto it = d.prims.find(m.prim); m.state == PrimState::testing && it != d.prims.end()) {
+        const PrimShape& p = it->second;
+        if (p.sphere) {  // three great circles
+          for (int axis = 0; axis < 3; ++axis) {
+            vtkIdType first = tpts->GetNumberOfPoints();
+            const int n = 48;
+            for (int k = 0; k <= n; ++k) {
+              double a = 2.0 * M_PI * k / n;
+              glm::vec3 q(0.f);
+              q[(axis + 1) % 3] = float(std::cos(a)) * p.radius;
+              q[(axis + 2) % 3] = float(std::sin(a)) * p.radius;
+              q += p.v[0];
+              tpts->InsertNextPoint(q.x, q.y, q.z);
+              if (k > 0) {
+                vtkIdType seg[2] = {first + k - 1, first + k};
+                tlines->InsertNextCell(2, seg);
+              }
+            }
+          }
+        } else {
+          vtkIdType ids[4];
+          for (int k = 0; k < 3; ++k) ids[k] = tpts->InsertNextPoint(p.v[k].x, p.v[k].y, p.v[k].z);
+          ids[3] = ids[0];
+          tlines->InsertNextCell(4, ids);
+        }
+      }
       unsigned char rgb[3] = {(unsigned char)c.red(), (unsigned char)c.green(), (unsigned char)c.blue()};
       for (int k = 0; k < d.primCells[i]; ++k) pcolors->SetTypedTuple(cell++, rgb);
     }
     pcolors->Modified();
+    d.testingData->SetPoints(tpts);
+    d.testingData->SetLines(tlines);
+    d.testingData->Modified();
   }
   d.primData->Modified();
   // Translucent, so that a big hit triangle does not hide the cells and the ray behind it.
@@ -730,7 +792,7 @@ void SceneView::updateStep() {
   if (ray && s.nearestPrim >= 0) {
     glm::vec3 p = ray->ray.at(s.nearestT);
     d.hitSphere->SetCenter(p.x, p.y, p.z);
-    d.hitSphere->SetRadius(0.03 * d.sceneRadius);
+    d.hitSphere->SetRadius(0.03 * d.sceneRadius * d.scale);
     setColor(d.hitActor, s.accepted ? palette::hitFinal : palette::hitCandidate);
     d.hitActor->SetVisibility(true);
   } else {
@@ -790,10 +852,16 @@ void SceneView::setFollowCell(bool on) {
 }
 
 void SceneView::fitCamera() {
+  double b[6];
+  d_->base->ComputeVisiblePropBounds(b);
+  fitCameraTo(b);
+}
+
+void SceneView::fitCameraTo(const double* bounds) {
   Impl& d = *d_;
   vtkCamera* cam = d.base->GetActiveCamera();
   double b[6];
-  d.base->ComputeVisiblePropBounds(b);
+  std::copy(bounds, bounds + 6, b);
   if (!vtkMath::AreBoundsInitialized(b)) return;
   glm::vec3 c(0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]), 0.5 * (b[4] + b[5]));
   // Look from the front, a little from the right and above, as the scene camera does (+z towards the viewer).
@@ -817,6 +885,26 @@ void SceneView::fitCamera() {
   cam->Zoom(1.15);
   d.base->ResetCameraClippingRange();
 }
+
+void SceneView::setScale(double scale) {
+  Impl& d = *d_;
+  if (d.lineWidths.empty())
+    for (vtkActor* a : {d.outlineActor.Get(), d.latticeActor.Get(), d.visitedActor.Get(), d.testingActor.Get(), d.rayActor.Get(),
+                        d.aheadActor.Get(), d.segmentActor.Get(), d.cellActor.Get(), d.stackActor.Get(),
+                        d.splitActor.Get(), d.selectedActor.Get()})
+      d.lineWidths.push_back({a, a->GetProperty()->GetLineWidth()});
+  d.scale = scale;
+  for (auto& [actor, width] : d.lineWidths) actor->GetProperty()->SetLineWidth(float(width * scale));
+  updateStep();
+}
+
+void SceneView::restoreHomeCamera() {
+  d_->followedNode = -1;
+  if (d_->haveHome) fitCameraTo(d_->homeBounds);
+}
+
+bool SceneView::translucent() const { return d_->translucent; }
+bool SceneView::followCell() const { return d_->follow; }
 
 void SceneView::renderNow() {
   d_->base->ResetCameraClippingRange();

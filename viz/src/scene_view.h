@@ -25,6 +25,14 @@ class SceneView : public QWidget {
   void setTranslucent(bool on);
   void setFollowCell(bool on);
   void fitCamera();
+  // The camera framing the scene (or trace) as when it was opened, at the view's present size: a lesson step
+  // starts from it, so that entering a step gives the view a fresh run of the same state gives, whatever the
+  // class did with the mouse before.
+  void restoreHomeCamera();
+  // Presenter scale: line widths and the hit marker (readable from the back of a room).
+  void setScale(double scale);
+  bool translucent() const;
+  bool followCell() const;
   void renderNow();
   // The 3D view's own pixels (for "export 3D view").
   QImage grabView();
@@ -42,6 +50,7 @@ class SceneView : public QWidget {
 
  private:
   void rebuildGeometry();
+  void fitCameraTo(const double* bounds);  // xmin, xmax, ymin, ymax, zmin, zmax
   void updateStep();
   void updateSelected();  // the selected kd-tree node's box
   bool pickDisplay(int x, int y);

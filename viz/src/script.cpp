@@ -1,11 +1,14 @@
 #include "script.h"
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <regex>
 
 #include <QApplication>
+#include <QDir>
+#include <QScreen>
 #include <QCommandLineParser>
 #include <QFile>
 #include <QJsonArray>
@@ -19,6 +22,9 @@
 #include <map>
 
 #include "event_list.h"
+#include "handout.h"
+#include "lesson_enter.h"
+#include "presenter.h"
 #include "main_window.h"
 #include "replay.h"
 #include "scene_view.h"
@@ -33,6 +39,7 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/heatmap.h"
+#include "raystep/lesson/lesson.h"
 #include "raystep/util/error.h"
 
 namespace raystep::viz {
@@ -104,7 +111,11 @@ QJsonObject dumpState(MainWindow& w) {
     o["tree"] = tree;
   }
   o["window"] = QJsonArray{w.width(), w.height()};
+  o["full_screen"] = w.isFullScreen();
+  o["scale"] = w.presenterScale();
+  o["kd_panel"] = w.kdPanelVisible();
   o["last_error"] = w.lastError();
+  if (w.presenter()) o["lesson"] = w.presenter()->dumpState();
   return o;
 }
 
@@ -136,7 +147,9 @@ void defineOptions(QCommandLineParser& p) {
                  "ray_end, node, push, pop, leaf).", "KIND:K");
   opt("forward", "Then step forward N times.", "N");
   opt("back", "Then step back N times.", "N");
-  opt("keys", "Then press these keys, comma-separated: Right, Left, Space, Home, End.", "LIST");
+  opt("keys", "Then press these keys, comma-separated: Right, Left, Space, Home, End, PageDown, PageUp, F5, "
+              "Shift+Right, Shift+Left, Period, Comma (in a lesson Right/Left/PageDown/PageUp/Home/End move between "
+              "steps and Shift+Right/Left or . and , step the events).", "LIST");
   opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
@@ -154,6 +167,17 @@ void defineOptions(QCommandLineParser& p) {
   opt("screenshot", "Write a PNG of the window.", "FILE");
   opt("screenshot-3d", "Write a PNG of the 3D view.", "FILE");
   opt("dump-state", "Write what the panels and the 3D view show (JSON).", "FILE");
+  opt("scale", "Presenter scale for fonts, line widths and markers (default 1; a lecture room wants 1.5).", "S");
+  opt("lesson", "Present a lesson (lessons/*.md): the lesson pane beside the debugger.", "FILE");
+  opt("lesson-step", "lesson: enter step N (1-based).", "N");
+  opt("lesson-walk", "lesson: enter these steps in this order, e.g. 1,2,3 or 5,4,3,2,1.", "LIST");
+  opt("dump-state-dir", "lesson: after each step of --lesson-walk write DIR/step-N.json (as --dump-state) and "
+                        "DIR/step-N.png (as --screenshot-3d).", "DIR");
+  opt("export-handout", "lesson: write each step's figure and an index.html a student can read alone.", "DIR");
+  opt("predict", "lesson: type this prediction into the step's question and reveal the answer.", "ANSWER");
+  opt("predict-next", "lesson: Predict mode: for each of these predictions (;-separated: i,j,k or a node id, or "
+                      "stop), predict the next cell or node, then step there.", "LIST");
+  opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).", "FILE");
   opt("quit", "Quit when done (scripted mode).");
 }
 
@@ -168,6 +192,241 @@ bool printHelpIfAsked(const QStringList& arguments) {
   return true;
 }
 
+namespace {
+
+// The debugger state the options name, in the lessons' vocabulary: each option that is a lesson key is applied
+// as that key (core's apply_setting: one set of values and messages), in the documented order.
+LessonState stateFromOptions(const QCommandLineParser& p) {
+  LessonState st;
+  QStringList files = p.positionalArguments();
+  if (files.size() > 1) fail("give one scene or trace file");
+  // The file as given: a scene, a mesh or a trace; opening it says what is wrong with it.
+  if (!files.isEmpty()) st.scene = files[0].toStdString();
+  if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
+  if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
+  static const QStringList flags = {"secondary", "follow", "translucent"};
+  for (const std::string& key : lesson_setting_keys()) {
+    const QString name = QString::fromStdString(key);
+    if (key == "scene" || key == "show" || !p.isSet(name)) continue;
+    const std::string value = flags.contains(name) ? std::string("on") : p.value(name).toStdString();
+    if (key == "node") {  // any whole number: the tree's size decides (the message names its range)
+      bool ok = false;
+      qlonglong id = p.value(name).toLongLong(&ok);
+      if (ok && id >= INT_MIN && id <= INT_MAX) {
+        st.node = NodeSpec{NodeSpec::By::id, int(id), ""};
+        continue;
+      }
+    }
+    try {
+      apply_setting(st, key, value, "");
+    } catch (const InputError& e) {
+      fail("--" + e.detail());  // "--pixel '1': expected ...": the option as the user typed it
+    }
+  }
+  return st;
+}
+
+// The keys --keys can press, through Qt's key handling (shortcuts included), as from the keyboard.
+const std::map<QString, std::pair<Qt::Key, Qt::KeyboardModifiers>>& namedKeys() {
+  static const std::map<QString, std::pair<Qt::Key, Qt::KeyboardModifiers>> keys = {
+      {"Right", {Qt::Key_Right, Qt::NoModifier}},
+      {"Left", {Qt::Key_Left, Qt::NoModifier}},
+      {"Space", {Qt::Key_Space, Qt::NoModifier}},
+      {"Home", {Qt::Key_Home, Qt::NoModifier}},
+      {"End", {Qt::Key_End, Qt::NoModifier}},
+      {"PageDown", {Qt::Key_PageDown, Qt::NoModifier}},
+      {"PageUp", {Qt::Key_PageUp, Qt::NoModifier}},
+      {"F5", {Qt::Key_F5, Qt::NoModifier}},
+      {"Shift+Right", {Qt::Key_Right, Qt::ShiftModifier}},
+      {"Shift+Left", {Qt::Key_Left, Qt::ShiftModifier}},
+      {"Period", {Qt::Key_Period, Qt::NoModifier}},
+      {"Comma", {Qt::Key_Comma, Qt::NoModifier}}};
+  return keys;
+}
+
+void pressKeys(MainWindow& window, const QString& list) {
+  // Window shortcuts fire only in the active window; without a window manager nobody activates it.
+  QApplication::setActiveWindow(&window);
+  window.activateWindow();
+  QApplication::processEvents();
+  for (const QString& k : list.split(',')) {
+    auto it = namedKeys().find(k.trimmed());
+    if (it == namedKeys().end()) {
+      QStringList names;
+      for (const auto& [name, key] : namedKeys()) names << name;
+      fail("--keys: unknown key '" + k.toStdString() + "' (" + names.join(", ").toStdString() + ")");
+    }
+    QTest::keyClick(&window, it->second.first, it->second.second);
+    QApplication::processEvents();
+  }
+  window.timeline()->setPlaying(false);  // a Space may have started playback: stop where it is
+}
+
+// What the scripted mode writes at the end: the trace, screenshots, the SAH curve, the state dump.
+void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
+  Session* s = window.session();
+  if (p.isSet("export-trace")) {
+    if (!s->trace()) fail("--export-trace: no trace (give --pixel)");
+    window.exportTrace(p.value("export-trace"));
+  }
+  if (p.isSet("screenshot") && !window.grab().save(p.value("screenshot"), "PNG"))
+    fail("cannot write " + p.value("screenshot").toStdString());
+  if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
+    fail("cannot write " + p.value("screenshot-3d").toStdString());
+  if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
+    fail("cannot write " + p.value("screenshot-sah").toStdString());
+  if (p.isSet("export-sah")) {
+    if (!window.sahChart()->curve()) fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
+    window.exportSahCsv(p.value("export-sah"));
+  }
+  if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
+}
+
+// The scripted-only actions after the state: steps, keys, a click in the 3D view, an edit, a bad file.
+void runActions(MainWindow& window, const QCommandLineParser& p) {
+  Session* s = window.session();
+  // One key press at a time, as a user would.
+  for (auto [name, delta] : {std::pair{"forward", 1}, std::pair{"back", -1}}) {
+    if (!p.isSet(name)) continue;
+    bool ok = false;
+    int n = p.value(name).toInt(&ok);
+    if (!ok || n < 0) fail(std::string("--") + name + " expects a count >= 0");
+    double total = 0, worst = 0;
+    for (int i = 0; i < n; ++i) {
+      auto t0 = std::chrono::steady_clock::now();
+      s->stepBy(delta);
+      auto t1 = std::chrono::steady_clock::now();
+      QApplication::processEvents();
+      if (getenv("RAYSTEP_GUI_PROFILE"))
+        std::fprintf(stderr, "step handlers %.1f ms, paint %.1f ms\n",
+                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+      double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      total += ms;
+      worst = std::max(worst, ms);
+    }
+    if (n > 0)
+      std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
+  }
+  if (p.isSet("keys")) pressKeys(window, p.value("keys"));
+  if (p.isSet("pick-3d")) {  // a click in the 3D view selects the kd-tree leaf holding the picked point
+    const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
+    if (!kd) fail("--pick-3d: no kd-tree (open a scene with --accel kd or kd-median)");
+    window.showKdPanel();
+    settle(window);
+    std::vector<int> at = parseInts("pick-3d", p.value("pick-3d"), 2, 0);
+    if (!window.sceneView()->pickAt(QPoint(at[0], at[1])))
+      fail("--pick-3d " + p.value("pick-3d").toStdString() + ": no geometry under that pixel of the 3D view");
+  }
+  if (p.isSet("edit-ti")) {  // through the spin box: the rebuild starts once the value has rested
+    bool ok = false;
+    double ti = p.value("edit-ti").toDouble(&ok);
+    if (!ok || !std::isfinite(ti) || ti <= 0 || ti > 1e4)
+      fail("--edit-ti '" + p.value("edit-ti").toStdString() + "': out of range");
+    auto* spin = window.findChild<QDoubleSpinBox*>("kdTi");
+    if (!spin) fail("--edit-ti: no t_i box");
+    spin->setValue(ti);
+    for (int i = 0; i < 1000 && window.structurePanel()->costsEditPending(); ++i) {
+      QApplication::processEvents();
+      QThread::msleep(5);
+    }
+    QApplication::processEvents();
+  }
+  if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
+  if (p.isSet("open-lesson-bad")) window.openLessonReportingErrors(p.value("open-lesson-bad"));
+}
+
+void finish(MainWindow& window) {
+  settle(window);
+  window.sahChart()->renderNow();
+  QApplication::processEvents();
+  if (getenv("RAYSTEP_GUI_PROFILE"))
+    for (QWidget* w : window.findChildren<QWidget*>())
+      if (w->minimumSizeHint().width() > 250)
+        std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(), w->metaObject()->className(),
+                     w->objectName().toLocal8Bit().constData());
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// 1-based step numbers, comma-separated: "1,2,3", "5,4,3,2,1", "3,7,1".
+std::vector<int> parseStepList(const QString& option, const QString& spec, int steps) {
+  std::vector<int> out;
+  for (const QString& part : spec.split(',')) {
+    bool ok = false;
+    int n = part.trimmed().toInt(&ok);
+    if (!ok || n < 1 || n > steps)
+      fail("--" + option.toStdString() + " '" + spec.toStdString() + "': steps are 1.." + std::to_string(steps));
+    out.push_back(n);
+  }
+  return out;
+}
+
+// The lesson modes: present (interactive), enter one step or walk a list of them (scripted, for tests and
+// slides), export the handout.
+int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool anyScript) {
+  // A damaged lesson is reported with its file and line before anything is shown.
+  Lesson lesson = parse_lesson(p.value("lesson").toStdString());
+  Presenter* presenter = window.openLesson(lesson);
+  if (!anyScript) {
+    // Presenting: the whole screen (a projector's), unless --window says otherwise.
+    if (!p.isSet("window"))
+      if (const QScreen* screen = QApplication::primaryScreen()) window.resize(screen->availableGeometry().size());
+    window.fitLessonPane();
+    window.show();
+    settle(window);
+    window.releaseLessonPaneWidth();
+    presenter->goToReportingErrors(0);
+    return -1;
+  }
+  window.setScripted(true);
+  window.fitLessonPane();
+  window.show();
+  settle(window);
+  const int steps = int(lesson.steps.size());
+  auto enter = [&](int n) {  // 1-based
+    auto t0 = std::chrono::steady_clock::now();
+    presenter->goTo(n - 1);
+    double ms = msSince(t0);
+    if (getenv("RAYSTEP_GUI_PROFILE")) std::fprintf(stderr, "timing: entering step %d: %.1f ms\n", n, ms);
+  };
+  if (p.isSet("lesson-walk")) {
+    std::vector<int> walk = parseStepList("lesson-walk", p.value("lesson-walk"), steps);
+    QString dir = p.value("dump-state-dir");
+    if (!dir.isEmpty() && !QDir().mkpath(dir)) fail("cannot make " + dir.toStdString());
+    for (int n : walk) {
+      enter(n);
+      if (dir.isEmpty()) continue;
+      finish(window);
+      QString base = QString("%1/step-%2").arg(dir).arg(n);
+      writeJson(base + ".json", dumpState(window));
+      if (!window.sceneView()->grabView().save(base + ".png", "PNG")) fail("cannot write " + base.toStdString() + ".png");
+    }
+  } else if (p.isSet("lesson-step")) {
+    bool ok = false;
+    int n = p.value("lesson-step").toInt(&ok);
+    if (!ok || n < 1 || n > steps)
+      fail("--lesson-step '" + p.value("lesson-step").toStdString() + "': the lesson has steps 1.." +
+           std::to_string(steps));
+    enter(n);
+  } else if (!p.isSet("export-handout")) {
+    enter(1);
+  }
+  if (p.isSet("predict")) presenter->predictAndReveal(p.value("predict"));
+  if (p.isSet("predict-next"))  // Predict mode: each prediction, then the step it is about
+    for (const QString& guess : p.value("predict-next").split(';')) presenter->predictNext(guess);
+  runActions(window, p);
+  if (p.isSet("export-handout")) exportHandout(window, *presenter, p.value("export-handout"));
+  finish(window);
+  writeOutputs(window, p);
+  window.setScripted(false);
+  return quit ? 0 : -1;
+}
+
+}  // namespace
+
 int runCommandLine(MainWindow& window, const QStringList& arguments) {
   QCommandLineParser p;
   defineOptions(p);
@@ -180,9 +439,11 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     return 0;
   }
   const bool quit = p.isSet("quit");
-  const QStringList scripted = {"pixel", "step", "step-to", "forward", "back", "screenshot", "screenshot-3d",
-                                "dump-state", "export-trace", "open-bad", "panel", "node", "node-path",
-                                "pick-3d", "export-sah", "screenshot-sah", "edit-ti"};
+  const QStringList scripted = {"pixel",       "step",         "step-to",       "forward",      "back",
+                                "screenshot",  "screenshot-3d", "dump-state",   "export-trace", "open-bad",
+                                "panel",       "node",         "node-path",     "pick-3d",      "export-sah",
+                                "screenshot-sah", "edit-ti",   "lesson-step",   "lesson-walk",  "export-handout",
+                                "open-lesson-bad", "predict", "predict-next"};
   bool anyScript = quit;
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
@@ -190,246 +451,38 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     int ww = 1280, wh = 800;
     if (p.isSet("window")) parseSize("window", p.value("window"), &ww, &wh);
     window.resize(ww, wh);
-    std::string accel = p.isSet("accel") ? p.value("accel").toStdString() : "grid";
-    if (accel != "grid" && accel != "kd" && accel != "kd-median")
-      fail("--accel '" + accel + "': the debugger replays grid, kd or kd-median");
-    StructureOptions so;
-    auto number = [&](const char* name, double lo, double hi, bool loOpen, bool hiOpen) {
+    if (p.isSet("scale")) {
       bool ok = false;
-      double v = p.value(name).toDouble(&ok);
-      if (!ok || !std::isfinite(v) || (loOpen ? v <= lo : v < lo) || (hiOpen ? v >= hi : v > hi))
-        fail(std::string("--") + name + " '" + p.value(name).toStdString() + "': out of range");
-      return v;
-    };
-    if (p.isSet("ti")) so.kd.t_i = float(number("ti", 0.0, 1e4, true, false));
-    if (p.isSet("tt")) so.kd.t_t = float(number("tt", 0.0, 1e4, false, false));  // t_t >= 0, as in core
-    if (p.isSet("empty-bonus")) so.kd.empty_bonus = float(number("empty-bonus", 0.0, 1.0, false, true));
-    if (p.isSet("max-depth")) so.kd.max_depth = int(number("max-depth", 0, kKdMaxDepth, false, false));
-    if (p.isSet("leaf-size")) so.kd.leaf_size = int(number("leaf-size", 1, 1e6, false, false));
-    if (p.isSet("mailbox")) {
-      QString m = p.value("mailbox");
-      if (m != "on" && m != "off") fail("--mailbox '" + m.toStdString() + "': expected on or off");
-      so.kd_mailboxes = m == "on";
+      double scale = p.value("scale").toDouble(&ok);
+      if (!ok || !(scale >= 0.5 && scale <= 4.0)) fail("--scale '" + p.value("scale").toStdString() + "': expected 0.5 .. 4");
+      window.setPresenterScale(scale);
     }
-    GridOptions& g = so.grid;
-    if (p.isSet("grid-density")) {
-      bool ok = false;
-      g.density = p.value("grid-density").toFloat(&ok);
-      if (!ok || !(g.density > 0.f && g.density <= 64.f)) fail("--grid-density must be in (0, 64]");
+    if (p.isSet("lesson")) {
+      if (!p.positionalArguments().isEmpty()) fail("--lesson names the scenes itself: give no scene or trace file");
+      return runLesson(window, p, quit, anyScript);
     }
-    if (p.isSet("grid-res")) {
-      std::vector<int> r = parseInts("grid-res", p.value("grid-res"), 3, 1);
-      for (int v : r)
-        if (v > 4096) fail("--grid-res: each of NX,NY,NZ must be 1..4096");
-      g.resolution = std::array<int, 3>{r[0], r[1], r[2]};
-    }
-    if (p.isSet("grid-insert")) {
-      QString m = p.value("grid-insert");
-      if (m != "exact" && m != "bbox") fail("--grid-insert '" + m.toStdString() + "': expected exact or bbox");
-      g.exact_insert = m == "exact";
-    }
-    window.setStructureOptions(accel, so);
-    if (p.isSet("aa")) {
-      parse_antialiasing(p.value("aa").toStdString());  // throws on a bad spec
-      window.imageView()->setAntiAliasing(p.value("aa"));
-    }
-    if (p.isSet("heat")) {
-      parse_heat_quantity(p.value("heat").toStdString());
-      window.imageView()->setHeatQuantity(p.value("heat"));
-    }
-    if (p.isSet("size")) {
-      int w, h;
-      parseSize("size", p.value("size"), &w, &h);
-      window.setImageSize(w, h);
-    }
-    if (p.isSet("secondary")) window.imageView()->setSecondaryRays(true);
-    if (p.isSet("translucent")) window.sceneView()->setTranslucent(true);
-    if (p.isSet("follow")) window.sceneView()->setFollowCell(true);
+    LessonState st = stateFromOptions(p);
 
-    QStringList files = p.positionalArguments();
-    if (files.size() > 1) fail("give one scene or trace file");
     if (!anyScript) {  // interactive: open in the background and return to the event loop
+      window.setStructureOptions(st.accel, st.structure);
+      if (!st.aa.empty()) window.imageView()->setAntiAliasing(QString::fromStdString(st.aa));
+      if (!st.heat.empty()) window.imageView()->setHeatQuantity(QString::fromStdString(st.heat));
+      if (st.size) window.setImageSize((*st.size)[0], (*st.size)[1]);
+      window.imageView()->setSecondaryRays(st.secondary);
+      if (st.translucent) window.sceneView()->setTranslucent(true);
+      if (st.follow) window.sceneView()->setFollowCell(true);
       window.show();
-      if (!files.isEmpty()) window.openFileReportingErrors(files[0]);
+      if (!st.scene.empty()) window.openFileReportingErrors(QString::fromStdString(st.scene));
       return -1;
     }
 
     window.setScripted(true);
     window.show();
-    if (!files.isEmpty()) window.openFile(files[0]);
-    Session* s = window.session();
-    if (p.isSet("pixel")) {
-      std::vector<int> px = parseInts("pixel", p.value("pixel"), 2, 0);
-      if (!s->scene()) fail("--pixel needs a scene (a trace file already holds its rays)");
-      if (px[0] >= s->imageWidth() || px[1] >= s->imageHeight())
-        fail("--pixel " + p.value("pixel").toStdString() + ": outside the " + std::to_string(s->imageWidth()) + "x" +
-             std::to_string(s->imageHeight()) + " image");
-      // A click on the picture, as a user makes it (when the pixel is big enough on screen to hit it).
-      settle(window);
-      ImageCanvas* canvas = window.imageView()->canvas();
-      QPoint at = canvas->widgetPosOf(px[0], px[1]);
-      if (canvas->zoom() >= 1.0 && canvas->rect().contains(at)) {
-        QMouseEvent press(QEvent::MouseButtonPress, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::LeftButton,
-                          Qt::NoModifier);
-        QMouseEvent release(QEvent::MouseButtonRelease, at, canvas->mapToGlobal(at), Qt::LeftButton, Qt::NoButton,
-                            Qt::NoModifier);
-        QApplication::sendEvent(canvas, &press);
-        QApplication::sendEvent(canvas, &release);
-      }
-      const Trace* t = s->trace();
-      if (!t || t->rays.empty() || !t->rays[0].has_pixel || t->rays[0].pixel[0] != px[0] || t->rays[0].pixel[1] != px[1])
-      {
-        std::fprintf(stderr, "note: pixel traced without a click (the picture is shown smaller than 1:1)\n");
-        window.tracePixel(px[0], px[1]);
-      }
-    }
-    if (p.isSet("ray")) {
-      bool ok = false;
-      int r = p.value("ray").toInt(&ok);
-      if (!ok || !s->trace() || r < 0 || r >= int(s->trace()->rays.size())) fail("--ray: no such ray in the trace");
-      s->setRay(r);
-    }
-    if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
-    if (p.isSet("step")) {
-      bool ok = false;
-      int n = p.value("step").toInt(&ok);
-      if (!ok || n < 0 || n >= s->eventCount())
-        fail("--step " + p.value("step").toStdString() + ": the ray has " + std::to_string(s->eventCount()) +
-             " events (0.." + std::to_string(s->eventCount() - 1) + ")");
-      s->setStep(n);
-    }
-    if (p.isSet("step-to")) {
-      QStringList kk = p.value("step-to").split(':');
-      bool ok = kk.size() == 2;
-      int k = ok ? kk[1].toInt(&ok) : 0;
-      EventType type;
-      std::string name = kk[0].toStdString();
-      if (name == "hit") name = "hit_accepted";
-      if (!ok || k < 1 || !parse_event_type(name, &type))
-        fail("--step-to '" + p.value("step-to").toStdString() + "': expected KIND:K, K >= 1");
-      int i = s->ray() ? nthEvent(*s->ray(), type, k) : -1;
-      if (i < 0) fail("--step-to " + p.value("step-to").toStdString() + ": the ray has fewer such events");
-      s->setStep(i);
-    }
-    // One key press at a time, as a user would.
-    for (auto [name, delta] : {std::pair{"forward", 1}, std::pair{"back", -1}}) {
-      if (!p.isSet(name)) continue;
-      bool ok = false;
-      int n = p.value(name).toInt(&ok);
-      if (!ok || n < 0) fail(std::string("--") + name + " expects a count >= 0");
-      double total = 0, worst = 0;
-      for (int i = 0; i < n; ++i) {
-        auto t0 = std::chrono::steady_clock::now();
-        s->stepBy(delta);
-        auto t1 = std::chrono::steady_clock::now();
-        QApplication::processEvents();
-        if (getenv("RAYSTEP_GUI_PROFILE"))
-          std::fprintf(stderr, "step handlers %.1f ms, paint %.1f ms\n",
-                       std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        total += ms;
-        worst = std::max(worst, ms);
-      }
-      if (n > 0) std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
-    }
-    if (p.isSet("keys")) {  // through Qt's key handling, shortcuts included, as from the keyboard
-      static const std::map<QString, Qt::Key> keys = {
-          {"Right", Qt::Key_Right}, {"Left", Qt::Key_Left}, {"Space", Qt::Key_Space}, {"Home", Qt::Key_Home},
-          {"End", Qt::Key_End}};
-      // Window shortcuts fire only in the active window; without a window manager nobody activates it.
-      QApplication::setActiveWindow(&window);
-      window.activateWindow();
-      QApplication::processEvents();
-      for (const QString& k : p.value("keys").split(',')) {
-        auto it = keys.find(k.trimmed());
-        if (it == keys.end()) fail("--keys: unknown key '" + k.toStdString() + "' (Right, Left, Space, Home, End)");
-        QTest::keyClick(&window, it->second);
-        QApplication::processEvents();
-      }
-      window.timeline()->setPlaying(false);  // a Space may have started playback: stop where it is
-    }
-    if (p.isSet("zoom")) {
-      bool ok = false;
-      double z = p.value("zoom").toDouble(&ok);
-      if (!ok || z < 0 || z > 64) fail("--zoom must be 0 (fit) .. 64");
-      ImageCanvas* canvas = window.imageView()->canvas();
-      canvas->setZoom(z);
-      const Trace* t = s->trace();
-      if (t && !t->rays.empty() && t->rays[0].has_pixel) canvas->centreOn(t->rays[0].pixel[0], t->rays[0].pixel[1]);
-    }
-    // The kd-tree's inspector: a node by id or path, or the root for --panel sah; or a click in the 3D view.
-    if (p.isSet("panel") && p.value("panel") != "sah" && p.value("panel") != "kd")
-      fail("--panel '" + p.value("panel").toStdString() + "': expected sah or kd");
-    if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
-    if (p.isSet("panel") || p.isSet("node") || p.isSet("node-path") || p.isSet("pick-3d")) {
-      const char* what = p.isSet("node") ? "--node" : p.isSet("node-path") ? "--node-path" : p.isSet("panel") ? "--panel" : "--pick-3d";
-      const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
-      if (!kd) fail(std::string(what) + ": no kd-tree (open a scene with --accel kd or kd-median)");
-      size_t count = kd->data().nodes.size();
-      int node = p.isSet("panel") && p.value("panel") == "sah" ? 0 : -1;
-      if (p.isSet("node")) {
-        bool ok = false;
-        qlonglong id = p.value("node").toLongLong(&ok);
-        if (!ok || id < 0 || size_t(id) >= count)
-          fail("--node " + p.value("node").toStdString() + ": the kd-tree has " + std::to_string(count) + " nodes (0.." +
-               std::to_string(count - 1) + ")");
-        node = int(id);
-      }
-      if (p.isSet("node-path")) {
-        try {
-          node = int(kd_node_by_path(kd->data(), p.value("node-path").toStdString()));
-        } catch (const InputError& e) {
-          std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
-          if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos) why = why.substr(colon + 3);
-          fail("--node-path '" + p.value("node-path").toStdString() + "': " + why);
-        }
-      }
-      window.showKdPanel();
-      settle(window);  // the dock laid out before the chart draws
-      if (node >= 0) s->setSelectedNode(node);
-      if (p.isSet("pick-3d")) {
-        std::vector<int> at = parseInts("pick-3d", p.value("pick-3d"), 2, 0);
-        settle(window);
-        if (!window.sceneView()->pickAt(QPoint(at[0], at[1])))
-          fail("--pick-3d " + p.value("pick-3d").toStdString() + ": no geometry under that pixel of the 3D view");
-      }
-    }
-    if (p.isSet("edit-ti")) {  // through the spin box: the rebuild starts once the value has rested
-      double ti = number("edit-ti", 0.0, 1e4, true, false);
-      auto* spin = window.findChild<QDoubleSpinBox*>("kdTi");
-      if (!spin) fail("--edit-ti: no t_i box");
-      spin->setValue(ti);
-      for (int i = 0; i < 1000 && window.structurePanel()->costsEditPending(); ++i) {
-        QApplication::processEvents();
-        QThread::msleep(5);
-      }
-      QApplication::processEvents();
-    }
-    if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
-    settle(window);
-    window.sahChart()->renderNow();
-    QApplication::processEvents();
-    if (getenv("RAYSTEP_GUI_PROFILE"))
-      for (QWidget* w : window.findChildren<QWidget*>())
-        if (w->minimumSizeHint().width() > 250)
-          std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(), w->metaObject()->className(),
-                       w->objectName().toLocal8Bit().constData());
-    if (p.isSet("export-trace")) {
-      if (!s->trace()) fail("--export-trace: no trace (give --pixel)");
-      window.exportTrace(p.value("export-trace"));
-    }
-    if (p.isSet("screenshot") && !window.grab().save(p.value("screenshot"), "PNG"))
-      fail("cannot write " + p.value("screenshot").toStdString());
-    if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
-      fail("cannot write " + p.value("screenshot-3d").toStdString());
-    if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
-      fail("cannot write " + p.value("screenshot-sah").toStdString());
-    if (p.isSet("export-sah")) {
-      if (!window.sahChart()->curve()) fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
-      window.exportSahCsv(p.value("export-sah"));
-    }
-    if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
+    settle(window);  // laid out before the picture is fitted and the 3D view framed
+    enterState(window, st);
+    runActions(window, p);
+    finish(window);
+    writeOutputs(window, p);
     window.setScripted(false);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -40,7 +40,8 @@ std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const Sc
 QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms) {
   const Scene& scene = s.scene->scene;
   RenderOptions opt = render_options(scene.render);
-  opt.aa = parse_antialiasing(aaSpec);
+  // "scene" (the default, as in a lesson's `aa: scene`): the scene file's own anti-aliasing.
+  if (!aaSpec.empty() && aaSpec != "scene") opt.aa = parse_antialiasing(aaSpec);
   opt.width = width;
   opt.height = height;
   RenderResult r = render_image(scene, *s.accel, opt);

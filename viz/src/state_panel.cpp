@@ -9,6 +9,7 @@
 #include <QHeaderView>
 #include <QJsonArray>
 #include <QLabel>
+#include <QRegularExpression>
 #include <QTableView>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -190,7 +191,9 @@ void StatePanel::refresh() {
                     .arg(r->has_pixel ? tr(", pixel (%1, %2)").arg(r->pixel[0]).arg(r->pixel[1]) : QString())
                     .arg(num(r->ray.origin.x), num(r->ray.origin.y), num(r->ray.origin.z))
                     .arg(num(r->ray.direction.x), num(r->ray.direction.y), num(r->ray.direction.z)));
-  event_->setText(tr("<b>Event</b> %1").arg(QString::fromStdString(describeEvent(*s.event)).toHtmlEscaped()));
+  QString line = QString::fromStdString(describeEvent(*s.event));
+  if (conceal_) line.remove(QRegularExpression("\\s+next \\w+$"));  // a cell's line names the next axis
+  event_->setText(tr("<b>Event</b> %1").arg(line.toHtmlEscaped()));
 
   if (s.cellEvent >= 0) {
     const Event& c = r->events[size_t(s.cellEvent)];
@@ -198,13 +201,16 @@ void StatePanel::refresh() {
     interval_->setText(QString("[%1, %2]").arg(num(c.t_enter), num(c.t_exit)));
     QString t = "<table cellspacing=4><tr><th></th><th>x</th><th>y</th><th>z</th></tr><tr><td>tMax</td>";
     for (int a = 0; a < 3; ++a)
-      t += a == c.next_axis ? QString("<td><b><u>%1</u></b></td>").arg(num(c.t_max[a]))
+      t += a == c.next_axis && !conceal_ ? QString("<td><b><u>%1</u></b></td>").arg(num(c.t_max[a]))
                             : QString("<td>%1</td>").arg(num(c.t_max[a]));
     t += "</tr><tr><td>tDelta</td>";
     for (int a = 0; a < 3; ++a) t += QString("<td>%1</td>").arg(num(c.t_delta[a]));
-    t += QString("</tr></table>next axis: <b>%1</b>%2")
-             .arg(axisName(c.next_axis))
-             .arg(c.next_axis >= 0 ? tr(" (smallest tMax)") : tr(" (the walk ends in this cell)"));
+    if (conceal_)
+      t += tr("</tr></table>next axis: <i>? (the quiz asks it)</i>");
+    else
+      t += QString("</tr></table>next axis: <b>%1</b>%2")
+               .arg(axisName(c.next_axis))
+               .arg(c.next_axis >= 0 ? tr(" (smallest tMax)") : tr(" (the walk ends in this cell)"));
     dda_->setText(t);
   } else {
     cell_->setText(tr("<i>not in the grid yet</i>"));
@@ -218,7 +224,8 @@ void StatePanel::refresh() {
                           .arg(s.accepted ? tr("(accepted)") : s.deferred ? tr("(deferred: beyond the cell's exit)")
                                                                           : tr("(candidate)")));
   else nearest_->setText(s.ended ? tr("none: a miss") : tr("none yet"));
-  rule_->setText(QString::fromStdString(explainRule(session_->trace(), *r, s)));
+  rule_->setText(conceal_ ? tr("Hidden until the quiz's answer is revealed: it says what the walk does next.")
+                          : QString::fromStdString(explainRule(session_->trace(), *r, s)));
   const RayCounters& k = s.counters;
   QString walk = tree ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
                       : tr("cells %1").arg(k.cells);
@@ -268,12 +275,18 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                     .arg(child(c.nearChild), child(c.farChild));
         break;
     }
-    crossing_->setText(tr("<b>%1</b> (plane %2 = %3; near side %4)<br>%5")
-                           .arg(num(c.tStar))
-                           .arg(axisName(c.axis))
-                           .arg(num(c.split))
-                           .arg(c.nearIsBelow ? tr("below") : tr("above"))
-                           .arg(which));
+    if (conceal_)  // the quiz asks which child comes first: t* and the plane only
+      crossing_->setText(tr("<b>%1</b> (plane %2 = %3)<br><i>near side and children: ? (the quiz asks it)</i>")
+                             .arg(num(c.tStar))
+                             .arg(axisName(c.axis))
+                             .arg(num(c.split)));
+    else
+      crossing_->setText(tr("<b>%1</b> (plane %2 = %3; near side %4)<br>%5")
+                             .arg(num(c.tStar))
+                             .arg(axisName(c.axis))
+                             .arg(num(c.split))
+                             .arg(c.nearIsBelow ? tr("below") : tr("above"))
+                             .arg(which));
   } else {
     crossing_->setText(tr("<i>- (the current node is not an inner node being split)</i>"));
   }
@@ -281,7 +294,7 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   int rows = int(s.stack.size());
   stack_->setRowCount(rows);
   // As tall as its rows (at least one, at most eight), so that the panel below it stays in view.
-  stack_->setFixedHeight(stack_->horizontalHeader()->height() + 18 * std::clamp(rows, 1, 8) + 4);
+  stack_->setFixedHeight(stack_->horizontalHeader()->height() + rowHeight_ * std::clamp(rows, 1, 8) + 4);
   for (int row = 0; row < rows; ++row) {
     const StackEntry& e = s.stack[size_t(rows - 1 - row)];
     QString cells[4] = {QString::number(e.node), QString::number(e.depth), num(e.tMin), num(e.tMax)};
@@ -298,6 +311,19 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
       item->setFont(f);
     }
   }
+}
+
+void StatePanel::setConceal(bool on) {
+  if (on == conceal_) return;
+  conceal_ = on;
+  refresh();
+}
+
+void StatePanel::setScale(double scale) {
+  rowHeight_ = int(std::lround(18 * scale));
+  stack_->verticalHeader()->setDefaultSectionSize(rowHeight_);
+  stack_->setMinimumHeight(stack_->horizontalHeader()->sizeHint().height() + 5 * rowHeight_ + 4);
+  refresh();
 }
 
 QJsonObject StatePanel::dumpState() const {

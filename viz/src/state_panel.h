@@ -31,6 +31,11 @@ class StatePanel : public QWidget {
   QJsonObject dumpState() const;
   // The mailbox table, which the window places on its own (it wants height).
   QWidget* mailboxWidget() const { return mailboxBox_; }
+  // The stack table's rows follow the presenter scale (their height was set for the desk's font).
+  void setScale(double scale);
+  // The quiz asks what the walk does next: the Why text and the 3D-DDA's next axis are hidden until the
+  // answer is revealed.
+  void setConceal(bool on);
 
  private:
   void refresh();
@@ -52,6 +57,8 @@ class StatePanel : public QWidget {
   QWidget* mailboxBox_;
   QTableView* mailboxView_;
   MailboxModel* mailbox_;
+  int rowHeight_ = 18;
+  bool conceal_ = false;
 };
 
 }  // namespace raystep::viz

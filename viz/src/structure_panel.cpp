@@ -11,6 +11,7 @@
 #include <QPushButton>
 #include <QSpinBox>
 #include <QTimer>
+#include <QToolButton>
 #include <QVBoxLayout>
 
 namespace raystep::viz {
@@ -29,6 +30,13 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   build_ = new QPushButton(tr("Build"));
   build_->setObjectName("buildButton");
   top->addWidget(build_);
+  options_ = new QToolButton;
+  options_->setText(tr("Options"));
+  options_->setCheckable(true);
+  options_->setObjectName("structureOptions");
+  options_->setToolTip(tr("Show the build options (at presenter scales the panel shows only its info line)"));
+  options_->hide();
+  top->addWidget(options_);
   layout->addLayout(top);
 
   auto* grid = grid_ = new QGroupBox(tr("Uniform grid"));
@@ -129,12 +137,8 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   mailboxes_->setToolTip(tr("Skip a primitive that an earlier leaf of the same ray already tested"));
   k->addWidget(mailboxes_, 2, 0, 1, 3);
   layout->addWidget(kd_);
-  auto showSection = [this] {
-    bool kd = accel_->currentData().toString() == "kd";
-    grid_->setVisible(!kd);
-    kd_->setVisible(kd);
-  };
-  connect(accel_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, showSection);
+  connect(accel_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &StructurePanel::showSection);
+  connect(options_, &QToolButton::toggled, this, &StructurePanel::showSection);
   showSection();
 
   progress_ = new QProgressBar;
@@ -162,6 +166,20 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
 std::string StructurePanel::accelName() const {
   if (accel_->currentData().toString() == "grid") return "grid";
   return builder_->currentData().toString().toStdString();
+}
+
+void StructurePanel::showSection() {
+  const bool kd = accel_->currentData().toString() == "kd";
+  const bool shown = !compact_ || options_->isChecked();
+  grid_->setVisible(shown && !kd);
+  kd_->setVisible(shown && kd);
+}
+
+void StructurePanel::setCompact(bool on) {
+  compact_ = on;
+  options_->setVisible(on);
+  options_->setChecked(false);
+  showSection();
 }
 
 StructureOptions StructurePanel::options() const {

@@ -21,6 +21,7 @@ class QPushButton;
 class QComboBox;
 class QSpinBox;
 class QTimer;
+class QToolButton;
 
 namespace raystep::viz {
 
@@ -36,6 +37,9 @@ class StructurePanel : public QWidget {
   void setInfo(const QString& text);
   QString info() const;  // what the info line below the options says (the state dump has it)
   bool costsEditPending() const;  // an edited kd cost waits for the spin box to rest
+  // Compact (presenter scales): the info line only, the options behind an "Options" button; a lesson sets
+  // them, and at 1.5 times the size they would take a third of a projector's width.
+  void setCompact(bool on);
 
  Q_SIGNALS:
   void buildRequested();
@@ -62,7 +66,10 @@ class StructurePanel : public QWidget {
   QSpinBox* leafSize_;
   QCheckBox* mailboxes_;
   QTimer* costsTimer_;
-  bool settingUp_ = false;  // setStructure: values set by the program, not edited
+  bool settingUp_ = false;
+  bool compact_ = false;
+  QToolButton* options_;
+  void showSection();  // setStructure: values set by the program, not edited
 };
 
 }  // namespace raystep::viz

@@ -52,6 +52,13 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   speed_->setSuffix(tr(" ev/s"));
   row->addWidget(speed_);
   row->addSpacing(16);
+  // Jump to and Ray: one group, on the first row, or on the slider's row when the timeline is compact.
+  jumpBox_ = new QWidget;
+  auto* jumpRow = new QHBoxLayout(jumpBox_);
+  jumpRow->setContentsMargins(0, 0, 0, 0);
+  row->addWidget(jumpBox_);
+  QHBoxLayout* buttons = row;
+  row = jumpRow;
   row->addWidget(new QLabel(tr("Jump to")));
   QToolButton* prevKind = button(tr("< prev"), tr("Previous event of this kind"));
   kind_ = new QComboBox;
@@ -74,9 +81,10 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   ray_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
   ray_->setMinimumContentsLength(14);
   row->addWidget(ray_);
+  row = buttons;
   row->addStretch();
   layout->addLayout(row);
-  auto* row2 = new QHBoxLayout;
+  auto* row2 = row2_ = new QHBoxLayout;
   position_ = new QLabel;
   position_->setObjectName("timelinePosition");
   position_->setMinimumWidth(230);
@@ -111,12 +119,17 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     auto* s = new QShortcut(QKeySequence(k), top);
     s->setContext(Qt::WindowShortcut);
     connect(s, &QShortcut::activated, this, fn);
+    return s;
   };
-  key(Qt::Key_Right, [this] { session_->stepBy(1); });
-  key(Qt::Key_Left, [this] { session_->stepBy(-1); });
+  forwardKey_ = key(Qt::Key_Right, [this] { session_->stepBy(1); });
+  backKey_ = key(Qt::Key_Left, [this] { session_->stepBy(-1); });
   key(Qt::Key_Space, [this] { setPlaying(!playing()); });
-  key(Qt::Key_Home, [this] { session_->setStep(0); });
-  key(Qt::Key_End, [this] { session_->setStep(session_->eventCount() - 1); });
+  firstKey_ = key(Qt::Key_Home, [this] { session_->setStep(0); });
+  lastKey_ = key(Qt::Key_End, [this] { session_->setStep(session_->eventCount() - 1); });
+  periodKey_ = key(Qt::Key_Period, [this] { session_->stepBy(1); });
+  commaKey_ = key(Qt::Key_Comma, [this] { session_->stepBy(-1); });
+  periodKey_->setEnabled(false);
+  commaKey_->setEnabled(false);
 
   connect(session_, &Session::traceChanged, this, [this] {
     setPlaying(false);
@@ -136,6 +149,25 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     if (!session_->ray() && session_->structure()) offerUnit(session_->structure()->kind != "grid");
   });
   refresh();
+}
+
+void Timeline::setCompact(bool on) {
+  // The group moves between rows: at presenter scales one row of everything is wider than a projector.
+  auto* row1 = static_cast<QBoxLayout*>(layout()->itemAt(0)->layout());
+  row1->removeWidget(jumpBox_);
+  row2_->removeWidget(jumpBox_);
+  if (on) row2_->insertWidget(0, jumpBox_);
+  else row1->insertWidget(row1->count() - 1, jumpBox_);  // before the stretch
+}
+
+void Timeline::setLessonKeys(bool on) {
+  const Qt::KeyboardModifiers m = on ? Qt::ShiftModifier : Qt::NoModifier;
+  forwardKey_->setKey(QKeySequence(int(m) | Qt::Key_Right));
+  backKey_->setKey(QKeySequence(int(m) | Qt::Key_Left));
+  firstKey_->setKey(QKeySequence(int(m) | Qt::Key_Home));
+  lastKey_->setKey(QKeySequence(int(m) | Qt::Key_End));
+  periodKey_->setEnabled(on);
+  commaKey_->setEnabled(on);
 }
 
 bool Timeline::jump(const QString& kind, bool forward) {

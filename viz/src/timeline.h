@@ -15,6 +15,8 @@ class QToolButton;
 class QSlider;
 class QSpinBox;
 class QTimer;
+class QHBoxLayout;
+class QShortcut;
 
 namespace raystep::viz {
 
@@ -30,6 +32,11 @@ class Timeline : public QWidget {
   void setPlaying(bool on);
   bool playing() const;
   static std::vector<EventType> typesOf(const QString& kind);
+  // In a lesson the plain arrows, Home and End move between steps (a clicker sends them): the walk's keys
+  // become Shift+Right/Shift+Left (and . and ,), Shift+Home/Shift+End.
+  void setLessonKeys(bool on);
+  // Compact (presenter scales): "Jump to" and "Ray" move to the slider's row.
+  void setCompact(bool on);
 
  private:
   void refresh();
@@ -43,6 +50,14 @@ class Timeline : public QWidget {
   QToolButton* play_;
   QSpinBox* speed_;
   QTimer* timer_;
+  QWidget* jumpBox_;
+  QHBoxLayout* row2_;
+  QShortcut* forwardKey_;
+  QShortcut* backKey_;
+  QShortcut* firstKey_;
+  QShortcut* lastKey_;
+  QShortcut* periodKey_;
+  QShortcut* commaKey_;
 };
 
 }  // namespace raystep::viz

@@ -80,6 +80,15 @@ void TreeView::showSelected() {
   syncing_ = false;
 }
 
+void TreeView::resetRows() {
+  syncing_ = true;
+  view_->collapseAll();
+  view_->selectionModel()->clear();
+  view_->expandToDepth(0);
+  syncing_ = false;
+  showSelected();
+}
+
 int TreeView::expandedCount() const {
   // Rows made so far: walk only the expanded branches.
   int n = 0;

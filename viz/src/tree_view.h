@@ -20,7 +20,10 @@ class TreeView : public QWidget {
  public:
   explicit TreeView(Session* session, QWidget* parent = nullptr);
   QTreeView* view() const { return view_; }
-  int expandedCount() const;  // rows the view has made, for the dump (never the whole tree)
+  int expandedCount() const;
+  // Back to the rows a new tree shows (the root's children, then the way to the selected node): entering a
+  // lesson step leaves no rows open from the steps before.
+  void resetRows();  // rows the view has made, for the dump (never the whole tree)
 
  Q_SIGNALS:
   void nodeChosen(int node);

@@ -1,0 +1,161 @@
+#include "lesson_enter.h"
+
+#include <QApplication>
+#include <QFileInfo>
+#include <QThread>
+
+#include "image_view.h"
+#include "kd_tree_model.h"
+#include "main_window.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/util/error.h"
+#include "replay.h"
+#include "scene_view.h"
+#include "session.h"
+#include "tree_view.h"
+
+namespace raystep::viz {
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw InputError("", 0, what);
+}
+
+// Work in place while entering, whatever the window's mode, and back to it after (also on an error).
+struct InPlace {
+  explicit InPlace(MainWindow& w) : window(w), was(w.workInPlace()) { w.setWorkInPlace(true); }
+  ~InPlace() { window.setWorkInPlace(was); }
+  MainWindow& window;
+  bool was;
+};
+
+// Layout and paint settle before what depends on the widgets' sizes (the dock before the chart draws).
+void settle(MainWindow& w) {
+  for (int i = 0; i < 3; ++i) QApplication::processEvents();
+  w.sceneView()->renderNow();
+}
+
+bool samePath(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  QFileInfo fa(QString::fromStdString(a)), fb(QString::fromStdString(b));
+  return fa.exists() && fb.exists() && fa.canonicalFilePath() == fb.canonicalFilePath();
+}
+
+}  // namespace
+
+void enterState(MainWindow& w, const LessonState& st) {
+  InPlace inPlace(w);
+  Session* s = w.session();
+  ImageView* image = w.imageView();
+
+  // The structure, the picture and the heat map: set on the panels first, so that opening or building takes
+  // them; then made again only where they differ from what the window has.
+  w.setStructureOptions(st.accel, st.structure);
+  image->setAntiAliasing(st.aa.empty() ? QString("scene") : QString::fromStdString(st.aa));
+  image->setHeatQuantity(st.heat.empty() ? QString("off") : QString::fromStdString(st.heat));
+  image->setSecondaryRays(st.secondary);
+  w.setImageSize(st.size ? (*st.size)[0] : 0, st.size ? (*st.size)[1] : 0);
+
+  const QString scene = QString::fromStdString(st.scene);
+  const bool isTrace = !st.scene.empty() && MainWindow::isTraceFile(scene);
+  const SceneData* had = s->scene();
+  const bool newFile = !st.scene.empty() &&
+                       (isTrace ? s->traceSource() != scene || had : !had || !samePath(had->path, st.scene));
+  if (newFile) {
+    w.openFile(scene);  // builds, renders and computes the heat map with the settings above
+  } else if (s->scene() && w.builtStructureKey() != w.structureOptionsKey()) {
+    w.buildStructure();
+  }
+  if (s->scene()) {
+    w.ensurePicture();
+    w.ensureHeat();
+  }
+
+  // The traced pixel: traced again each time (the class may have clicked another pixel meanwhile).
+  if (st.pixel) {
+    const std::string text = std::to_string((*st.pixel)[0]) + "," + std::to_string((*st.pixel)[1]);
+    if (!s->scene()) fail("--pixel needs a scene (a trace file already holds its rays)");
+    if ((*st.pixel)[0] >= s->imageWidth() || (*st.pixel)[1] >= s->imageHeight())
+      fail("--pixel " + text + ": outside the " + std::to_string(s->imageWidth()) + "x" +
+           std::to_string(s->imageHeight()) + " image");
+    w.tracePixel((*st.pixel)[0], (*st.pixel)[1]);
+  } else if (s->scene() && s->trace()) {
+    s->setTrace(nullptr, QString());
+  }
+  if (st.ray != 0 || (s->trace() && s->rayIndex() != 0)) {
+    if (!s->trace() || st.ray < 0 || st.ray >= int(s->trace()->rays.size()))
+      fail("--ray " + std::to_string(st.ray) + ": no such ray in the trace");
+    s->setRay(st.ray);
+  }
+  switch (st.event.by) {
+    case EventSpec::By::start:
+      s->setStep(0);
+      break;
+    case EventSpec::By::index:
+      if (st.event.index < 0 || st.event.index >= s->eventCount())
+        fail("--step " + std::to_string(st.event.index) + ": the ray has " + std::to_string(s->eventCount()) +
+             " events (0.." + std::to_string(s->eventCount() - 1) + ")");
+      s->setStep(st.event.index);
+      break;
+    case EventSpec::By::nth: {
+      int i = s->ray() ? nthEvent(*s->ray(), st.event.type, st.event.k) : -1;
+      if (i < 0) fail("--step-to " + st.event.text + ": the ray has fewer such events");
+      s->setStep(i);
+      break;
+    }
+  }
+
+  // The picture: fitted, or zoomed on the traced pixel.
+  ImageCanvas* canvas = image->canvas();
+  canvas->setZoom(st.zoom ? *st.zoom : 0.0);
+  if (st.zoom && st.pixel) canvas->centreOn((*st.pixel)[0], (*st.pixel)[1]);
+
+  // The kd-tree's inspector: a node by id or path, or the root for `panel: sah`; closed otherwise.
+  const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
+  int node = st.panel == "sah" ? 0 : -1;
+  if (!st.panel.empty() || st.node.by != NodeSpec::By::none) {
+    const char* what = st.node.by == NodeSpec::By::id     ? "--node"
+                       : st.node.by == NodeSpec::By::path ? "--node-path"
+                                                          : "--panel";
+    if (!kd) fail(std::string(what) + ": no kd-tree (open a scene with --accel kd or kd-median)");
+    const size_t count = kd->data().nodes.size();
+    if (st.node.by == NodeSpec::By::id) {
+      if (st.node.id < 0 || size_t(st.node.id) >= count)
+        fail("--node " + std::to_string(st.node.id) + ": the kd-tree has " + std::to_string(count) +
+             " nodes (0.." + std::to_string(count - 1) + ")");
+      node = st.node.id;
+    }
+    if (st.node.by == NodeSpec::By::path) {
+      try {
+        node = int(kd_node_by_path(kd->data(), st.node.path));
+      } catch (const InputError& e) {
+        std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
+        if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)
+          why = why.substr(colon + 3);
+        fail("--node-path '" + st.node.path + "': " + why);
+      }
+    }
+  }
+  if (!st.panel.empty() || st.node.by != NodeSpec::By::none) {
+    if (!w.kdPanelVisible()) {
+      w.showKdPanel();
+      settle(w);  // the dock laid out before the chart draws
+    }
+  } else {
+    w.hideKdPanel();
+  }
+  s->setSelectedNode(node);
+  w.treeView()->resetRows();
+
+  // The 3D view: the scene framed as when it was opened, at the view's size once the panels have taken their
+  // room for this state (the state column's scroll bar, the dock), then following if the state says so.
+  for (int i = 0; i < 3; ++i) QApplication::processEvents();
+  SceneView* view = w.sceneView();
+  if (view->translucent() != st.translucent) view->setTranslucent(st.translucent);
+  if (view->followCell()) view->setFollowCell(false);
+  view->restoreHomeCamera();
+  if (st.follow) view->setFollowCell(true);
+  view->renderNow();
+}
+
+}  // namespace raystep::viz

@@ -1,0 +1,16 @@
+// The quiz's two calls into core (question.h), in one place: the answer computed from the walk or the build,
+// and whether a typed prediction matches it.
+#pragma once
+
+#include "raystep/lesson/question.h"
+
+namespace raystep::viz {
+
+inline Answer computeAnswer(QuestionKind kind, const QuestionContext& context) {
+  return answer_question(kind, context);
+}
+inline bool predictionMatches(const Answer& answer, const std::string& prediction) {
+  return prediction_matches(answer, prediction);
+}
+
+}  // namespace raystep::viz
