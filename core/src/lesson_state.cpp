@@ -68,10 +68,16 @@ bool parse_on_off(const std::string& key, const std::string& value) {
   bad(key, value, "on or off");
 }
 
+// At least the integer part's digits, so that 20 reads "20", not "2e+01".
+int integer_digits(double v) {
+  const double a = std::fabs(v);
+  return a >= 1.0 && a < 1e17 ? int(std::floor(std::log10(a))) + 1 : 1;
+}
+
 // The shortest decimal text that reads back to the same float (the command line must rebuild the same tree).
 std::string float_text(float v) {
   char buf[32];
-  for (int precision = 1; precision <= 9; ++precision) {
+  for (int precision = std::min(9, integer_digits(v)); precision <= 9; ++precision) {
     std::snprintf(buf, sizeof buf, "%.*g", precision, double(v));
     if (std::strtof(buf, nullptr) == v) break;
   }
@@ -80,7 +86,7 @@ std::string float_text(float v) {
 
 std::string double_text(double v) {
   char buf[40];
-  for (int precision = 1; precision <= 17; ++precision) {
+  for (int precision = std::min(17, integer_digits(v)); precision <= 17; ++precision) {
     std::snprintf(buf, sizeof buf, "%.*g", precision, v);
     if (std::strtod(buf, nullptr) == v) break;
   }

@@ -296,7 +296,7 @@ TEST(LessonState, ScriptedArgs) {
           "accel: kd\nti: 80\npixel: 160,200\nstep-to: cell:3\npanel: sah\nnode-path: LR\nfollow: on\n"
           "translucent: on\nzoom: 8\n") +
           "## B\n```raystep\naccel: grid\ngrid-res: 4,5,6\ngrid-density: 0.1\ngrid-insert: bbox\nti: "
-          "12.5\ntt: 0\n"
+          "20\ntt: 0\n"
           "empty-bonus: 0.3\nmax-depth: 20\nleaf-size: 2\nmailbox: off\naa: adaptive:0.05:2\nsize: 64x48\n"
           "heat: mailbox\npixel: 3,4\nsecondary: on\nray: 2\nstep: 17\npanel: none\nnode: 12\nfollow: off\n"
           "translucent: off\nzoom: 0.3\n```\n## C\n```raystep\nstep-to: hit:1\nnode: none\n```\n",
@@ -313,7 +313,7 @@ TEST(LessonState, ScriptedArgs) {
                                                  "--grid-insert",
                                                  "bbox",
                                                  "--ti",
-                                                 "12.5",
+                                                 "20",
                                                  "--tt",
                                                  "0",
                                                  "--empty-bonus",
@@ -349,7 +349,7 @@ TEST(LessonState, ScriptedArgs) {
                                                  "--grid-insert",
                                                  "bbox",
                                                  "--ti",
-                                                 "12.5",
+                                                 "20",
                                                  "--tt",
                                                  "0",
                                                  "--empty-bonus",

@@ -232,6 +232,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   heat_->addItem(tr("cells or nodes visited"), "cells");
   heat_->addItem(tr("primitive tests"), "tests");
   heat_->addItem(tr("mailbox hits"), "mailbox");
+  heat_->addItem(tr("samples per pixel"), "samples");
   row2->addWidget(heat_);
   opacity_ = new QSlider(Qt::Horizontal);
   opacity_->setRange(0, 100);
@@ -284,6 +285,7 @@ void ImageView::setCompact(bool on) {
   (on ? row1 : row2)->addWidget(zoomBox_);
   heat_->setItemText(1, on ? tr("cells/nodes") : tr("cells or nodes visited"));
   heat_->setItemText(2, on ? tr("tests") : tr("primitive tests"));
+  heat_->setItemText(4, on ? tr("samples") : tr("samples per pixel"));
 }
 
 void ImageView::refreshHeat() { canvas_->setHeat(session_->heat(), opacity_->value() / 100.0); }

@@ -311,11 +311,14 @@ QString MainWindow::pictureKeyNow() const {
 }
 
 QString MainWindow::heatKeyNow() const {
-  return QString("%1 %2x%3 %4")
+  // The samples map depends on the anti-aliasing too; the traversal counts do not.
+  const QString q = imageView_->heatQuantity();
+  return QString("%1 %2x%3 %4 %5")
       .arg(quintptr(session_->structure()))
       .arg(session_->imageWidth())
       .arg(session_->imageHeight())
-      .arg(imageView_->heatQuantity());
+      .arg(q)
+      .arg(q == "samples" ? imageView_->antiAliasing() : QString());
 }
 
 void MainWindow::ensurePicture() {
@@ -633,13 +636,22 @@ void MainWindow::renderPicture() {
   imageView_->setStatus(tr("Rendering %1x%2 (%3)...").arg(w).arg(h).arg(QString::fromStdString(aa)));
   runTask("render", tr("Rendering..."), [this, grid, aa, w, h, key] {
     double ms = 0;
-    QImage img = viz::renderPicture(*grid, aa, w, h, &ms);
-    return std::function<void()>([this, grid, img, ms, w, h, aa, key] {
+    RayCounts rays;
+    QImage img = viz::renderPicture(*grid, aa, w, h, &ms, &rays);
+    return std::function<void()>([this, grid, img, ms, w, h, aa, key, rays] {
       if (grid != session_->structureShared()) return;  // made for a structure since replaced
       session_->setPicture(img);
       pictureKey_ = key;
+      // The lecture's m^2 k^2 n 2^d, as this picture really spent it.
+      QLocale l;
       imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
-                            took(tr(", rendered"), ms) + tr(". Click a pixel to trace its ray."));
+                            took(tr(", rendered"), ms) +
+                            tr(". Rays: %1 primary, %2 shadow, %3 reflected, %4 refracted (%5 in all). Click a "
+                               "pixel to trace its ray.")
+                                .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
+                                     l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
+                                     l.toString(qulonglong(rays.total()))));
+      if (imageView_->heatQuantity() == "samples") ensureHeat();  // the new anti-aliasing's samples
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
     });
   });
@@ -655,10 +667,11 @@ void MainWindow::computeHeat() {
   }
   QString key = heatKeyNow();
   HeatQuantity quantity = parse_heat_quantity(q.toStdString());
+  std::string aa = imageView_->antiAliasing().toStdString();
   int w = session_->imageWidth(), h = session_->imageHeight();
-  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, w, h, key] {
+  runTask("heat", tr("Computing the heat map..."), [this, grid, quantity, aa, w, h, key] {
     double ms = 0;
-    auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, w, h, &ms));
+    auto heat = std::make_shared<const HeatMap>(viz::computeHeat(*grid, quantity, aa, w, h, &ms));
     return std::function<void()>([this, grid, heat, ms, key] {
       if (grid != session_->structureShared()) return;
       session_->setHeat(heat);

@@ -137,7 +137,7 @@ void defineOptions(QCommandLineParser& p) {
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
   opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
-  opt("heat", "Heat map overlay: cells, tests or mailbox.", "Q");
+  opt("heat", "Heat map overlay: cells, tests, mailbox, or samples (the anti-aliasing's rays per pixel).", "Q");
   opt("size", "Picture size (default: the scene's); --pixel refers to it.", "WxH");
   opt("pixel", "Trace this pixel's rays.", "X,Y");
   opt("secondary", "Trace the pixel's secondary rays too.");

@@ -5,8 +5,8 @@
 #include "raystep/io/image_io.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
-#include "raystep/trace/record_trace.h"
 #include "raystep/trace/pixel_rays.h"
+#include "raystep/trace/record_trace.h"
 
 namespace raystep::viz {
 namespace {
@@ -25,7 +25,8 @@ std::shared_ptr<const SceneData> loadSceneData(const std::string& path) {
   return data;
 }
 
-std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene, const std::string& kind,
+std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene,
+                                                        const std::string& kind,
                                                         const StructureOptions& options) {
   auto data = std::make_shared<StructureData>();
   data->scene = std::move(scene);
@@ -37,15 +38,25 @@ std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const Sc
   return data;
 }
 
-QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms) {
+namespace {
+
+RenderResult renderWith(const StructureData& s, const std::string& aaSpec, int width, int height) {
   const Scene& scene = s.scene->scene;
   RenderOptions opt = render_options(scene.render);
   // "scene" (the default, as in a lesson's `aa: scene`): the scene file's own anti-aliasing.
   if (!aaSpec.empty() && aaSpec != "scene") opt.aa = parse_antialiasing(aaSpec);
   opt.width = width;
   opt.height = height;
-  RenderResult r = render_image(scene, *s.accel, opt);
+  return render_image(scene, *s.accel, opt);
+}
+
+}  // namespace
+
+QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms,
+                     RayCounts* rays) {
+  RenderResult r = renderWith(s, aaSpec, width, height);
   if (ms) *ms = r.seconds * 1e3;
+  if (rays) *rays = r.rays;
   QImage img(width, height, QImage::Format_RGB888);
   for (int y = 0; y < height; ++y) {
     uchar* row = img.scanLine(y);
@@ -59,9 +70,12 @@ QImage renderPicture(const StructureData& s, const std::string& aaSpec, int widt
   return img;
 }
 
-HeatMap computeHeat(const StructureData& s, HeatQuantity q, int width, int height, double* ms) {
+HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& aaSpec, int width, int height,
+                    double* ms) {
   auto t0 = std::chrono::steady_clock::now();
-  HeatMap h = compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
+  HeatMap h = q == HeatQuantity::samples
+                  ? samples_heatmap(renderWith(s, aaSpec, width, height).samples, width, height)
+                  : compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
   if (ms) *ms = msSince(t0);
   return h;
 }

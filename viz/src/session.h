@@ -39,10 +39,16 @@ struct StructureData {
 
 // Each throws InputError on bad input; safe on any thread.
 std::shared_ptr<const SceneData> loadSceneData(const std::string& path);
-std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene, const std::string& kind,
+std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene,
+                                                        const std::string& kind,
                                                         const StructureOptions& options);
-QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms);
-HeatMap computeHeat(const StructureData& s, HeatQuantity q, int width, int height, double* ms);
+// aaSpec "" or "scene": the scene file's anti-aliasing. rays (optional): the rays the render traced, by kind.
+QImage renderPicture(const StructureData& s, const std::string& aaSpec, int width, int height, double* ms,
+                     RayCounts* rays = nullptr);
+// Traversal quantities count one centre ray per pixel; samples renders the picture with aaSpec and maps its
+// samples per pixel.
+HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& aaSpec, int width, int height,
+                    double* ms);
 // The rays of pixel (px, py) of a width x height picture, recorded through the structure.
 Trace tracePixel(const StructureData& s, int width, int height, int px, int py, bool secondary);
 
@@ -54,7 +60,7 @@ class Session : public QObject {
   void setScene(std::shared_ptr<const SceneData> scene);  // clears structure, picture, heat map and trace
   void setStructure(std::shared_ptr<const StructureData> structure);  // clears the trace (of the old one)
   void setPicture(const QImage& image);
-  void setHeat(std::shared_ptr<const HeatMap> heat);      // null: no overlay
+  void setHeat(std::shared_ptr<const HeatMap> heat);  // null: no overlay
   void setTrace(std::shared_ptr<const Trace> trace, const QString& source);
   void setImageSize(int width, int height);
 
