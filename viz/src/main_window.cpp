@@ -32,6 +32,7 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "sah_chart.h"
 #include "raystep/trace/trace_file.h"
+#include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
 #include "scene_view.h"
 #include "session.h"
@@ -644,7 +645,11 @@ void MainWindow::renderPicture() {
       pictureKey_ = key;
       // The lecture's m^2 k^2 n 2^d, as this picture really spent it.
       QLocale l;
-      imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aa)) +
+      // "scene" names the scene file's own setting: say which it is.
+      const std::string aaText = aa.empty() || aa == "scene"
+                                     ? "the scene's " + to_string(grid->scene->scene.render.aa)
+                                     : aa;
+      imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aaText)) +
                             took(tr(", rendered"), ms) +
                             tr(". Rays: %1 primary, %2 shadow, %3 reflected, %4 refracted (%5 in all). Click a "
                                "pixel to trace its ray.")
