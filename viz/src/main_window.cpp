@@ -6,34 +6,35 @@
 #include <fstream>
 
 #include <QAction>
-#include <QDockWidget>
 #include <QApplication>
+#include <QDockWidget>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QFutureWatcher>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QScreen>
 #include <QScrollArea>
 #include <QSplitter>
 #include <QStatusBar>
-#include <QScreen>
 #include <QStyle>
 #include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
 #include <QtConcurrent>
+#include <optional>
 
 #include "event_list.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_pane.h"
 #include "presenter.h"
-#include "raystep/lesson/lesson.h"
 #include "raystep/accel/kdtree_sah_curve.h"
-#include "sah_chart.h"
-#include "raystep/trace/trace_file.h"
+#include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
+#include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
@@ -135,11 +136,14 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(session_, &Session::structureChanged, this, [this] {
     const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
-    if (kd && height() >= 900) showKdPanel();
+    if (kd && height() >= 900)
+      showKdPanel();
     else if (kd && !kdDock_->isVisible())
-      statusBar()->showMessage(tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
-                                  "3D view, shows its nodes and SAH curves"));
-    else if (!kd) hideKdPanel();
+      statusBar()->showMessage(
+          tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+             "3D view, shows its nodes and SAH curves"));
+    else if (!kd)
+      hideKdPanel();
     showSahCurve();
   });
   connect(session_, &Session::stepChanged, this, [this] {
@@ -150,22 +154,29 @@ MainWindow::MainWindow() : session_(new Session(this)) {
 }
 
 // The presenter first, while the timeline and the shortcuts it gives back their keys to still exist.
-MainWindow::~MainWindow() { delete presenter_; }
+MainWindow::~MainWindow() {
+  delete presenter_;
+}
 
 void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
-  file->addAction(tr("&Open scene or trace..."), this, [this] {
-    QString path = QFileDialog::getOpenFileName(this, tr("Open a scene, a mesh or a trace"), QString(),
-                                                tr("Scenes and traces (*.json *.obj);;All files (*)"));
-    if (!path.isEmpty()) openFileReportingErrors(path);
-  }, QKeySequence::Open);
+  file->addAction(
+      tr("&Open scene or trace..."), this,
+      [this] {
+        QString path = QFileDialog::getOpenFileName(this, tr("Open a scene, a mesh or a trace"), QString(),
+                                                    tr("Scenes and traces (*.json *.obj);;All files (*)"));
+        if (!path.isEmpty()) openFileReportingErrors(path);
+      },
+      QKeySequence::Open);
   file->addAction(tr("Open &lesson..."), this, [this] {
-    QString path = QFileDialog::getOpenFileName(this, tr("Open a lesson"), "lessons", tr("Lessons (*.md);;All files (*)"));
+    QString path = QFileDialog::getOpenFileName(this, tr("Open a lesson"), "lessons",
+                                                tr("Lessons (*.md);;All files (*)"));
     if (!path.isEmpty()) openLessonReportingErrors(path);
   });
   file->addAction(tr("Export &trace..."), this, [this] {
     if (!session_->trace()) return showError(tr("No trace to export: click a pixel first."));
-    QString path = QFileDialog::getSaveFileName(this, tr("Export trace"), "trace.json", tr("Traces (*.json)"));
+    QString path =
+        QFileDialog::getSaveFileName(this, tr("Export trace"), "trace.json", tr("Traces (*.json)"));
     if (!path.isEmpty()) exportTrace(path);
   });
   file->addAction(tr("Screenshot of the &window..."), this, [this] {
@@ -174,7 +185,8 @@ void MainWindow::buildMenus() {
   });
   file->addAction(tr("Screenshot of the &3D view..."), this, [this] {
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-3d.png", tr("PNG (*.png)"));
-    if (!path.isEmpty() && !sceneView_->grabView().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
+    if (!path.isEmpty() && !sceneView_->grabView().save(path, "PNG"))
+      showError(tr("Cannot write %1").arg(path));
   });
   file->addAction(tr("Export &SAH curve (CSV)..."), this, [this] {
     if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
@@ -195,8 +207,10 @@ void MainWindow::buildMenus() {
   view->addAction(dock);
   view->addSeparator();
   QAction* full = view->addAction(tr("&Full screen"), this, [this] {
-    if (isFullScreen()) showNormal();
-    else showFullScreen();
+    if (isFullScreen())
+      showNormal();
+    else
+      showFullScreen();
   });
   full->setShortcut(QKeySequence(Qt::Key_F5));
   full->setShortcutContext(Qt::WindowShortcut);
@@ -204,8 +218,10 @@ void MainWindow::buildMenus() {
   addAction(full);  // works with the menu bar hidden too
   QMenu* scale = view->addMenu(tr("Presenter &scale"));
   for (double s : {1.0, 1.25, 1.5, 2.0})
-    scale->addAction(s == 1.0 ? tr("1 (desk)") : s == 1.5 ? tr("1.5 (lecture room)") : QString::number(s), this,
-                     [this, s] { setPresenterScale(s); });
+    scale->addAction(s == 1.0   ? tr("1 (desk)")
+                     : s == 1.5 ? tr("1.5 (lecture room)")
+                                : QString::number(s),
+                     this, [this, s] { setPresenterScale(s); });
 }
 
 Presenter* MainWindow::openLesson(const Lesson& lesson) {
@@ -226,8 +242,9 @@ Presenter* MainWindow::openLesson(const Lesson& lesson) {
   lessonPane_->setScale(scale_);
   setWindowTitle(tr("raystep - lesson: %1").arg(QString::fromStdString(lesson.title)));
   if (scale_ == 1.0)
-    statusBar()->showMessage(tr("Presenting to a room? View > Presenter scale 1.5 (or --scale 1.5) is readable from "
-                                "the back; F5: full screen."));
+    statusBar()->showMessage(
+        tr("Presenting to a room? View > Presenter scale 1.5 (or --scale 1.5) is readable from "
+           "the back; F5: full screen."));
   return presenter_;
 }
 
@@ -281,7 +298,8 @@ void MainWindow::setPresenterScale(double scale) {
   structure_->setCompact(scale > 1.0);
   timeline_->setCompact(scale > 1.0);
   imageView_->setCompact(scale > 1.0);
-  if (scale > 1.0) leftSplit_->setSizes({structure_->sizeHint().height(), 10000});  // the picture takes the rest
+  if (scale > 1.0)
+    leftSplit_->setSizes({structure_->sizeHint().height(), 10000});  // the picture takes the rest
   if (lessonPane_) lessonPane_->setScale(scale);
 }
 
@@ -300,8 +318,9 @@ void MainWindow::hideKdPanel() {
   rightSplit_->setSizes({440, 110, 180});
 }
 
-
-bool MainWindow::kdPanelVisible() const { return kdDock_->isVisible(); }
+bool MainWindow::kdPanelVisible() const {
+  return kdDock_->isVisible();
+}
 
 QString MainWindow::pictureKeyNow() const {
   return QString("%1 %2x%3 %4")
@@ -335,27 +354,30 @@ void MainWindow::showSahCurve() {
   const KdTree* kd = structure ? structure->kdTree() : nullptr;
   int node = session_->selectedNode();
   if (!kd || node < 0) {
-    sahChart_->showMessage(kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
-                                   "cost curve.")
-                              : tr("The SAH inspector shows kd-tree nodes: build a kd-tree."));
+    sahChart_->showMessage(
+        kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
+                "cost curve.")
+           : tr("The SAH inspector shows kd-tree nodes: build a kd-tree."));
     return;
   }
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
   KdOptions options = kd->options();
   QString path = QString::fromStdString(kdNodePath(kd->data(), uint32_t(node)));
   // The builder runs again with a listener for this node alone: as long as a build, so off the GUI thread.
-  runTask("sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
-    auto t0 = std::chrono::steady_clock::now();
-    auto curve = std::make_shared<const SahCurve>(
-        record_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
-    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return std::function<void()>([this, structure, options, node, path, curve, ms] {
-      if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
-      sahChart_->setCurve(curve, path, options.t_i, options.t_t, options.empty_bonus);
-      statusBar()->showMessage(tr("SAH curve of node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
-                               took(tr(", recorded"), ms));
-    });
-  });
+  runTask(
+      "sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
+        auto t0 = std::chrono::steady_clock::now();
+        auto curve = std::make_shared<const SahCurve>(
+            record_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        return std::function<void()>([this, structure, options, node, path, curve, ms] {
+          if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
+          sahChart_->setCurve(curve, path, options.t_i, options.t_t, options.empty_bonus);
+          statusBar()->showMessage(
+              tr("SAH curve of node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
+              took(tr(", recorded"), ms));
+        });
+      });
 }
 
 void MainWindow::exportSahCsv(const QString& path) {
@@ -417,8 +439,10 @@ void MainWindow::runTask(const QString& kind, const QString& what,
 }
 
 void MainWindow::openFile(const QString& path) {
-  if (isTraceFile(path)) openTrace(path);
-  else openScene(path);
+  if (isTraceFile(path))
+    openTrace(path);
+  else
+    openScene(path);
 }
 
 void MainWindow::openFileReportingErrors(const QString& path) {
@@ -484,7 +508,8 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
                           .arg(events)
                           .arg(structure));
   imageView_->setStatus(tr("Trace replay: no picture (open the scene to render it)."));
-  statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) + took(tr(", shown"), showMs));
+  statusBar()->showMessage(tr("opened %1").arg(path) + took(tr(": read"), readMs) +
+                           took(tr(", shown"), showMs));
   std::fprintf(stderr, "timing: trace %zu events read %.1f ms, shown %.1f ms\n", events, readMs, showMs);
   setWindowTitle(tr("raystep step-debugger - %1 (trace)").arg(QFileInfo(path).fileName()));
 }
@@ -505,17 +530,22 @@ void MainWindow::setStructureOptions(const std::string& accelName, const Structu
   structure_->setStructure(accelName, o);
 }
 
-QString MainWindow::builtStructureKey() const { return session_->structure() ? builtKey_ : QString(); }
+QString MainWindow::builtStructureKey() const {
+  return session_->structure() ? builtKey_ : QString();
+}
 
 QString MainWindow::structureOptionsKey() const {
-  StructureOptions o = structure_->options();
+  return structureKey(structure_->accelName(), structure_->options());
+}
+
+QString MainWindow::structureKey(const std::string& accelName, const StructureOptions& o) {
   QString res = o.grid.resolution ? QString("%1,%2,%3")
                                         .arg((*o.grid.resolution)[0])
                                         .arg((*o.grid.resolution)[1])
                                         .arg((*o.grid.resolution)[2])
                                   : QString("-");
   return QString("%1 %2 %3 %4 %5 %6 %7 %8 %9 %10")
-      .arg(QString::fromStdString(structure_->accelName()))
+      .arg(QString::fromStdString(accelName))
       .arg(double(o.grid.density), 0, 'g', 9)
       .arg(res)
       .arg(o.grid.exact_insert)
@@ -536,6 +566,50 @@ void MainWindow::setImageSize(int w, int h) {
                            h > 0 ? h : built->scene->scene.render.height);
 }
 
+void MainWindow::keepStructure(const KeptStructure& k) {
+  kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
+                             [&](const KeptStructure& o) { return o.scene != k.scene || o.key == k.key; }),
+              kept_.end());
+  kept_.push_back(k);
+  if (kept_.size() > 4) kept_.erase(kept_.begin());
+}
+
+void MainWindow::prefetchStructure(const std::string& accelName, const StructureOptions& o) {
+  auto scene = session_->sceneShared();
+  if (!scene) return;
+  const QString key = structureKey(accelName, o);
+  for (const KeptStructure& k : kept_)
+    if (k.scene == scene && k.key == key) return;
+  for (const Prefetch& f : prefetches_)
+    if (f.scene == scene && f.key == key) return;
+  auto future = QtConcurrent::run([scene, accelName, o] { return buildStructureData(scene, accelName, o); });
+  prefetches_.push_back({scene, key, future});
+  auto* watcher = new QFutureWatcher<std::shared_ptr<const StructureData>>(this);
+  connect(watcher, &QFutureWatcher<std::shared_ptr<const StructureData>>::finished, this,
+          [this, watcher, scene, key] {
+            watcher->deleteLater();
+            prefetches_.erase(
+                std::remove_if(prefetches_.begin(), prefetches_.end(),
+                               [&](const Prefetch& f) { return f.scene == scene && f.key == key; }),
+                prefetches_.end());
+            std::shared_ptr<const StructureData> built;
+            try {
+              built = watcher->result();
+            } catch (...) {  // a build that fails is reported when the step itself builds it
+              return;
+            }
+            if (scene == session_->sceneShared()) keepStructure({scene, key, built});
+          });
+  watcher->setFuture(future);
+}
+
+void MainWindow::waitForPrefetches() {
+  while (!prefetches_.empty()) {
+    prefetches_.front().built.waitForFinished();
+    QApplication::processEvents();  // the watchers keep what was built
+  }
+}
+
 void MainWindow::buildStructure() {
   auto scene = session_->sceneShared();
   if (!scene) return showError(tr("Open a scene first: a trace replays the structure it recorded."));
@@ -548,17 +622,17 @@ void MainWindow::buildStructure() {
   std::shared_ptr<const StructureData> kept;
   for (const KeptStructure& k : kept_)
     if (k.scene == scene && k.key == key) kept = k.built;
-  runTask("build", what, [this, scene, kind, o, key, kept] {
-    auto built = kept ? kept : buildStructureData(scene, kind, o);
+  // A prefetch of this very structure underway: wait for it rather than build it twice.
+  std::optional<QFuture<std::shared_ptr<const StructureData>>> pending;
+  for (const Prefetch& f : prefetches_)
+    if (!kept && f.scene == scene && f.key == key) pending = f.built;
+  runTask("build", what, [this, scene, kind, o, key, kept, pending] {
+    auto built = kept ? kept : pending ? pending->result() : buildStructureData(scene, kind, o);
     return std::function<void()>([this, built, scene, key, kept] {
       if (scene != session_->sceneShared()) return;  // built for a scene since replaced
       builtKey_ = key;
       // Kept: the last few structures of this scene (those of another scene are let go).
-      kept_.erase(std::remove_if(kept_.begin(), kept_.end(),
-                                 [&](const KeptStructure& k) { return k.scene != scene || k.key == key; }),
-                  kept_.end());
-      kept_.push_back({scene, key, built});
-      if (kept_.size() > 3) kept_.erase(kept_.begin());
+      keepStructure({scene, key, built});
       // Rebuilt with other settings: the same pixel is traced again through the new structure.
       const Trace* old = session_->trace();
       bool retrace = old && session_->scene() && !old->rays.empty() && old->rays[0].has_pixel;
@@ -605,19 +679,21 @@ void MainWindow::buildStructure() {
                             took(tr(", built"), built->buildMs));
       } else if (const KdTree* kd = built->kdTree()) {
         KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
-        structure_->setInfo(tr("%1: %2 nodes, %3 leaves (%4 empty), depth %5, %6 references (%7 per primitive), "
-                               "SAH cost %8")
-                                .arg(QString::fromStdString(built->kind))
-                                .arg(st.nodes)
-                                .arg(st.leaves)
-                                .arg(st.empty_leaves)
-                                .arg(st.max_depth)
-                                .arg(st.references)
-                                .arg(double(st.references) / n, 0, 'f', 2)
-                                .arg(st.sah_cost, 0, 'f', 1) +
-                            took(tr(", built"), built->buildMs));
+        structure_->setInfo(
+            tr("%1: %2 nodes, %3 leaves (%4 empty), depth %5, %6 references (%7 per primitive), "
+               "SAH cost %8")
+                .arg(QString::fromStdString(built->kind))
+                .arg(st.nodes)
+                .arg(st.leaves)
+                .arg(st.empty_leaves)
+                .arg(st.max_depth)
+                .arg(st.references)
+                .arg(double(st.references) / n, 0, 'f', 2)
+                .arg(st.sah_cost, 0, 'f', 1) +
+            took(tr(", built"), built->buildMs));
       }
-      if (scripted_ && !kept) std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
+      if (scripted_ && !kept)
+        std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
       auto* grid = built.get();
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
                              sizeH_ > 0 ? sizeH_ : grid->scene->scene.render.height);
@@ -646,16 +722,16 @@ void MainWindow::renderPicture() {
       // The lecture's m^2 k^2 n 2^d, as this picture really spent it.
       QLocale l;
       // "scene" names the scene file's own setting: say which it is.
-      const std::string aaText = aa.empty() || aa == "scene"
-                                     ? "the scene's " + to_string(grid->scene->scene.render.aa)
-                                     : aa;
-      imageView_->setStatus(tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aaText)) +
-                            took(tr(", rendered"), ms) +
-                            tr(". Rays: %1 primary, %2 shadow, %3 reflected, %4 refracted (%5 in all). Click a "
-                               "pixel to trace its ray.")
-                                .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
-                                     l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
-                                     l.toString(qulonglong(rays.total()))));
+      const std::string aaText =
+          aa.empty() || aa == "scene" ? "the scene's " + to_string(grid->scene->scene.render.aa) : aa;
+      imageView_->setStatus(
+          tr("%1x%2, anti-aliasing %3").arg(w).arg(h).arg(QString::fromStdString(aaText)) +
+          took(tr(", rendered"), ms) +
+          tr(". Rays: %1 primary, %2 shadow, %3 reflected, %4 refracted (%5 in all). Click a "
+             "pixel to trace its ray.")
+              .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
+                   l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
+                   l.toString(qulonglong(rays.total()))));
       if (imageView_->heatQuantity() == "samples") ensureHeat();  // the new anti-aliasing's samples
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
     });
@@ -681,10 +757,9 @@ void MainWindow::computeHeat() {
       if (grid != session_->structureShared()) return;
       session_->setHeat(heat);
       heatKey_ = key;
-      statusBar()->showMessage(tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
-                               tr(" (max %1, mean %2)")
-                                   .arg(heat->max_value)
-                                   .arg(heat->mean_value, 0, 'f', 2));
+      statusBar()->showMessage(
+          tr("heat map %1x%2").arg(heat->width).arg(heat->height) + took("", ms) +
+          tr(" (max %1, mean %2)").arg(heat->max_value).arg(heat->mean_value, 0, 'f', 2));
       std::fprintf(stderr, "timing: heat map %dx%d %.1f ms\n", heat->width, heat->height, ms);
     });
   });
@@ -695,8 +770,9 @@ void MainWindow::tracePixel(int x, int y) {
   if (!grid) return showError(tr("The structure is not built yet."));
   int w = session_->imageWidth(), h = session_->imageHeight();
   if (x < 0 || y < 0 || x >= w || y >= h)
-    throw InputError("", 0, "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +
-                                std::to_string(w) + "x" + std::to_string(h) + " image");
+    throw InputError("", 0,
+                     "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +
+                         std::to_string(w) + "x" + std::to_string(h) + " image");
   auto trace = std::make_shared<const Trace>(viz::tracePixel(*grid, w, h, x, y, imageView_->secondaryRays()));
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y));
 }

@@ -1,8 +1,8 @@
 // The debugger's window: structure panel and image on the left, the 3D view in the middle, state panels and
 // the event list on the right, the timeline along the bottom; for a kd-tree a dock below with the tree of
 // nodes and the SAH inspector of the selected node. It owns the session and runs the heavy work
-// (loading, structure build, render, heat map) on worker threads, so the window never freezes; in scripted mode
-// the same work runs in place, one step after the other.
+// (loading, structure build, render, heat map) on worker threads, so the window never freezes; in scripted
+// mode the same work runs in place, one step after the other.
 #pragma once
 
 #include <functional>
@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include <QFuture>
 #include <QMainWindow>
 
 class QDockWidget;
@@ -22,7 +23,7 @@ class QSplitter;
 namespace raystep {
 struct Trace;
 struct Lesson;
-}
+}  // namespace raystep
 
 namespace raystep::viz {
 
@@ -65,6 +66,11 @@ class MainWindow : public QMainWindow {
   // The structure panel's accelerator and options, as text; and those the current structure was built with
   // ("" : none built). Equal when a build would make the same structure again.
   QString structureOptionsKey() const;
+  static QString structureKey(const std::string& accelName, const StructureOptions& o);
+  // Builds the structure over the current scene on a worker thread and keeps it for buildStructure (the
+  // presenter asks for the next step's while the class reads this one); nothing if it is kept or underway.
+  void prefetchStructure(const std::string& accelName, const StructureOptions& o);
+  void waitForPrefetches();  // blocks until every prefetch has finished (benchmarks of entering steps)
   QString builtStructureKey() const;
   void setImageSize(int w, int h);  // the picture's size (default: the scene's)
   void buildStructure();
@@ -72,7 +78,8 @@ class MainWindow : public QMainWindow {
   void computeHeat();
   void tracePixel(int x, int y);
   void exportTrace(const QString& path);
-  // The SAH inspector: the dock with the tree and the chart; the selected node's curve as CSV (core's columns).
+  // The SAH inspector: the dock with the tree and the chart; the selected node's curve as CSV (core's
+  // columns).
   void showKdPanel();
   void hideKdPanel();
   bool kdPanelVisible() const;
@@ -136,7 +143,8 @@ class MainWindow : public QMainWindow {
   SahChart* sahChart_;
   QDockWidget* kdDock_;
   QSplitter* rightSplit_ = nullptr;
-  QSplitter* leftSplit_ = nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
+  QSplitter* leftSplit_ =
+      nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
   QDockWidget* lessonDock_ = nullptr;
   LessonPane* lessonPane_ = nullptr;
   Presenter* presenter_ = nullptr;
@@ -151,7 +159,15 @@ class MainWindow : public QMainWindow {
     QString key;
     std::shared_ptr<const StructureData> built;
   };
-  std::vector<KeptStructure> kept_;  // the last structures built, for buildStructure to use again  // what the picture and the heat map were made for (ensurePicture)
+  std::vector<KeptStructure> kept_;  // the last structures built, for buildStructure to use again
+  void keepStructure(const KeptStructure& k);
+  struct Prefetch {
+    std::shared_ptr<const SceneData> scene;
+    QString key;
+    QFuture<std::shared_ptr<const StructureData>> built;
+  };
+  std::vector<Prefetch> prefetches_;  // underway
+  // what the picture and the heat map were made for (ensurePicture)
   QString pictureKeyNow() const;
   QString heatKeyNow() const;
   std::map<QString, int> generation_;  // per kind: results of superseded work are dropped

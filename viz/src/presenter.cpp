@@ -132,6 +132,10 @@ void Presenter::goTo(int index) {
   entering_ = false;
   away_ = false;
   pane_->setAway(false);
+  if (prefetch_ && index + 1 < int(lesson_.steps.size())) {
+    const LessonState& next = lesson_.steps[size_t(index) + 1].state;
+    if (next.scene == step.state.scene) window_.prefetchStructure(next.accel, next.structure);
+  }
   // A question about the walk's next move: the panels that say it wait for Reveal.
   const bool walkQuestion =
       step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide;

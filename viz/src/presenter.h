@@ -48,6 +48,9 @@ class Presenter : public QObject {
   int right() const { return right_; }
   int asked() const { return asked_; }
   QJsonObject dumpState() const;
+  // While a step is shown, build the next step's structure in the background (same scene, other structure or
+  // options), so that Next does not wait for the build. On when presenting; scripted runs enter steps alone.
+  void setPrefetch(bool on) { prefetch_ = on; }
 
  private:
   void setLessonKeys(bool on);
@@ -58,7 +61,7 @@ class Presenter : public QObject {
   LessonPane* pane_;
   Lesson lesson_;
   int current_ = -1;
-  bool entering_ = false, away_ = false, revealed_ = false;
+  bool entering_ = false, away_ = false, revealed_ = false, prefetch_ = true;
   std::optional<Answer> answer_;
   int right_ = 0, asked_ = 0;
   std::vector<QShortcut*> keys_;

@@ -7,45 +7,47 @@
 #include <regex>
 
 #include <QApplication>
-#include <QDir>
-#include <QScreen>
 #include <QCommandLineParser>
+#include <QDir>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QDoubleSpinBox>
 #include <QMouseEvent>
-#include <QTreeView>
+#include <QScreen>
 #include <QTest>
 #include <QThread>
+#include <QTreeView>
 #include <map>
 
 #include "event_list.h"
 #include "handout.h"
+#include "image_view.h"
+#include "kd_tree_model.h"
 #include "lesson_enter.h"
-#include "presenter.h"
 #include "main_window.h"
+#include "presenter.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/lesson/lesson.h"
+#include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/heatmap.h"
+#include "raystep/util/error.h"
 #include "replay.h"
+#include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
 #include "structure_panel.h"
-#include "image_view.h"
-#include "kd_tree_model.h"
-#include "sah_chart.h"
 #include "timeline.h"
 #include "tree_view.h"
-#include "raystep/accel/kdtree_sah_curve.h"
-#include "raystep/scene/antialiasing_spec.h"
-#include "raystep/trace/heatmap.h"
-#include "raystep/lesson/lesson.h"
-#include "raystep/util/error.h"
 
 namespace raystep::viz {
 namespace {
 
-[[noreturn]] void fail(const std::string& what) { throw InputError("", 0, what); }
+[[noreturn]] void fail(const std::string& what) {
+  throw InputError("", 0, what);
+}
 
 std::vector<int> parseInts(const QString& option, const QString& spec, int n, int lo) {
   QStringList parts = spec.split(',');
@@ -137,28 +139,37 @@ void defineOptions(QCommandLineParser& p) {
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
   opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
-  opt("heat", "Heat map overlay: cells, tests, mailbox, or samples (the anti-aliasing's rays per pixel).", "Q");
+  opt("heat", "Heat map overlay: cells, tests, mailbox, or samples (the anti-aliasing's rays per pixel).",
+      "Q");
   opt("size", "Picture size (default: the scene's); --pixel refers to it.", "WxH");
   opt("pixel", "Trace this pixel's rays.", "X,Y");
   opt("secondary", "Trace the pixel's secondary rays too.");
   opt("ray", "Show this ray of the trace (0: the primary).", "I");
   opt("step", "Go to event N.", "N");
-  opt("step-to", "Go to the K-th event of a kind (cell, prim_test, mailbox_hit, hit_deferred, hit_accepted or hit, "
-                 "ray_end, node, push, pop, leaf).", "KIND:K");
+  opt("step-to",
+      "Go to the K-th event of a kind (cell, prim_test, mailbox_hit, hit_deferred, hit_accepted or hit, "
+      "ray_end, node, push, pop, leaf).",
+      "KIND:K");
   opt("forward", "Then step forward N times.", "N");
   opt("back", "Then step back N times.", "N");
-  opt("keys", "Then press these keys, comma-separated: Right, Left, Space, Home, End, PageDown, PageUp, F5, "
-              "Shift+Right, Shift+Left, Period, Comma (in a lesson Right/Left/PageDown/PageUp/Home/End move between "
-              "steps and Shift+Right/Left or . and , step the events).", "LIST");
+  opt("keys",
+      "Then press these keys, comma-separated: Right, Left, Space, Home, End, PageDown, PageUp, F5, "
+      "Shift+Right, Shift+Left, Period, Comma (in a lesson Right/Left/PageDown/PageUp/Home/End move between "
+      "steps and Shift+Right/Left or . and , step the events).",
+      "LIST");
   opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
-  opt("panel", "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node), or kd (the "
-               "same with no node selected).", "NAME");
+  opt("panel",
+      "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node), or kd (the "
+      "same with no node selected).",
+      "NAME");
   opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
-  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.", "PATH");
-  opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).", "X,Y");
+  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.",
+      "PATH");
+  opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).",
+      "X,Y");
   opt("edit-ti", "Then type t_i into the structure panel, as a user would (the kd-tree is rebuilt).", "T");
   opt("export-sah", "Write the selected node's SAH curve as CSV (the columns of `raystep sah`).", "FILE");
   opt("screenshot-sah", "Write a PNG of the SAH chart.", "FILE");
@@ -167,17 +178,24 @@ void defineOptions(QCommandLineParser& p) {
   opt("screenshot", "Write a PNG of the window.", "FILE");
   opt("screenshot-3d", "Write a PNG of the 3D view.", "FILE");
   opt("dump-state", "Write what the panels and the 3D view show (JSON).", "FILE");
-  opt("scale", "Presenter scale for fonts, line widths and markers (default 1; a lecture room wants 1.5).", "S");
+  opt("scale", "Presenter scale for fonts, line widths and markers (default 1; a lecture room wants 1.5).",
+      "S");
   opt("lesson", "Present a lesson (lessons/*.md): the lesson pane beside the debugger.", "FILE");
   opt("lesson-step", "lesson: enter step N (1-based).", "N");
   opt("lesson-walk", "lesson: enter these steps in this order, e.g. 1,2,3 or 5,4,3,2,1.", "LIST");
-  opt("dump-state-dir", "lesson: after each step of --lesson-walk write DIR/step-N.json (as --dump-state) and "
-                        "DIR/step-N.png (as --screenshot-3d).", "DIR");
-  opt("export-handout", "lesson: write each step's figure and an index.html a student can read alone.", "DIR");
+  opt("dump-state-dir",
+      "lesson: after each step of --lesson-walk write DIR/step-N.json (as --dump-state) and "
+      "DIR/step-N.png (as --screenshot-3d).",
+      "DIR");
+  opt("export-handout", "lesson: write each step's figure and an index.html a student can read alone.",
+      "DIR");
   opt("predict", "lesson: type this prediction into the step's question and reveal the answer.", "ANSWER");
-  opt("predict-next", "lesson: Predict mode: for each of these predictions (;-separated: i,j,k or a node id, or "
-                      "stop), predict the next cell or node, then step there.", "LIST");
-  opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).", "FILE");
+  opt("predict-next",
+      "lesson: Predict mode: for each of these predictions (;-separated: i,j,k or a node id, or "
+      "stop), predict the next cell or node, then step there.",
+      "LIST");
+  opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).",
+      "FILE");
   opt("quit", "Quit when done (scripted mode).");
 }
 
@@ -194,8 +212,8 @@ bool printHelpIfAsked(const QStringList& arguments) {
 
 namespace {
 
-// The debugger state the options name, in the lessons' vocabulary: each option that is a lesson key is applied
-// as that key (core's apply_setting: one set of values and messages), in the documented order.
+// The debugger state the options name, in the lessons' vocabulary: each option that is a lesson key is
+// applied as that key (core's apply_setting: one set of values and messages), in the documented order.
 LessonState stateFromOptions(const QCommandLineParser& p) {
   LessonState st;
   QStringList files = p.positionalArguments();
@@ -276,7 +294,8 @@ void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
   if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
     fail("cannot write " + p.value("screenshot-sah").toStdString());
   if (p.isSet("export-sah")) {
-    if (!window.sahChart()->curve()) fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
+    if (!window.sahChart()->curve())
+      fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
     window.exportSahCsv(p.value("export-sah"));
   }
   if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
@@ -298,15 +317,17 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
       auto t1 = std::chrono::steady_clock::now();
       QApplication::processEvents();
       if (getenv("RAYSTEP_GUI_PROFILE"))
-        std::fprintf(stderr, "step handlers %.1f ms, paint %.1f ms\n",
-                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+        std::fprintf(
+            stderr, "step handlers %.1f ms, paint %.1f ms\n",
+            std::chrono::duration<double, std::milli>(t1 - t0).count(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
       double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       total += ms;
       worst = std::max(worst, ms);
     }
     if (n > 0)
-      std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n, worst);
+      std::fprintf(stderr, "timing: %d steps %s, mean %.1f ms, max %.1f ms per step\n", n, name, total / n,
+                   worst);
   }
   if (p.isSet("keys")) pressKeys(window, p.value("keys"));
   if (p.isSet("pick-3d")) {  // a click in the 3D view selects the kd-tree leaf holding the picked point
@@ -343,8 +364,8 @@ void finish(MainWindow& window) {
   if (getenv("RAYSTEP_GUI_PROFILE"))
     for (QWidget* w : window.findChildren<QWidget*>())
       if (w->minimumSizeHint().width() > 250)
-        std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(), w->metaObject()->className(),
-                     w->objectName().toLocal8Bit().constData());
+        std::fprintf(stderr, "min width %d: %s %s\n", w->minimumSizeHint().width(),
+                     w->metaObject()->className(), w->objectName().toLocal8Bit().constData());
 }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -358,7 +379,8 @@ std::vector<int> parseStepList(const QString& option, const QString& spec, int s
     bool ok = false;
     int n = part.trimmed().toInt(&ok);
     if (!ok || n < 1 || n > steps)
-      fail("--" + option.toStdString() + " '" + spec.toStdString() + "': steps are 1.." + std::to_string(steps));
+      fail("--" + option.toStdString() + " '" + spec.toStdString() + "': steps are 1.." +
+           std::to_string(steps));
     out.push_back(n);
   }
   return out;
@@ -373,7 +395,8 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
   if (!anyScript) {
     // Presenting: the whole screen (a projector's), unless --window says otherwise.
     if (!p.isSet("window"))
-      if (const QScreen* screen = QApplication::primaryScreen()) window.resize(screen->availableGeometry().size());
+      if (const QScreen* screen = QApplication::primaryScreen())
+        window.resize(screen->availableGeometry().size());
     window.fitLessonPane();
     window.show();
     settle(window);
@@ -382,11 +405,21 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
     return -1;
   }
   window.setScripted(true);
+  // Scripted steps are entered alone, unless the benchmark of entering steps asks for the presenter's
+  // prefetch (then each step waits for it first, as the class's reading time would).
+  const bool prefetch = getenv("RAYSTEP_GUI_PREFETCH") != nullptr;
+  presenter->setPrefetch(prefetch);
   window.fitLessonPane();
   window.show();
   settle(window);
   const int steps = int(lesson.steps.size());
   auto enter = [&](int n) {  // 1-based
+    if (prefetch) {
+      auto w0 = std::chrono::steady_clock::now();
+      window.waitForPrefetches();
+      if (getenv("RAYSTEP_GUI_PROFILE"))
+        std::fprintf(stderr, "timing: prefetch done after %.1f ms more\n", msSince(w0));
+    }
     auto t0 = std::chrono::steady_clock::now();
     presenter->goTo(n - 1);
     double ms = msSince(t0);
@@ -402,7 +435,8 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
       finish(window);
       QString base = QString("%1/step-%2").arg(dir).arg(n);
       writeJson(base + ".json", dumpState(window));
-      if (!window.sceneView()->grabView().save(base + ".png", "PNG")) fail("cannot write " + base.toStdString() + ".png");
+      if (!window.sceneView()->grabView().save(base + ".png", "PNG"))
+        fail("cannot write " + base.toStdString() + ".png");
     }
   } else if (p.isSet("lesson-step")) {
     bool ok = false;
@@ -439,11 +473,11 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     return 0;
   }
   const bool quit = p.isSet("quit");
-  const QStringList scripted = {"pixel",       "step",         "step-to",       "forward",      "back",
-                                "screenshot",  "screenshot-3d", "dump-state",   "export-trace", "open-bad",
-                                "panel",       "node",         "node-path",     "pick-3d",      "export-sah",
-                                "screenshot-sah", "edit-ti",   "lesson-step",   "lesson-walk",  "export-handout",
-                                "open-lesson-bad", "predict", "predict-next"};
+  const QStringList scripted = {
+      "pixel",         "step",           "step-to",         "forward",        "back",        "screenshot",
+      "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",       "node",
+      "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",     "lesson-step",
+      "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next"};
   bool anyScript = quit;
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
@@ -454,11 +488,13 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     if (p.isSet("scale")) {
       bool ok = false;
       double scale = p.value("scale").toDouble(&ok);
-      if (!ok || !(scale >= 0.5 && scale <= 4.0)) fail("--scale '" + p.value("scale").toStdString() + "': expected 0.5 .. 4");
+      if (!ok || !(scale >= 0.5 && scale <= 4.0))
+        fail("--scale '" + p.value("scale").toStdString() + "': expected 0.5 .. 4");
       window.setPresenterScale(scale);
     }
     if (p.isSet("lesson")) {
-      if (!p.positionalArguments().isEmpty()) fail("--lesson names the scenes itself: give no scene or trace file");
+      if (!p.positionalArguments().isEmpty())
+        fail("--lesson names the scenes itself: give no scene or trace file");
       return runLesson(window, p, quit, anyScript);
     }
     LessonState st = stateFromOptions(p);
