@@ -60,6 +60,12 @@ TEST(Replay, MailboxTrapStepByStep) {
   // Cell 1: the mailbox skips triangle 0; triangle 1 is not reached yet.
   ReplayState s4 = replayAt(ray, 4);
   EXPECT_EQ(s4.visitedCellEvents, std::vector<int>{1});
+  // Cell 0's Why steps on; cell 1 is the last: its Why names the DDA's axis but says the walk ends there.
+  EXPECT_EQ(explainRule(ray, replayAt(ray, 1)).rfind("Step along", 0), 0u)
+      << explainRule(ray, replayAt(ray, 1));
+  ASSERT_GE(ray.events[4].next_axis, 0);  // the DDA had picked its axis when it entered the cell
+  EXPECT_NE(explainRule(ray, s4).find("the walk ends in this cell"), std::string::npos)
+      << explainRule(ray, s4);
   ASSERT_EQ(s4.prims.size(), 2u);
   EXPECT_EQ(s4.prims[0].state, PrimState::pending);
   EXPECT_EQ(s4.prims[1].state, PrimState::pending);
@@ -142,7 +148,8 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
   KdTree tree;
   tree.build(g);
   std::vector<RayRequest> rays;
-  for (const Ray& r : random_rays(g.bounds(), 200, 9)) rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
+  for (const Ray& r : random_rays(g.bounds(), 200, 9))
+    rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
   Trace t = record_trace(g, tree, rays, "soup", "fnv1a64:0000000000000000");
   int kinds[4] = {0, 0, 0, 0};
   int stops = 0, walked = 0;
@@ -164,7 +171,8 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
         ASSERT_FALSE(s.stack.empty());
         EXPECT_EQ(s.stack.back().node, e.node);
         EXPECT_EQ(s.stack.back().pushEvent, i);
-        EXPECT_EQ(s.tMin, ray.events[size_t(i - 1)].t_min_node);  // the inner node's interval, not the far child's
+        EXPECT_EQ(s.tMin,
+                  ray.events[size_t(i - 1)].t_min_node);  // the inner node's interval, not the far child's
       }
       if (e.type == EventType::hit_accepted && e.reason == AcceptReason::next_node_beyond) {
         ++stops;
@@ -183,17 +191,24 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
       const Event& next = ray.events[size_t(i + 1)];
       kinds[int(c.crossing)]++;
       switch (c.crossing) {
-        case Crossing::nearOnly: EXPECT_GT(c.tStar, c.tMax); break;
-        case Crossing::farOnly: EXPECT_LT(c.tStar, c.tMin); break;
+        case Crossing::nearOnly:
+          EXPECT_GT(c.tStar, c.tMax);
+          break;
+        case Crossing::farOnly:
+          EXPECT_LT(c.tStar, c.tMin);
+          break;
         case Crossing::both:
           // The far child's interval starts at t*, clamped to the node's: the kernel's own numbers.
           EXPECT_EQ(next.t_min_node, std::min(std::max(c.tStar, c.tMin), c.tMax));
           EXPECT_EQ(ray.events[size_t(i + 2)].t_max_node, next.t_min_node);
           EXPECT_EQ(c.nearChild, ray.events[size_t(i + 2)].node);
-          // The near child is the side the ray comes from along its direction: below when it points up the axis.
+          // The near child is the side the ray comes from along its direction: below when it points up the
+          // axis.
           EXPECT_EQ(c.nearChild == e.node + 1, c.nearIsBelow);
           break;
-        case Crossing::inPlane: EXPECT_TRUE(std::isnan(c.tStar)); break;
+        case Crossing::inPlane:
+          EXPECT_TRUE(std::isnan(c.tStar));
+          break;
       }
       std::string why = explainRule(&t, ray, s);
       EXPECT_NE(why.find("t* ="), std::string::npos) << why;
@@ -237,7 +252,8 @@ TEST(Replay, KdRaysParallelToAPlaneStayOnTheirSide) {
       ASSERT_NE(c.crossing, Crossing::both);
       int32_t visited = c.nearChild >= 0 ? c.nearChild : c.farChild;
       bool originBelow = ray.ray.origin[c.axis] < c.split;
-      if (ray.ray.origin[c.axis] != c.split) EXPECT_EQ(visited == e.node + 1, originBelow) << "node " << e.node;
+      if (ray.ray.origin[c.axis] != c.split)
+        EXPECT_EQ(visited == e.node + 1, originBelow) << "node " << e.node;
       std::string why = explainRule(&t, ray, s);
       EXPECT_NE(why.find("parallel"), std::string::npos) << why;
     }
@@ -267,11 +283,12 @@ TEST(Replay, ATieGoesToTheLowerPrimitiveId) {
   EXPECT_NE(explainRule(ray, replayAt(ray, 3)).find("It becomes the nearest hit"), std::string::npos);
 }
 
-// The Why text of a triangle's test compares the watertight test with Möller–Trumbore on that ray and triangle.
-// Lesson 14's leak (scenes/leak.json, pixel 33,19): the ray (33.5, 28.5, 40) along -z passes within rounding of
-// the edge (28.70, 36.68, 6.29)-(38.93, 19.25, 12.73) shared by triangles 0 and 1. Möller–Trumbore rejects both:
-// triangle 0 finds u + v = 1 + 8.9e-08 > 1, triangle 1 u = -2.1e-08 < 0. The watertight test finds the edge
-// functions within their rounding error bound and settles them in the double-precision filter: 0 hit, 1 missed.
+// The Why text of a triangle's test compares the watertight test with Möller–Trumbore on that ray and
+// triangle. Lesson 14's leak (scenes/leak.json, pixel 33,19): the ray (33.5, 28.5, 40) along -z passes within
+// rounding of the edge (28.70, 36.68, 6.29)-(38.93, 19.25, 12.73) shared by triangles 0 and 1.
+// Möller–Trumbore rejects both: triangle 0 finds u + v = 1 + 8.9e-08 > 1, triangle 1 u = -2.1e-08 < 0. The
+// watertight test finds the edge functions within their rounding error bound and settles them in the
+// double-precision filter: 0 hit, 1 missed.
 TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   glm::vec3 v1(45.6170235f, 29.0892525f, -4.83244371f), v2(19.3059406f, 17.6921577f, 4.83244371f),
       v3(28.6986485f, 36.6775398f, 6.29141855f), v5(38.9325066f, 19.2474918f, 12.7304964f);
@@ -293,21 +310,25 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   ASSERT_EQ(ray.events[size_t(first)].prim, 0);
   EXPECT_TRUE(ray.events[size_t(first)].hit);
   EXPECT_FALSE(ray.events[size_t(second)].hit);
-  std::string why0 = explainRule(&t, ray, replayAt(ray, first)), why1 = explainRule(&t, ray, replayAt(ray, second));
-  EXPECT_NE(why0.find("\nThis ray and triangle alone: watertight hit (settled by the double-precision filter); "
-                      "Möller–Trumbore miss (u + v = 1 + 8.9e-08 > 1)."),
-            std::string::npos)
+  std::string why0 = explainRule(&t, ray, replayAt(ray, first)),
+              why1 = explainRule(&t, ray, replayAt(ray, second));
+  EXPECT_NE(
+      why0.find("\nThis ray and triangle alone: watertight hit (settled by the double-precision filter); "
+                "Möller–Trumbore miss (u + v = 1 + 8.9e-08 > 1)."),
+      std::string::npos)
       << why0;
-  EXPECT_NE(why1.find("\nThis ray and triangle alone: watertight miss (settled by the double-precision filter); "
-                      "Möller–Trumbore miss (u = -2.1e-08 < 0)."),
-            std::string::npos)
+  EXPECT_NE(
+      why1.find("\nThis ray and triangle alone: watertight miss (settled by the double-precision filter); "
+                "Möller–Trumbore miss (u = -2.1e-08 < 0)."),
+      std::string::npos)
       << why1;
   // Without the trace's vertices there is nothing to compare.
   EXPECT_EQ(explainRule(ray, replayAt(ray, first)).find("Möller"), std::string::npos);
 
   // Away from edges both agree, in float alone: a hit inside, and a miss with u > 1 (u: p1's weight).
   TracePrimitive tri;
-  tri.v[0] = glm::vec3(0.f, 0.f, 0.f), tri.v[1] = glm::vec3(1.f, 0.f, 0.f), tri.v[2] = glm::vec3(0.f, 1.f, 0.f);
+  tri.v[0] = glm::vec3(0.f, 0.f, 0.f), tri.v[1] = glm::vec3(1.f, 0.f, 0.f),
+  tri.v[2] = glm::vec3(0.f, 1.f, 0.f);
   TracedRay inside;
   inside.ray.origin = glm::vec3(0.25f, 0.25f, 1.f);
   inside.ray.direction = glm::vec3(0.f, 0.f, -1.f);
@@ -317,8 +338,8 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   outside.ray.origin.x = 2.f;
   EXPECT_EQ(compareTriangleTests(outside, tri),
             "This ray and triangle alone: watertight miss (float alone); Möller–Trumbore miss (u = 2 > 1).");
-  // A ray exactly through an edge of general coordinates: the edge function is exactly 0, which no error bound
-  // can prove, so rational arithmetic settles it (and the edge counts as inside).
+  // A ray exactly through an edge of general coordinates: the edge function is exactly 0, which no error
+  // bound can prove, so rational arithmetic settles it (and the edge counts as inside).
   TracePrimitive edge;
   edge.v[0] = glm::vec3(0.7f, 0.9f, 0.1f);
   edge.v[1] = glm::vec3(1.f - 0.7f, 1.f - 0.9f, -0.2f);  // exact: the edge's midpoint in x, y is (0.5, 0.5)
@@ -326,7 +347,9 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   TracedRay through = inside;
   through.ray.origin = glm::vec3(0.5f, 0.5f, 1.f);
   std::string line = compareTriangleTests(through, edge);
-  EXPECT_EQ(line.rfind("This ray and triangle alone: watertight hit (settled by exact rational arithmetic); ", 0), 0u)
+  EXPECT_EQ(
+      line.rfind("This ray and triangle alone: watertight hit (settled by exact rational arithmetic); ", 0),
+      0u)
       << line;
   // Not a triangle: no line.
   TracePrimitive sphere;

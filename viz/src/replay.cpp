@@ -14,21 +14,30 @@ namespace raystep::viz {
 
 const char* primStateName(PrimState s) {
   switch (s) {
-    case PrimState::pending: return "pending";
-    case PrimState::testing: return "testing";
-    case PrimState::hit: return "hit";
-    case PrimState::missed: return "missed";
-    case PrimState::skipped: return "skipped (mailbox)";
+    case PrimState::pending:
+      return "pending";
+    case PrimState::testing:
+      return "testing";
+    case PrimState::hit:
+      return "hit";
+    case PrimState::missed:
+      return "missed";
+    case PrimState::skipped:
+      return "skipped (mailbox)";
   }
   return "";
 }
 
 const char* crossingName(Crossing c) {
   switch (c) {
-    case Crossing::nearOnly: return "near child only";
-    case Crossing::farOnly: return "far child only";
-    case Crossing::both: return "both children";
-    case Crossing::inPlane: return "both children (the ray lies in the plane)";
+    case Crossing::nearOnly:
+      return "near child only";
+    case Crossing::farOnly:
+      return "far child only";
+    case Crossing::both:
+      return "both children";
+    case Crossing::inPlane:
+      return "both children (the ray lies in the plane)";
   }
   return "";
 }
@@ -62,7 +71,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
 
   // Walk the log up to the current event, as the kernel did.
   std::unordered_map<int32_t, size_t> tested;  // prim -> its mailbox entry
-  std::unordered_set<int32_t> left;             // nodes in visitedNodes
+  std::unordered_set<int32_t> left;            // nodes in visitedNodes
   for (int i = 0; i <= step; ++i) {
     const Event& e = ev[size_t(i)];
     switch (e.type) {
@@ -101,7 +110,8 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         MailboxEntry m;
         m.prim = e.prim;
         m.testedInCellEvent = s.cellEvent;
-        if (s.cellEvent >= 0) std::copy(ev[size_t(s.cellEvent)].cell, ev[size_t(s.cellEvent)].cell + 3, m.cell);
+        if (s.cellEvent >= 0)
+          std::copy(ev[size_t(s.cellEvent)].cell, ev[size_t(s.cellEvent)].cell + 3, m.cell);
         if (s.nodeEvent >= 0) m.leaf = ev[size_t(s.nodeEvent)].node;
         m.hit = e.hit;
         m.t = e.t;
@@ -123,7 +133,9 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         ++s.counters.mailbox_hits;
         if (auto it = tested.find(e.prim); it != tested.end()) ++s.mailbox[it->second].skips;
         break;
-      case EventType::hit_deferred: s.deferred = true; break;
+      case EventType::hit_deferred:
+        s.deferred = true;
+        break;
       case EventType::hit_accepted:
         s.accepted = true;
         s.deferred = false;
@@ -131,8 +143,11 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         s.nearestPrim = e.prim;
         s.nearestT = e.t;
         break;
-      case EventType::ray_end: s.ended = true; break;
-      default: break;
+      case EventType::ray_end:
+        s.ended = true;
+        break;
+      default:
+        break;
     }
   }
 
@@ -146,10 +161,14 @@ ReplayState replayAt(const TracedRay& ray, int step) {
       if (e.type != EventType::prim_test && e.type != EventType::mailbox_hit) continue;
       PrimMark p;
       p.prim = e.prim;
-      if (int(i) > step) p.state = PrimState::pending;
-      else if (e.type == EventType::mailbox_hit) p.state = PrimState::skipped;
-      else if (int(i) == step) p.state = PrimState::testing;
-      else p.state = e.hit ? PrimState::hit : PrimState::missed;
+      if (int(i) > step)
+        p.state = PrimState::pending;
+      else if (e.type == EventType::mailbox_hit)
+        p.state = PrimState::skipped;
+      else if (int(i) == step)
+        p.state = PrimState::testing;
+      else
+        p.state = e.hit ? PrimState::hit : PrimState::missed;
       p.t = e.t;
       p.hit = e.type == EventType::prim_test && e.hit;
       s.prims.push_back(p);
@@ -211,8 +230,8 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   float o = ray.ray.origin[c.axis], d = ray.ray.direction[c.axis];
   c.tStar = (c.split - o) * (1.f / d);
   c.nearIsBelow = !std::signbit(d);
-  // Which children the walk visits from here, by the events that follow (the child below the plane is the node
-  // right after its parent in depth-first order).
+  // Which children the walk visits from here, by the events that follow (the child below the plane is the
+  // node right after its parent in depth-first order).
   if (ev[next].type == EventType::push) {
     c.crossing = std::isnan(c.tStar) ? Crossing::inPlane : Crossing::both;
     c.farChild = ev[next].node;
@@ -233,20 +252,23 @@ std::string describeEvent(const Event& e) {
   std::string s = std::to_string(e.seq) + "  " + event_type_name(e.type);
   switch (e.type) {
     case EventType::cell:
-      s += "  (" + std::to_string(e.cell[0]) + "," + std::to_string(e.cell[1]) + "," + std::to_string(e.cell[2]) +
-           ")  t " + num(e.t_enter) + ".." + num(e.t_exit) + "  next " + axisName(e.next_axis);
+      s += "  (" + std::to_string(e.cell[0]) + "," + std::to_string(e.cell[1]) + "," +
+           std::to_string(e.cell[2]) + ")  t " + num(e.t_enter) + ".." + num(e.t_exit) + "  next " +
+           axisName(e.next_axis);
       break;
     case EventType::node:
     case EventType::push:
     case EventType::pop:
     case EventType::leaf:
-      s += (e.type == EventType::node ? "  " : "  node ") + std::to_string(e.node) + " depth " + std::to_string(e.depth) + "  t " + num(e.t_min_node) +
-           ".." + num(e.t_max_node);
+      s += (e.type == EventType::node ? "  " : "  node ") + std::to_string(e.node) + " depth " +
+           std::to_string(e.depth) + "  t " + num(e.t_min_node) + ".." + num(e.t_max_node);
       break;
     case EventType::prim_test:
       s += "  prim " + std::to_string(e.prim) + (e.hit ? ": hit at t " + num(e.t) : ": miss");
       break;
-    case EventType::mailbox_hit: s += "  prim " + std::to_string(e.prim) + " skipped (tested before)"; break;
+    case EventType::mailbox_hit:
+      s += "  prim " + std::to_string(e.prim) + " skipped (tested before)";
+      break;
     case EventType::hit_deferred:
       s += "  prim " + std::to_string(e.prim) + " t " + num(e.t) + " > cell exit " + num(e.t_exit);
       break;
@@ -256,7 +278,8 @@ std::string describeEvent(const Event& e) {
     case EventType::ray_end:
       s += e.prim >= 0 ? "  hit prim " + std::to_string(e.prim) + " at t " + num(e.t) : "  miss";
       break;
-    default: break;
+    default:
+      break;
   }
   return s;
 }
@@ -292,12 +315,12 @@ std::string compareTriangleTests(const TracedRay& ray, const TracePrimitive& p) 
   TriangleHit h;
   bool watertight = intersect_triangle(ray.ray, p.v[0], p.v[1], p.v[2], &h);
   ExactCounters after = exact_counters();
-  const char* how = after.exact != before.exact           ? "settled by exact rational arithmetic"
+  const char* how = after.exact != before.exact         ? "settled by exact rational arithmetic"
                     : after.filtered != before.filtered ? "settled by the double-precision filter"
                                                         : "float alone";
   MollerTrumboreValues m = moller_trumbore_values(ray.ray, p.v[0], p.v[1], p.v[2], ray.ray.tmax);
-  return std::string("This ray and triangle alone: watertight ") + (watertight ? "hit" : "miss") + " (" + how +
-         "); Möller–Trumbore " + (m.failed ? "miss (" + mtReason(m) + ")" : std::string("hit")) + ".";
+  return std::string("This ray and triangle alone: watertight ") + (watertight ? "hit" : "miss") + " (" +
+         how + "); Möller–Trumbore " + (m.failed ? "miss (" + mtReason(m) + ")" : std::string("hit")) + ".";
 }
 
 namespace {
@@ -312,8 +335,8 @@ const TracePrimitive* findPrimitive(const Trace* trace, int32_t id) {
   return nullptr;
 }
 
-// A primitive test in a cell or leaf (`where`): a nearer hit, a tie lost to a lower id, or no nearer hit; for a
-// triangle, a second line with the watertight test and Möller–Trumbore on this very ray and triangle.
+// A primitive test in a cell or leaf (`where`): a nearer hit, a tie lost to a lower id, or no nearer hit; for
+// a triangle, a second line with the watertight test and Möller–Trumbore on this very ray and triangle.
 std::string explainPrimTest(const Trace* trace, const TracedRay& ray, const Event& e, const ReplayState& s,
                             const std::string& where) {
   std::string head = "Primitive " + std::to_string(e.prim) + where, text;
@@ -342,15 +365,24 @@ std::string explainGridRule(const Trace* trace, const TracedRay& ray, const Repl
       if (e.reason == AcceptReason::inside_cell && cell)
         return "Traverse until tmin(cell) > tmax(ray):\ntmin(next cell) = t_exit = " + num(cell->t_exit) +
                " > tmax(ray) = t(hit) = " + num(e.t) + "  =>  stop, the hit is final.";
-      if (e.reason == AcceptReason::any_hit) return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
+      if (e.reason == AcceptReason::any_hit)
+        return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
       return "The walk left the grid; the nearest hit t = " + num(e.t) + " is final.";
     case EventType::ray_end:
       if (e.prim < 0) return "Miss: the walk left the grid without a hit.";
       return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
     case EventType::cell:
       if (e.next_axis < 0)
-        return "min t_max = " + num(std::min({e.t_max.x, e.t_max.y, e.t_max.z})) + " > t_exit(grid) = " + num(e.t_exit) +
-               ": the walk ends in this cell.";
+        return "min t_max = " + num(std::min({e.t_max.x, e.t_max.y, e.t_max.z})) +
+               " > t_exit(grid) = " + num(e.t_exit) + ": the walk ends in this cell.";
+      // The kernel picks the axis on entering the cell; a hit found in the cell may end the walk before the
+      // step.
+      if (findEvent(ray, s.step, EventType::cell, true) < 0 &&
+          findEvent(ray, s.step, EventType::hit_accepted, true) >= 0)
+        return "The 3D-DDA would step along " + std::string(axisName(e.next_axis)) + " next (t_max." +
+               axisName(e.next_axis) + " = " + num(e.t_max[e.next_axis]) +
+               " is the smallest t_max), but the walk ends in this cell: a hit found here lies before its "
+               "exit.";
       return "Step along " + std::string(axisName(e.next_axis)) + ": t_max." + axisName(e.next_axis) + " = " +
              num(e.t_max[e.next_axis]) + " is the smallest t_max.";
     case EventType::ray_begin: {
@@ -360,26 +392,32 @@ std::string explainGridRule(const Trace* trace, const TracedRay& ray, const Repl
              "; the walk starts in the cell that contains that point.";
     }
     case EventType::prim_test: {
-      std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," + std::to_string(cell->cell[1]) +
-                                     "," + std::to_string(cell->cell[2]) + ")"
+      std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," +
+                                     std::to_string(cell->cell[1]) + "," + std::to_string(cell->cell[2]) + ")"
                                : "";
       return explainPrimTest(trace, ray, e, s, where);
     }
     case EventType::mailbox_hit: {
       for (const MailboxEntry& m : s.mailbox)
         if (m.prim == e.prim)
-          return "Primitive " + std::to_string(e.prim) + " was already tested in cell (" + std::to_string(m.cell[0]) +
-                 "," + std::to_string(m.cell[1]) + "," + std::to_string(m.cell[2]) +
+          return "Primitive " + std::to_string(e.prim) + " was already tested in cell (" +
+                 std::to_string(m.cell[0]) + "," + std::to_string(m.cell[1]) + "," +
+                 std::to_string(m.cell[2]) +
                  ") for this ray (it spans several cells): the mailbox skips the test.";
       return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
     }
-    default: return "";
+    default:
+      return "";
   }
 }
 
-std::string side(bool below) { return below ? "below the plane" : "above the plane"; }
+std::string side(bool below) {
+  return below ? "below the plane" : "above the plane";
+}
 
-std::string nodeName(int32_t id) { return id >= 0 ? "node " + std::to_string(id) : std::string("the child"); }
+std::string nodeName(int32_t id) {
+  return id >= 0 ? "node " + std::to_string(id) : std::string("the child");
+}
 
 // The kd-tree's stack walk in the lecture's words.
 std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
@@ -408,61 +446,74 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       switch (c.crossing) {
         case Crossing::nearOnly:
           if (std::isinf(c.tStar))
-            return head + "The ray runs parallel to the plane (d." + a + " = 0): it stays on one side.\nOnly " +
-                   nearName + " is visited: Intersect(near, t_min, t_max).";
+            return head + "The ray runs parallel to the plane (d." + a +
+                   " = 0): it stays on one side.\nOnly " + nearName +
+                   " is visited: Intersect(near, t_min, t_max).";
           return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
                  ": the ray leaves the node before it reaches the plane.\nOnly the near child, " + nearName +
                  ", is visited: Intersect(near, t_min, t_max).";
         case Crossing::farOnly:
           if (std::isinf(c.tStar))
-            return head + "The ray runs parallel to the plane (d." + a + " = 0): it stays on one side.\nOnly " +
-                   farName + " is visited: Intersect(far, t_min, t_max).";
+            return head + "The ray runs parallel to the plane (d." + a +
+                   " = 0): it stays on one side.\nOnly " + farName +
+                   " is visited: Intersect(far, t_min, t_max).";
           return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
-                 ": the node's part of the ray lies beyond the plane (the plane is behind the ray's origin, or "
-                 "the ray crossed it before it entered the node).\nOnly the far child, " + farName +
-                 ", is visited: Intersect(far, t_min, t_max).";
+                 ": the node's part of the ray lies beyond the plane (the plane is behind the ray's origin, "
+                 "or "
+                 "the ray crossed it before it entered the node).\nOnly the far child, " +
+                 farName + ", is visited: Intersect(far, t_min, t_max).";
         case Crossing::both: {
           bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;
-          return head + (inside ? "t_min = " + num(c.tMin) + " <= t* <= t_max = " + num(c.tMax)
-                                : "t* is at the edge of [" + num(c.tMin) + ", " + num(c.tMax) +
-                                      "] (within the walk's rounding margin)") +
-                 ": the ray crosses both children.\nIntersect(near = " + nearName + ", t_min, t*) now; push (far = " +
-                 farName + ", t*, t_max) for later.";
+          return head +
+                 (inside ? "t_min = " + num(c.tMin) + " <= t* <= t_max = " + num(c.tMax)
+                         : "t* is at the edge of [" + num(c.tMin) + ", " + num(c.tMax) +
+                               "] (within the walk's rounding margin)") +
+                 ": the ray crosses both children.\nIntersect(near = " + nearName +
+                 ", t_min, t*) now; push (far = " + farName + ", t*, t_max) for later.";
         }
         case Crossing::inPlane:
-          return head + "The ray lies in the split plane (t* = 0 * inf is undefined): it touches both children "
-                        "over the whole interval.\nVisit the near child, " + nearName + "; push the far child, " +
-                 farName + ", with all of [" + num(c.tMin) + ", " + num(c.tMax) + "].";
+          return head +
+                 "The ray lies in the split plane (t* = 0 * inf is undefined): it touches both children "
+                 "over the whole interval.\nVisit the near child, " +
+                 nearName + "; push the far child, " + farName + ", with all of [" + num(c.tMin) + ", " +
+                 num(c.tMax) + "].";
       }
       return head;
     }
     case EventType::push: {
-      NodeCrossing c = trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};  // of the inner node being split
+      NodeCrossing c =
+          trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};  // of the inner node being split
       bool inPlane = c.valid && c.crossing == Crossing::inPlane;
       return "Push the far child, node " + std::to_string(e.node) +
-             (inPlane ? ", with the whole interval [t_min, t_max] = [" : ", with its part of the ray [t*, t_max] = [") +
-             num(e.t_min_node) + ", " + num(e.t_max_node) + "]. The walk goes on in the near child; the stack holds " +
-             std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
+             (inPlane ? ", with the whole interval [t_min, t_max] = ["
+                      : ", with its part of the ray [t*, t_max] = [") +
+             num(e.t_min_node) + ", " + num(e.t_max_node) +
+             "]. The walk goes on in the near child; the stack holds " + std::to_string(s.stack.size()) +
+             (s.stack.size() == 1 ? " node." : " nodes.");
     }
     case EventType::leaf: {
       size_t k = s.prims.size();
-      std::string head = "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+      std::string head =
+          "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
       if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
       return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
              " against the ray (the mailbox skips any tested before).";
     }
     case EventType::pop: {
-      std::string head = "Pop node " + std::to_string(e.node) + " with [t_min, t_max] = [" + num(e.t_min_node) + ", " +
-                         num(e.t_max_node) + "]. ";
+      std::string head = "Pop node " + std::to_string(e.node) + " with [t_min, t_max] = [" +
+                         num(e.t_min_node) + ", " + num(e.t_max_node) + "]. ";
       bool visited = after && after->type == EventType::node && after->node == e.node;
       if (visited) {
         if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
         if (s.nearestT < e.t_min_node)
-          return head + "The nearest hit so far, t = " + num(s.nearestT) + ", lies before its t_min, but by less "
-                        "than the walk's safety margin (2^-12 of the larger of |t_min| and |t_max| in the root): visit it, "
-                        "so that no hit is lost to rounding.";
-        return head + "The nearest hit so far, t = " + num(s.nearestT) + ", is not before its t_min: a nearer hit may "
-                      "lie in it, so visit it.";
+          return head + "The nearest hit so far, t = " + num(s.nearestT) +
+                 ", lies before its t_min, but by less "
+                 "than the walk's safety margin (2^-12 of the larger of |t_min| and |t_max| in the root): "
+                 "visit it, "
+                 "so that no hit is lost to rounding.";
+        return head + "The nearest hit so far, t = " + num(s.nearestT) +
+               ", is not before its t_min: a nearer hit may "
+               "lie in it, so visit it.";
       }
       return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
              ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it." +
@@ -477,24 +528,28 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
     case EventType::mailbox_hit:
       for (const MailboxEntry& m : s.mailbox)
         if (m.prim == e.prim && m.leaf >= 0)
-          return "Primitive " + std::to_string(e.prim) + " was already tested in leaf " + std::to_string(m.leaf) +
+          return "Primitive " + std::to_string(e.prim) + " was already tested in leaf " +
+                 std::to_string(m.leaf) +
                  " for this ray (it lies in several leaves): the mailbox skips the test.";
       return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
     case EventType::hit_accepted: {
-      if (e.reason == AcceptReason::any_hit) return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
+      if (e.reason == AcceptReason::any_hit)
+        return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
       if (e.reason == AcceptReason::next_node_beyond) {
         int pop = findEvent(ray, s.step, EventType::pop, false);
         std::string tmin = pop >= 0 ? num(ev[size_t(pop)].t_min_node) : "?";
-        return "Traverse until tmin(next node) > tmax(ray):\ntmin(popped node) = " + tmin + " > t(hit) = " + num(e.t) +
+        return "Traverse until tmin(next node) > tmax(ray):\ntmin(popped node) = " + tmin +
+               " > t(hit) = " + num(e.t) +
                ", and every node below it on the stack starts later still  =>  stop, the hit is final.";
       }
-      return "The stack is empty: every node the ray crosses has been visited. The nearest hit, t = " + num(e.t) +
-             ", is final.";
+      return "The stack is empty: every node the ray crosses has been visited. The nearest hit, t = " +
+             num(e.t) + ", is final.";
     }
     case EventType::ray_end:
       if (e.prim < 0) return "Miss: the walk visited every node the ray crosses without a hit.";
       return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
-    default: return "";
+    default:
+      return "";
   }
 }
 
