@@ -358,5 +358,32 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   EXPECT_EQ(compareTriangleTests(inside, sphere), "");
 }
 
+// Without mailboxes a primitive in two cells is tested twice: the second hit is no nearer than the first.
+TEST(Replay, ASecondTestOfTheNearestPrimitiveIsNotANewHit) {
+  TracedRay ray;
+  auto ev = [&](EventType type) {
+    Event e;
+    e.seq = uint32_t(ray.events.size());
+    e.type = type;
+    ray.events.push_back(e);
+    return &ray.events.back();
+  };
+  ev(EventType::ray_begin);
+  Event* c0 = ev(EventType::cell);
+  c0->t_exit = 2.f;
+  c0->next_axis = 0;
+  Event* t0 = ev(EventType::prim_test);
+  t0->prim = 4, t0->hit = true, t0->t = 3.f;
+  ev(EventType::hit_deferred)->prim = 4;
+  Event* c1 = ev(EventType::cell);
+  c1->cell[0] = 1, c1->t_enter = 2.f, c1->t_exit = 4.f, c1->next_axis = 0;
+  Event* t1 = ev(EventType::prim_test);
+  t1->prim = 4, t1->hit = true, t1->t = 3.f;
+  std::string first = explainRule(ray, replayAt(ray, 2)), second = explainRule(ray, replayAt(ray, 5));
+  EXPECT_NE(first.find("nearer than any hit so far"), std::string::npos) << first;
+  EXPECT_EQ(second.find("nearer than any hit so far"), std::string::npos) << second;
+  EXPECT_NE(second.find("already the nearest hit"), std::string::npos) << second;
+}
+
 }  // namespace
 }  // namespace raystep::viz

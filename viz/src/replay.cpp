@@ -343,6 +343,11 @@ std::string explainPrimTest(const Trace* trace, const TracedRay& ray, const Even
   if (e.hit && s.nearestPrim != e.prim)
     text = head + ": hit at t = " + num(e.t) + ", the same t as the nearest hit so far, primitive " +
            std::to_string(s.nearestPrim) + ": a tie goes to the lower id, which stays the nearest.";
+  else if (e.hit && s.step > 0 && replayAt(ray, s.step - 1).nearestPrim == e.prim)
+    // Without mailboxes a primitive in several cells or leaves is tested again, and hits again at the same t.
+    text = head + ": hit at t = " + num(e.t) +
+           " again: it is already the nearest hit (tested before, in an "
+           "earlier cell or leaf); the nearest hit stays.";
   else if (e.hit)
     text = head + ": hit at t = " + num(e.t) + ", nearer than any hit so far. It becomes the nearest hit.";
   else
