@@ -149,8 +149,11 @@ void enterState(MainWindow& w, const LessonState& st) {
 
   // The 3D view: the scene framed as when it was opened, at the view's size once the panels have taken their
   // room for this state (the state column's scroll bar, the dock), then following if the state says so.
-  for (int i = 0; i < 3; ++i) QApplication::processEvents();
+  // The 3D view is drawn once, below, with its final camera: not also by these paint events with the old one.
   SceneView* view = w.sceneView();
+  view->setUpdatesEnabled(false);
+  for (int i = 0; i < 3; ++i) QApplication::processEvents();
+  view->setUpdatesEnabled(true);
   if (view->translucent() != st.translucent) view->setTranslucent(st.translucent);
   if (view->followCell()) view->setFollowCell(false);
   view->restoreHomeCamera();
