@@ -10,8 +10,8 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPushButton>
-#include <QToolButton>
 #include <QSlider>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
@@ -91,6 +91,18 @@ QRectF ImageCanvas::imageRect() const {
   return QRectF(topLeft + pan_, QSizeF(s.width() * z, s.height() * z));
 }
 
+QPointF ImageCanvas::centre() const {
+  const QRectF r = imageRect();
+  const int avail = width() - (heatImage_.isNull() ? 0 : barRect().width() + 72);
+  const double z = zoom();
+  return QPointF((avail / 2.0 - r.left()) / z, (height() / 2.0 - r.top()) / z);
+}
+
+void ImageCanvas::resetPan() {
+  pan_ = QPointF(0, 0);
+  update();
+}
+
 void ImageCanvas::centreOn(int x, int y) {
   pan_ = QPointF(0, 0);
   QPointF at = QPointF(widgetPosOf(x, y));
@@ -105,7 +117,9 @@ QPoint ImageCanvas::widgetPosOf(int x, int y) const {
   return QPoint(int(std::floor(r.left() + (x + 0.5) * z)), int(std::floor(r.top() + (y + 0.5) * z)));
 }
 
-QRect ImageCanvas::barRect() const { return QRect(width() - 62, 16, 14, std::max(40, height() - 32)); }
+QRect ImageCanvas::barRect() const {
+  return QRect(width() - 62, 16, 14, std::max(40, height() - 32));
+}
 
 void ImageCanvas::paintEvent(QPaintEvent*) {
   QPainter p(this);
@@ -130,8 +144,10 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
     p.setPen(QPen(QColor(0, 0, 0, 90), 0));
     int x0 = std::max(0, int(-r.left() / z)), x1 = std::min(s.width(), int((width() - r.left()) / z) + 1);
     int y0 = std::max(0, int(-r.top() / z)), y1 = std::min(s.height(), int((height() - r.top()) / z) + 1);
-    for (int x = x0; x <= x1; ++x) p.drawLine(QPointF(r.left() + x * z, r.top() + y0 * z), QPointF(r.left() + x * z, r.top() + y1 * z));
-    for (int y = y0; y <= y1; ++y) p.drawLine(QPointF(r.left() + x0 * z, r.top() + y * z), QPointF(r.left() + x1 * z, r.top() + y * z));
+    for (int x = x0; x <= x1; ++x)
+      p.drawLine(QPointF(r.left() + x * z, r.top() + y0 * z), QPointF(r.left() + x * z, r.top() + y1 * z));
+    for (int y = y0; y <= y1; ++y)
+      p.drawLine(QPointF(r.left() + x0 * z, r.top() + y * z), QPointF(r.left() + x1 * z, r.top() + y * z));
   }
   if (selX_ >= 0) {  // the traced pixel: a box, and a cross-hair when it is small on screen
     QRectF px(r.left() + selX_ * z, r.top() + selY_ * z, z, z);
@@ -149,7 +165,8 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
   if (!heatImage_.isNull()) {  // colour bar: bottom 0, top max
     QRect b = barRect();
     for (int y = 0; y < b.height(); ++y)
-      p.fillRect(QRect(b.left(), b.top() + y, b.width(), 1), rampColor(1.f - float(y) / float(b.height() - 1)));
+      p.fillRect(QRect(b.left(), b.top() + y, b.width(), 1),
+                 rampColor(1.f - float(y) / float(b.height() - 1)));
     p.setPen(Qt::white);
     p.drawRect(b.adjusted(0, 0, -1, -1));
     p.drawText(QPoint(b.right() + 4, b.top() + 10), QString::number(heatMax_));
@@ -204,7 +221,9 @@ void ImageCanvas::mouseReleaseEvent(QMouseEvent* e) {
   pressed_ = dragging_ = false;
 }
 
-void ImageCanvas::resizeEvent(QResizeEvent*) { update(); }
+void ImageCanvas::resizeEvent(QResizeEvent*) {
+  update();
+}
 
 ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), session_(session) {
   auto* layout = new QVBoxLayout(this);
@@ -288,17 +307,31 @@ void ImageView::setCompact(bool on) {
   heat_->setItemText(4, on ? tr("samples") : tr("samples per pixel"));
 }
 
-void ImageView::refreshHeat() { canvas_->setHeat(session_->heat(), opacity_->value() / 100.0); }
+void ImageView::refreshHeat() {
+  canvas_->setHeat(session_->heat(), opacity_->value() / 100.0);
+}
 
-QString ImageView::antiAliasing() const { return aa_->currentText(); }
-void ImageView::setAntiAliasing(const QString& spec) { aa_->setCurrentText(spec); }
-QString ImageView::heatQuantity() const { return heat_->currentData().toString(); }
+QString ImageView::antiAliasing() const {
+  return aa_->currentText();
+}
+void ImageView::setAntiAliasing(const QString& spec) {
+  aa_->setCurrentText(spec);
+}
+QString ImageView::heatQuantity() const {
+  return heat_->currentData().toString();
+}
 void ImageView::setHeatQuantity(const QString& q) {
   int i = heat_->findData(q);
   if (i >= 0) heat_->setCurrentIndex(i);
 }
-bool ImageView::secondaryRays() const { return secondary_->isChecked(); }
-void ImageView::setSecondaryRays(bool on) { secondary_->setChecked(on); }
-void ImageView::setStatus(const QString& text) { status_->setText(text); }
+bool ImageView::secondaryRays() const {
+  return secondary_->isChecked();
+}
+void ImageView::setSecondaryRays(bool on) {
+  secondary_->setChecked(on);
+}
+void ImageView::setStatus(const QString& text) {
+  status_->setText(text);
+}
 
 }  // namespace raystep::viz

@@ -27,7 +27,11 @@ class ImageCanvas : public QWidget {
   void setSelected(int x, int y);  // -1: none
   void setZoom(double zoom);       // screen pixels per image pixel; 0: fit
   double zoom() const;
-  void centreOn(int x, int y);  // pan so that pixel (x, y) is in the middle
+  void centreOn(int x, int y);                  // pan so that pixel (x, y) is in the middle
+  void resetPan();                              // the picture's centre in the middle
+  double zoomSetting() const { return zoom_; }  // 0: fit
+  // The picture's point (in its pixels) at the middle of the canvas: what the view is centred on.
+  QPointF centre() const;
   // Where the centre of image pixel (x, y) is on the widget (for scripted clicks).
   QPoint widgetPosOf(int x, int y) const;
   QSize sizeHint() const override { return {360, 300}; }

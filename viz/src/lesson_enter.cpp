@@ -108,7 +108,12 @@ void enterState(MainWindow& w, const LessonState& st) {
   // The picture: fitted, or zoomed on the traced pixel.
   ImageCanvas* canvas = image->canvas();
   canvas->setZoom(st.zoom ? *st.zoom : 0.0);
-  if (st.zoom && st.pixel) canvas->centreOn((*st.pixel)[0], (*st.pixel)[1]);
+  // Zoomed in, centred on the traced pixel; fitted (zoom 0) or without a pixel, the whole picture centred,
+  // not where an earlier step (or a click and drag) left it.
+  if (st.zoom && *st.zoom > 0.0 && st.pixel)
+    canvas->centreOn((*st.pixel)[0], (*st.pixel)[1]);
+  else
+    canvas->resetPan();
 
   // The kd-tree's inspector: a node by id or path, or the root for `panel: sah`; closed otherwise.
   const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;

@@ -113,6 +113,13 @@ QJsonObject dumpState(MainWindow& w) {
     o["tree"] = tree;
   }
   o["window"] = QJsonArray{w.width(), w.height()};
+  // The picture's zoom and the pixel the view is centred on. A centred pixel puts the canvas's middle near
+  // its own middle (x + 0.5), a fitted picture near a pixel corner; a canvas one screen pixel taller moves it
+  // by half a screen pixel. A quarter pixel's nudge keeps both away from the edges of the pixel squares.
+  const ImageCanvas* canvas = w.imageView()->canvas();
+  const QPointF c = canvas->centre();
+  o["image"] = QJsonObject{{"zoom", canvas->zoomSetting()},
+                           {"centre_pixel", QJsonArray{int(std::floor(c.x() + 0.25)), int(std::floor(c.y() + 0.25))}}};
   o["full_screen"] = w.isFullScreen();
   o["scale"] = w.presenterScale();
   o["kd_panel"] = w.kdPanelVisible();
@@ -157,7 +164,7 @@ void defineOptions(QCommandLineParser& p) {
       "Shift+Right, Shift+Left, Period, Comma (in a lesson Right/Left/PageDown/PageUp/Home/End move between "
       "steps and Shift+Right/Left or . and , step the events).",
       "LIST");
-  opt("zoom", "Image zoom: screen pixels per picture pixel (0: fit), centred on the traced pixel.", "Z");
+  opt("zoom", "Image zoom: screen pixels per picture pixel, centred on the traced pixel (0: fit, the whole picture).", "Z");
   opt("translucent", "Draw the scene translucent.");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
