@@ -118,7 +118,8 @@ void Presenter::goTo(int index) {
   revealed_ = false;
   pane_->showStep(lesson_, index);
   pane_->quiz()->setQuestion(step.ask);
-  window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane);
+  window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane,
+                                 step.state.accel == "kd-median" ? "median builder" : "SAH");
   concealWalk(false);
   entering_ = true;
   try {

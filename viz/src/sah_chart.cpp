@@ -173,8 +173,10 @@ bool SahChart::candidateAt(const QPoint& at, int* axis, float* position) const {
     if (c.axis < 0 || c.axis > 2) continue;
     float extent = box.hi[c.axis] - box.lo[c.axis];
     double x = extent > 0.f ? double(c.position - box.lo[c.axis]) / double(extent) : 0.5;
-    double sx = b1[0] + (x - bottom->GetMinimum()) / (bottom->GetMaximum() - bottom->GetMinimum()) * (b2[0] - b1[0]);
-    double sy = l1[1] + (double(c.cost) - left->GetMinimum()) / (left->GetMaximum() - left->GetMinimum()) * (l2[1] - l1[1]);
+    double sx =
+        b1[0] + (x - bottom->GetMinimum()) / (bottom->GetMaximum() - bottom->GetMinimum()) * (b2[0] - b1[0]);
+    double sy = l1[1] + (double(c.cost) - left->GetMinimum()) / (left->GetMaximum() - left->GetMinimum()) *
+                            (l2[1] - l1[1]);
     double dist = std::hypot(sx - px, sy - py);
     if (dist < best) {
       best = dist;
@@ -186,9 +188,10 @@ bool SahChart::candidateAt(const QPoint& at, int* axis, float* position) const {
   return found;
 }
 
-void SahChart::setConceal(bool on) {
-  if (on == conceal_) return;
+void SahChart::setConceal(bool on, const QString& builder) {
+  if (on == conceal_ && builder == concealBuilder_) return;
   conceal_ = on;
+  concealBuilder_ = builder;
   if (curve_) setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
 }
 
@@ -337,8 +340,9 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
                       fmt(c.position).toStdString());
   }
   if (conceal_) {  // the quiz asks for this choice: the curves only, until the answer is revealed
-    t = header + tr("<i>The SAH's choice stays hidden until the answer is revealed.</i>");
-    d.chart->SetTitle("node " + std::to_string(c.node) + ": which plane does the SAH choose?");
+    t = header + tr("<i>The %1's choice stays hidden until the answer is revealed.</i>").arg(concealBuilder_);
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": which plane does the " +
+                      concealBuilder_.toStdString() + " choose?");
   }
   text_->setText(t);
   renderNow();

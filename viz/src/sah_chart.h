@@ -37,7 +37,8 @@ class SahChart : public QWidget {
 
   // The quiz's sah-plane question: the chosen plane (its line, the title, the decision in the text) hidden
   // until the answer is revealed, so that neither the room nor the handout's figure gives it away.
-  void setConceal(bool on);
+  // builder: who chooses the plane, as the hidden title asks it ("SAH", or "median builder").
+  void setConceal(bool on, const QString& builder = "SAH");
   bool concealed() const { return conceal_; }
   // Presenter scale: the chart's fonts, lines and markers, and the text's width.
   void setScale(double scale);
@@ -66,6 +67,7 @@ class SahChart : public QWidget {
   QString lastPath_;  // setCurve's arguments, to draw again at another scale
   float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;
   bool conceal_ = false;
+  QString concealBuilder_ = "SAH";
 };
 
 }  // namespace raystep::viz
