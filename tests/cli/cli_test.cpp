@@ -570,8 +570,8 @@ TEST_F(LessonCli, CommandPrintsTheStepsGuiArguments) {
   fs::create_directories(dir_ / "my lessons");
   std::string spaced = write(
       "my lessons/x.md",
-      "# T\n## S\n```raystep\nscene: ../../../" +
-          fs::relative(fs::path(RAYSTEP_SOURCE_DIR) / "scenes/cornell.json", dir_.parent_path()).string() +
+      "# T\n## S\n```raystep\nscene: " +
+          fs::relative(fs::path(RAYSTEP_SOURCE_DIR) / "scenes/cornell.json", dir_ / "my lessons").string() +
           "\n```\n");
   r = run("lesson command '" + spaced + "' 1");
   EXPECT_EQ(r.code, 0) << r.err;
