@@ -33,6 +33,23 @@ QString placeholderOf(QuestionKind kind) {
 
 }  // namespace
 
+QWidget* QuizPanel::answerButtons(const QStringList& answers, const QString& namePrefix) {
+  auto* row = new QWidget;
+  auto* box = new QHBoxLayout(row);
+  box->setContentsMargins(0, 0, 0, 0);
+  for (const QString& a : answers) {
+    auto* b = new QPushButton(a);
+    b->setObjectName(namePrefix + a);
+    b->setFocusPolicy(Qt::NoFocus);
+    connect(b, &QPushButton::clicked, this, [this, a] {
+      input_->setText(a);
+      Q_EMIT revealRequested(a);
+    });
+    box->addWidget(b);
+  }
+  return row;
+}
+
 QuizPanel::QuizPanel(QWidget* parent) : QWidget(parent) {
   setObjectName("quizPanel");
   auto* layout = new QVBoxLayout(this);
@@ -52,19 +69,7 @@ QuizPanel::QuizPanel(QWidget* parent) : QWidget(parent) {
   layout->addLayout(row);
 
   // dda-axis: one button per answer; a click answers at once.
-  axisButtons_ = new QWidget;
-  auto* axes = new QHBoxLayout(axisButtons_);
-  axes->setContentsMargins(0, 0, 0, 0);
-  for (const char* a : {"x", "y", "z", "none"}) {
-    auto* b = new QPushButton(QString(a));
-    b->setObjectName(QString("quizAxis_%1").arg(a));
-    b->setFocusPolicy(Qt::NoFocus);
-    connect(b, &QPushButton::clicked, this, [this, a] {
-      input_->setText(a);
-      Q_EMIT revealRequested(a);
-    });
-    axes->addWidget(b);
-  }
+  axisButtons_ = answerButtons({"x", "y", "z", "none"}, "quizAxis_");
   layout->addWidget(axisButtons_);
 
   // first-child: the side, and whether the far child waits on the stack.
@@ -89,19 +94,7 @@ QuizPanel::QuizPanel(QWidget* parent) : QWidget(parent) {
   connect(farPushed_, &QCheckBox::toggled, this, composeChild);
   layout->addWidget(childInputs_);
 
-  yesNo_ = new QWidget;
-  auto* yn = new QHBoxLayout(yesNo_);
-  yn->setContentsMargins(0, 0, 0, 0);
-  for (const char* a : {"yes", "no"}) {
-    auto* b = new QPushButton(QString(a));
-    b->setObjectName(QString("quiz_%1").arg(a));
-    b->setFocusPolicy(Qt::NoFocus);
-    connect(b, &QPushButton::clicked, this, [this, a] {
-      input_->setText(a);
-      Q_EMIT revealRequested(a);
-    });
-    yn->addWidget(b);
-  }
+  yesNo_ = answerButtons({"yes", "no"}, "quiz_");
   layout->addWidget(yesNo_);
 
   result_ = new QLabel;

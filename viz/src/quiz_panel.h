@@ -49,6 +49,8 @@ class QuizPanel : public QWidget {
 
  private:
   void updateInputs();
+  // A row of buttons, one per answer (object names namePrefix + answer): a click types it and reveals.
+  QWidget* answerButtons(const QStringList& answers, const QString& namePrefix);
   std::optional<QuestionKind> kind_;
   QLabel* prompt_;
   QLineEdit* input_;
