@@ -1,0 +1,54 @@
+// One pixel's anti-aliasing, recorded: where each sample fell, what it saw, and, for adaptive sampling, the
+// subdivision tree with the contrast measured at every square against the threshold. The pixel inspector
+// and the trace's "pixel" section show it; the renderer runs the very same code with the recording off
+// (estimate_pixel in render/antialiasing.h), so what the inspector shows is what the picture used.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "raystep/render/antialiasing.h"
+#include "raystep/render/sampler.h"
+
+namespace raystep {
+
+struct PixelSample {
+  float px = 0.f, py = 0.f;      // continuous raster position (pixel (x, y) covers [x, x+1) x [y, y+1))
+  glm::vec3 colour{0.f};         // the radiance the sample's primary ray brought back
+  int stratum[2] = {-1, -1};     // regular, jitter: the cell (i, j) of the k x k lattice it lies in; else -1
+  int lattice[2] = {-1, -1};     // adaptive: the lattice point (i, j), spacing 1 / 2^(max_depth+1); else -1
+};
+
+// One square of adaptive sampling, visited depth first (a square, then its four quadrants in the order
+// (i0, j0), (i0+h, j0), (i0, j0+h), (i0+h, j0+h)).
+struct AdaptiveSquare {
+  int parent = -1;               // index in PixelSampling::squares; -1: the whole pixel
+  int depth = 0;                 // 0: the whole pixel
+  int i0 = 0, j0 = 0, size = 0;  // corner and side, in lattice steps
+  int samples[5] = {0, 0, 0, 0, 0};  // indices into PixelSampling::samples: the four corners, then the centre
+  int new_samples = 0;           // how many of the five were cast for this square (the others were shared)
+  glm::vec3 contrast{0.f};       // (max - min) / (max + min) per channel over the five; 0 where max + min = 0
+  enum class Outcome { agree, depth_limit, subdivided } outcome = Outcome::agree;
+  int children[4] = {-1, -1, -1, -1};  // subdivided: the quadrants' indices
+  glm::vec3 value{0.f};          // the square's estimate: its samples' mean, or its quadrants' mean
+};
+
+struct PixelSampling {
+  AntiAliasing aa;
+  int x = 0, y = 0;
+  std::vector<PixelSample> samples;    // in the order the sampler cast them
+  std::vector<AdaptiveSquare> squares; // adaptive only
+  glm::vec3 value{0.f};                // the box-filtered pixel value, bit-identical to estimate_pixel's
+};
+
+// The random stream of pixel (x, y) in a width-wide image: the renderer's (render_image) and the inspector's.
+inline Pcg32 pixel_rng(uint64_t seed, int x, int y, int width) {
+  return Pcg32(seed, uint64_t(y) * uint64_t(width) + uint64_t(x));
+}
+
+// Records pixel (x, y) exactly as estimate_pixel estimates it with the same rng state.
+PixelSampling sample_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, const RadianceFn& radiance);
+
+}  // namespace raystep
