@@ -12,6 +12,7 @@ struct RayRequest {
   int depth = 0;
   bool has_pixel = false;
   int pixel[2] = {0, 0};
+  int sample = -1;  // the anti-aliasing sample it descends from (pixel_sample_rays), -1 for none
 };
 
 }  // namespace raystep

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "raystep/accel/kdtree_build.h"
 #include "raystep/geometry/bounds.h"
+#include "raystep/render/pixel_samples.h"
 #include "raystep/scene/geometry.h"
 #include "raystep/trace/events.h"
 
@@ -38,6 +40,7 @@ struct TracedRay {
   int depth = 0;
   bool has_pixel = false;
   int pixel[2] = {0, 0};
+  int sample = -1;  // a pixel trace's ray: the index of the sample (Trace::pixel) whose ray tree it belongs to
   std::vector<Event> events;  // seq 0..n-1, starting with ray_begin and ending with ray_end
 };
 
@@ -80,6 +83,15 @@ struct TraceBuildEvent {
 // leaf_reason_name is in kdtree_build.h.
 bool parse_leaf_reason(const std::string& name, LeafReason* reason);
 
+// An anti-aliased pixel (version 2): its samples, adaptive decisions and value, so that the pixel replays without
+// the scene. Each sample's rays are in Trace::rays with TracedRay::sample set.
+struct TracePixel {
+  PixelSampling sampling;          // aa, x, y, samples, squares, value
+  int width = 0, height = 0;       // the image the pixel belongs to
+  uint64_t seed = 0;               // the sampling seed
+  std::optional<glm::vec3> exact;  // the exact pre-filtered value, when the scene has one
+};
+
 struct Trace {
   std::string scene_path;
   std::string scene_hash;  // "fnv1a64:<16 hex digits>" of the scene file's bytes
@@ -90,6 +102,7 @@ struct Trace {
   std::vector<TraceNode> nodes;            // trees: every node an event names, once, by id
   std::vector<TracePrimitive> primitives;  // every primitive an event names, once, by id
   std::vector<TraceBuildEvent> build;      // the whole build's events, when recorded (--build-events)
+  std::optional<TracePixel> pixel;         // version 2: an anti-aliased pixel's samples
 };
 
 const char* ray_kind_name(RayKind kind);
