@@ -10,6 +10,8 @@ PACKAGES=(
   libglm-dev nlohmann-json3-dev libtinyobjloader-dev libpng-dev libstb-dev libtbb-dev libgmp-dev
   # command line, tests, benchmarks (Embree 3 is the speed yardstick)
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev valgrind
+  # the reports' plots (gnuplot draws PNG without a display)
+  gnuplot-nox
   # the step-debugger (Qt5 + VTK 9.1) and GUI tests under a virtual X server
   libvtk9-qt-dev libgl1-mesa-dri xvfb xauth x11-apps imagemagick
 )

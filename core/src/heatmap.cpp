@@ -1,6 +1,7 @@
 #include "raystep/trace/heatmap.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,7 +17,9 @@ HeatQuantity parse_heat_quantity(const std::string& name) {
   if (name == "tests") return HeatQuantity::tests;
   if (name == "mailbox") return HeatQuantity::mailbox;
   if (name == "samples") return HeatQuantity::samples;
-  throw InputError("", 0, "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox, samples)");
+  if (name == "error") return HeatQuantity::error;
+  throw InputError("", 0,
+                   "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox, samples, error)");
 }
 
 const char* heat_quantity_label(HeatQuantity q) {
@@ -25,6 +28,7 @@ const char* heat_quantity_label(HeatQuantity q) {
     case HeatQuantity::tests: return "ray-primitive tests";
     case HeatQuantity::mailbox: return "mailbox hits (tests skipped)";
     case HeatQuantity::samples: return "samples (primary rays) per pixel";
+    case HeatQuantity::error: return "error against the reference (thousandths)";
   }
   return "";
 }
@@ -47,6 +51,8 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
                         int threads) {
   if (q == HeatQuantity::samples)
     throw InputError("", 0, "the samples map comes from a render, not a traversal (samples_heatmap)");
+  if (q == HeatQuantity::error)
+    throw InputError("", 0, "the error map compares a render with its reference, not a traversal (error_heatmap)");
   ProjectiveCamera cam(camera, width, height);
   HeatMap heat;
   heat.width = width;
@@ -81,6 +87,25 @@ HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int hei
   heat.height = height;
   heat.quantity = HeatQuantity::samples;
   heat.values = samples;
+  finish_statistics(heat);
+  return heat;
+}
+
+HeatMap error_heatmap(const std::vector<float>& errors, int width, int height) {
+  if (width < 1 || height < 1 || errors.size() != size_t(width) * size_t(height))
+    throw InputError("", 0, "error map: " + std::to_string(errors.size()) + " values for a " +
+                                std::to_string(width) + "x" + std::to_string(height) + " picture");
+  HeatMap heat;
+  heat.width = width;
+  heat.height = height;
+  heat.quantity = HeatQuantity::error;
+  heat.unit = 1e-3;
+  heat.values.resize(errors.size());
+  for (size_t i = 0; i < errors.size(); ++i) {
+    // Thousandths, rounded; NaN (no value) as 0 and anything beyond the range clamped.
+    const double v = std::isnan(errors[i]) ? 0.0 : std::round(double(errors[i]) * 1e3);
+    heat.values[i] = uint32_t(std::clamp(v, 0.0, double(UINT32_MAX)));
+  }
   finish_statistics(heat);
   return heat;
 }

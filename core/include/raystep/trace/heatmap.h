@@ -14,7 +14,7 @@
 
 namespace raystep {
 
-enum class HeatQuantity { cells, tests, mailbox, samples };
+enum class HeatQuantity { cells, tests, mailbox, samples, error };
 
 // "cells" (cells or tree nodes visited), "tests" (ray-primitive tests), "mailbox" (tests skipped by mailboxes),
 // "samples" (primary rays per pixel under the picture's anti-aliasing: from a render, not a traversal).
@@ -25,6 +25,7 @@ struct HeatMap {
   int width = 0, height = 0;
   HeatQuantity quantity = HeatQuantity::cells;
   std::vector<uint32_t> values;  // row-major, y = 0 at the top
+  double unit = 1.0;             // a value v stands for v * unit (error: thousandths, unit 1e-3)
   uint32_t max_value = 0;
   double mean_value = 0.0;
 };
@@ -36,6 +37,9 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
 
 // The samples map of a render (RenderResult::samples, row-major width x height) as a heat map of samples.
 HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int height);
+
+// The per-pixel error of a picture against its reference (render/reference.h pixel_errors), in thousandths.
+HeatMap error_heatmap(const std::vector<float>& errors, int width, int height);
 
 // The map on the colour ramp (0 .. max_value), with a colour bar (bottom 0, top max) in a strip on the right.
 Image heatmap_image(const HeatMap& heat);
