@@ -27,7 +27,8 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--grid-res", s.grid_res, "grid: explicit resolution NX,NY,NZ");
   cmd->add_option("--grid-density", s.grid_density, "grid: d in max(nx,ny,nz) = d * cbrt(primitives)")
       ->capture_default_str();
-  cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
+  cmd->add_option("--grid-insert", s.grid_insert,
+                  "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
@@ -61,12 +62,16 @@ int main(int argc, char** argv) {
   RenderArgs render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
   render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
-  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
+  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")
+      ->required();
   add_structure_options(render_cmd, render.structure, "grid");
-  render_cmd->add_option("--heatmap", render.heatmap,
-                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
+  render_cmd
+      ->add_option(
+          "--heatmap", render.heatmap,
+          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox"}));
-  render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  render_cmd->add_option("--aa", render.aa,
+                         "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
       ->capture_default_str();
@@ -94,17 +99,21 @@ int main(int argc, char** argv) {
   rays_cmd->add_option("-o,--output", rays.output, "output .rays file")->required();
 
   InfoArgs info;
-  CLI::App* info_cmd = app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
+  CLI::App* info_cmd =
+      app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
   info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
 
   TraceArgs trace;
-  CLI::App* trace_cmd = app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
+  CLI::App* trace_cmd =
+      app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
   trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
   add_structure_options(trace_cmd, trace.structure, "grid");
-  auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
+  auto* pixel_opt =
+      trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
   auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
   pixel_opt->excludes(ray_opt);
-  trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_flag("--secondary", trace.secondary,
+                      "with --pixel: also the shadow, reflected, refracted rays");
   trace_cmd->add_flag("--build-events", trace.build_events,
                       "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
@@ -117,10 +126,12 @@ int main(int argc, char** argv) {
   CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree node (x, y and z)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
-  auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
+  auto* path_opt =
+      sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
-  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
+  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")
+      ->required();
 
   KdStatsArgs kd_stats;
   CLI::App* kd_stats_cmd = app.add_subcommand(
@@ -134,7 +145,52 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
-  kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
+  kd_stats_cmd->add_option("--csv", kd_stats.csv,
+                           "also write every node's row (id, depth, predicted, measured)");
+
+  CompareArgs compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare",
+      "Structures side by side: build time, memory, Mrays/s, work per ray, disagreements with brute force");
+  compare_cmd->add_option("scene", compare.scene, "scene .json or mesh .obj")->required();
+  compare_cmd->add_option("--accel", compare.accel, "comma-separated structures: " + accel_help().substr(24))
+      ->capture_default_str();
+  compare_cmd->add_option("--rays", compare.rays, "random rays (besides one camera ray per pixel)")
+      ->capture_default_str();
+  compare_cmd->add_option("--size", compare.size,
+                          "camera rays: image size WxH (default: the scene's, at most 512)");
+  compare_cmd->add_option("--reps", compare.reps, "timed passes; the median is reported")
+      ->capture_default_str();
+  compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
+      ->required();
+
+  GridSweepArgs sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "grid-sweep",
+      "The grid's density d in max(nx,ny,nz) = d*cbrt(n) against cells, tests, memory and time");
+  sweep_cmd->add_option("scene", sweep.scene, "scene .json or mesh .obj")->required();
+  sweep_cmd->add_option("--densities", sweep.densities,
+                        "comma-separated d values in (0, 64] (default: 0.5,0.75,1,1.5,2,3,4,6,8)");
+  sweep_cmd->add_option("--rays", sweep.rays, "random rays (besides one camera ray per pixel)")
+      ->capture_default_str();
+  sweep_cmd->add_option("--size", sweep.size,
+                        "camera rays: image size WxH (default: the scene's, at most 256)");
+  sweep_cmd->add_option("--reps", sweep.reps, "timed passes; the median is reported")->capture_default_str();
+  sweep_cmd->add_option("-o,--output", sweep.output, "report folder (report.csv, report.md, sweep.png)")
+      ->required();
+
+  CostArgs cost;
+  CLI::App* cost_cmd = app.add_subcommand(
+      "cost",
+      "The lecture's cost formula m^2 k^2 n 2^d against the tests counted, and what each technique cuts");
+  cost_cmd->add_option("scene", cost.scene, "scene .json or mesh .obj")->required();
+  cost_cmd->add_option("--size", cost.size, "image size WxH (default: the scene's)");
+  cost_cmd->add_option("--aa", cost.aa,
+                       "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  cost_cmd->add_option("--accel", cost.accel, "comma-separated structures (default: all but brute)");
+  cost_cmd->add_option("--threads", cost.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
+  cost_cmd->add_option("-o,--output", cost.output,
+                       "also write a report folder (report.csv, factors.csv, report.md)");
 
   TraceInfoArgs trace_info;
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
@@ -180,6 +236,9 @@ int main(int argc, char** argv) {
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
+    if (*compare_cmd) return run_compare(compare);
+    if (*sweep_cmd) return run_grid_sweep_command(sweep);
+    if (*cost_cmd) return run_cost(cost);
     if (*lesson_check_cmd) return run_lesson_check(lesson_check);
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);
     if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);
