@@ -27,8 +27,7 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--grid-res", s.grid_res, "grid: explicit resolution NX,NY,NZ");
   cmd->add_option("--grid-density", s.grid_density, "grid: d in max(nx,ny,nz) = d * cbrt(primitives)")
       ->capture_default_str();
-  cmd->add_option("--grid-insert", s.grid_insert,
-                  "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
+  cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
@@ -62,16 +61,12 @@ int main(int argc, char** argv) {
   RenderArgs render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
   render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
-  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")
-      ->required();
+  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
   add_structure_options(render_cmd, render.structure, "grid");
-  render_cmd
-      ->add_option(
-          "--heatmap", render.heatmap,
-          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
+  render_cmd->add_option("--heatmap", render.heatmap,
+                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox"}));
-  render_cmd->add_option("--aa", render.aa,
-                         "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
       ->capture_default_str();
@@ -99,21 +94,17 @@ int main(int argc, char** argv) {
   rays_cmd->add_option("-o,--output", rays.output, "output .rays file")->required();
 
   InfoArgs info;
-  CLI::App* info_cmd =
-      app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
+  CLI::App* info_cmd = app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
   info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
 
   TraceArgs trace;
-  CLI::App* trace_cmd =
-      app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
   trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
   add_structure_options(trace_cmd, trace.structure, "grid");
-  auto* pixel_opt =
-      trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
+  auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
   auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
   pixel_opt->excludes(ray_opt);
-  trace_cmd->add_flag("--secondary", trace.secondary,
-                      "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
   trace_cmd->add_flag("--build-events", trace.build_events,
                       "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
@@ -126,12 +117,10 @@ int main(int argc, char** argv) {
   CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree node (x, y and z)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
-  auto* path_opt =
-      sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
+  auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
-  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")
-      ->required();
+  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
 
   KdStatsArgs kd_stats;
   CLI::App* kd_stats_cmd = app.add_subcommand(
@@ -145,8 +134,7 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
-  kd_stats_cmd->add_option("--csv", kd_stats.csv,
-                           "also write every node's row (id, depth, predicted, measured)");
+  kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
 
   CompareArgs compare;
   CLI::App* compare_cmd = app.add_subcommand(
