@@ -438,16 +438,17 @@ int run_cost(const CostArgs& a) {
     write_file_atomically(folder->file("report.csv"), [&](std::ostream& out) {
       out << "render,accel,aa,min_weight,samples_per_pixel,rays_per_sample,primary,shadow,reflected,"
              "refracted,"
-             "tests,tests_per_ray,fraction_of_formula,seconds\n";
+             "tests,tests_per_ray,fraction_of_formula,seconds,predicted,bound\n";
       char buf[512];
       for (const CostRow& row : r.rows) {
         std::snprintf(buf, sizeof buf,
                       "\"%s\",%s,%s,%g,%.4f,%.4f,%" PRIu64 ",%" PRIu64 ",%" PRIu64 ",%" PRIu64 ",%" PRIu64
-                      ",%.4f,%.6g,%.4f\n",
+                      ",%.4f,%.6g,%.4f,%.17g,%.17g\n",
                       row.label.c_str(), row.accel.c_str(), row.aa.c_str(), double(row.min_weight),
                       row.samples_per_pixel, row.rays_per_sample, row.rays.primary, row.rays.shadow,
                       row.rays.reflected, row.rays.refracted, row.tests, row.tests_per_ray,
-                      r.predicted > 0 ? double(row.tests) / r.predicted : 0.0, row.seconds);
+                      r.predicted > 0 ? double(row.tests) / r.predicted : 0.0, row.seconds, r.predicted,
+                      r.bound);
         out << buf;
       }
     });
