@@ -219,10 +219,14 @@ int run_compare(const CompareArgs& a) {
        << fmt("%.2f", r.camera.tests_per_ray) << " | " << fmt("%.2f", r.random.tests_per_ray) << " | "
        << r.disagreements() << " | " << r.ties() << " |\n";
   }
-  if (c.camera_checked < c.camera_rays || c.random_checked < c.random_rays)
-    md << "\nBrute force traced only the checked rays (every primitive per ray is too slow on this scene); "
-          "its "
-          "Mrays/s and tests per ray are over those rays.\n";
+  std::string subset_only;
+  for (const StructureCompareRow& r : c.rows)
+    if (r.camera.rays < c.camera_rays || r.random.rays < c.random_rays)
+      subset_only += (subset_only.empty() ? "" : ", ") + r.name;
+  if (!subset_only.empty())
+    md << "\nTraced on the checked rays only (all rays would take more than "
+       << fmt("%.3g", double(options.test_budget)) << " primitive tests): " << subset_only
+       << "; their Mrays/s and work per ray are over those rays.\n";
   write_file_atomically(folder.file("report.md"), [&](std::ostream& out) { out << md.str(); });
 
   // Plots: speed, and the work per ray, one bar pair per structure, on log axes (brute force is orders of
