@@ -25,8 +25,8 @@ struct StructureCompareOptions {
   // Brute force tests every primitive: it traces an evenly spread subset of each ray set, at most this many
   // primitive tests per set, and every structure is checked against it on that subset. A structure foreseen
   // (from the subset) to need more tests than this on all rays is also timed on the subset only (bounding
-  // volumes around one big mesh); StructureRaySet::rays says how many rays were timed.
-  uint64_t test_budget = 200'000'000;
+  // volumes around one big mesh), in one timed pass; StructureRaySet::rays says how many rays were timed.
+  uint64_t test_budget = 100'000'000;
 };
 
 // How one structure's nearest hit compares with brute force's on one ray.
