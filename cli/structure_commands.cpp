@@ -143,6 +143,13 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+// Bytes for a reader: B, KiB or MiB.
+std::string human_bytes(double b) {
+  if (b < 10 * 1024.0) return fmt("%.0f B", b);
+  if (b < 10 * 1024.0 * 1024.0) return fmt("%.1f KiB", b / 1024.0);
+  return fmt("%.1f MiB", b / (1024.0 * 1024.0));
+}
+
 void report_plot(const ReportFolder& folder, const std::string& name, const std::string& body,
                  int width = 960, int height = 640) {
   PlotResult r = plot_png(folder.path(), name, body, width, height);
@@ -207,13 +214,13 @@ int run_compare(const CompareArgs& a) {
         "checked on "
      << c.camera_checked << " camera and " << c.random_checked
      << " random rays; a tie (another primitive at exactly the same t) is not an error.\n\n"
-     << "| structure | build ms | memory KiB | Mrays/s camera | Mrays/s random | steps/ray camera | "
+     << "| structure | build ms | memory | Mrays/s camera | Mrays/s random | steps/ray camera | "
         "steps/ray random | tests/ray camera | tests/ray random | disagreements | ties |\n"
      << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const StructureCompareRow& r : c.rows) {
     md << "| " << r.name << " | " << fmt("%.2f", r.build_seconds * 1e3) << " | "
-       << fmt("%.1f", double(r.memory_bytes) / 1024.0) << " | " << fmt("%.3g", r.camera.mrays_per_second)
-       << " | " << fmt("%.3g", r.random.mrays_per_second) << " | "
+       << human_bytes(double(r.memory_bytes)) << " | " << fmt("%.3g", r.camera.mrays_per_second) << " | "
+       << fmt("%.3g", r.random.mrays_per_second) << " | "
        << (r.steps == "-" ? std::string("-") : fmt("%.2f", r.camera.steps_per_ray) + " " + r.steps) << " | "
        << (r.steps == "-" ? std::string("-") : fmt("%.2f", r.random.steps_per_ray) + " " + r.steps) << " | "
        << fmt("%.2f", r.camera.tests_per_ray) << " | " << fmt("%.2f", r.random.tests_per_ray) << " | "
@@ -314,14 +321,14 @@ int run_grid_sweep_command(const GridSweepArgs& a) {
      << sweep.primitives << " primitives, " << sweep.rays
      << " rays (camera and random); max(nx, ny, nz) = d * cbrt(n); one thread, median of " << options.reps
      << " passes.\n\n"
-     << "| d | resolution | cells | refs/prim | memory KiB | build ms | cells/ray | tests/ray | mailbox/ray "
+     << "| d | resolution | cells | refs/prim | memory | build ms | cells/ray | tests/ray | mailbox/ray "
         "| "
         "trace ms | Mrays/s |\n"
      << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const GridSweepRow& r : sweep.rows) {
     md << "| " << fmt("%g", r.density) << " | " << r.resolution[0] << "x" << r.resolution[1] << "x"
        << r.resolution[2] << (r.coarsened ? " (coarsened)" : "") << " | " << r.cells << " | "
-       << fmt("%.2f", r.references_per_prim) << " | " << fmt("%.1f", r.bytes / 1024.0) << " | "
+       << fmt("%.2f", r.references_per_prim) << " | " << human_bytes(r.bytes) << " | "
        << fmt("%.2f", r.build_seconds * 1e3) << " | " << fmt("%.2f", r.cells_per_ray) << " | "
        << fmt("%.2f", r.tests_per_ray) << " | " << fmt("%.2f", r.mailbox_per_ray) << " | "
        << fmt("%.2f", r.trace_seconds * 1e3) << " | " << fmt("%.3g", r.mrays_per_second) << " |\n";
@@ -354,7 +361,7 @@ int run_grid_sweep_command(const GridSweepArgs& a) {
         "unset logscale y\nset title 'References per primitive (memory grows with d)'\n"
         "set ylabel 'references per primitive'\n"
         "plot 'report.csv' using 1:6 with linespoints pt 7 lw 2 notitle\n"
-        "set logscale y\nset title 'Time, one thread (the circle: the fastest trace)'\n"
+        "set key bottom right\nset logscale y\nset title 'Time, one thread (the circle: the fastest trace)'\n"
         "set ylabel 'milliseconds (log scale)'\n"
         "plot 'report.csv' using 1:12 with linespoints pt 7 lw 2 title 'trace', '' using 1:8 with "
         "linespoints "
