@@ -443,6 +443,23 @@ int run_cost(const CostArgs& a) {
                   f.factor.c_str(), f.measure.c_str(), f.before, f.after, f.cut());
     t << line;
   }
+  // What a student asks next: why the counts fall short of the formula, and why a cut may be 1x.
+  if (!r.rows.empty() && r.rows[0].rays.primary > 0) {
+    const CostRow& full = r.rows[0];
+    const double primary = double(full.rays.primary);
+    const double tree = double(full.rays.primary + full.rays.reflected + full.rays.refracted) / primary;
+    const double shadow = double(full.rays.shadow) / primary;
+    t << "\nwhy brute force makes "
+      << fmt("%.2f%%", r.predicted > 0 ? 100.0 * double(full.tests) / r.predicted : 0)
+      << " of the formula's tests:\n  a sample's ray tree has " << fmt("%.2f", tree)
+      << " rays, not 2^d = " << fmt("%.0f", std::ldexp(1.0, r.depth))
+      << ": the formula lets every hit spawn a reflected and a refracted ray,\n"
+         "  but only mirror and glass materials do; add "
+      << fmt("%.2f", shadow) << " shadow rays per sample, which stop at their first hit.\n";
+    if (!r.factors.empty() && r.factors[0].cut() < 1.005)
+      t << "  adaptive termination cuts nothing here: no path's weight (the product of the mirror and\n"
+           "  transparency factors along it) fell below min_weight before the depth limit.\n";
+  }
   std::printf("%s", t.str().c_str());
 
   if (folder) {
@@ -463,6 +480,8 @@ int run_cost(const CostArgs& a) {
         out << buf;
       }
     });
+    // The printed tables and their explanation, as the terminal showed them.
+    write_file_atomically(folder->file("report.txt"), [&](std::ostream& out) { out << t.str(); });
     write_file_atomically(folder->file("factors.csv"), [&](std::ostream& out) {
       out << "technique,factor,measure,before,after,cut\n";
       for (const CostFactor& f : r.factors)
@@ -491,7 +510,7 @@ int run_cost(const CostArgs& a) {
          << " | " << fmt("%.3f", f.after) << " | " << fmt("%.2fx", f.cut()) << " |\n";
     write_file_atomically(folder->file("report.md"), [&](std::ostream& out) { out << md.str(); });
     folder->commit();
-    std::printf("\nwrote %s (report.csv, factors.csv, report.md)\n", a.output.c_str());
+    std::printf("\nwrote %s (report.csv, factors.csv, report.md, report.txt)\n", a.output.c_str());
   }
   return 0;
 }

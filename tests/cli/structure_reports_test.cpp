@@ -171,6 +171,7 @@ TEST_F(StructureReports, CostMeetsTheFormulaExactlyWhereItIsExact) {
   EXPECT_NE(r.out.find("m^2 = 10 x 8 = 80 pixels"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(path("cost/factors.csv")));
   EXPECT_TRUE(fs::exists(path("cost/report.md")));
+  EXPECT_EQ(slurp(path("cost/report.txt")), r.out.substr(0, r.out.find("\nwrote ")));
 }
 
 TEST_F(StructureReports, CostNeverExceedsTheBoundOnTheCornellBox) {
