@@ -277,7 +277,13 @@ int run_compare(const CompareArgs& a) {
 int run_grid_sweep_command(const GridSweepArgs& a) {
   ReportFolder folder(a.output);
   GridSweepOptions options;
-  if (a.densities) options.densities = parse_densities(*a.densities);
+  if (a.densities) {
+    // In increasing order, each once: the rows are a curve against d.
+    options.densities = parse_densities(*a.densities);
+    std::sort(options.densities.begin(), options.densities.end());
+    options.densities.erase(std::unique(options.densities.begin(), options.densities.end()),
+                            options.densities.end());
+  }
   if (a.rays > (uint64_t(1) << 26)) throw InputError("", 0, "--rays must be at most 67108864");
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
@@ -345,8 +351,17 @@ int run_grid_sweep_command(const GridSweepArgs& a) {
 
   // One figure, four panels sharing the log x axis of d, each with the default d = 3 marked.
   std::ostringstream gp;
-  gp << "set datafile separator ','\nset logscale x 2\nset xrange [0.4:10]\nset grid\nset key top left\n"
-        "set xtics ('0.5' 0.5, '0.75' 0.75, '1' 1, '1.5' 1.5, '2' 2, '3' 3, '4' 4, '6' 6, '8' 8)\n"
+  // The x axis spans the densities measured and the default d = 3, with a tic at each.
+  float d_lo = 3.f, d_hi = 3.f;
+  std::string tics = "'3' 3";
+  for (const GridSweepRow& r : sweep.rows) {
+    d_lo = std::min(d_lo, r.density);
+    d_hi = std::max(d_hi, r.density);
+    if (r.density != 3.f) tics += ", '" + fmt("%g", r.density) + "' " + fmt("%g", r.density);
+  }
+  gp << "set datafile separator ','\nset logscale x 2\nset xrange [" << fmt("%g", d_lo * 0.8) << ":"
+     << fmt("%g", d_hi * 1.25) << "]\nset grid\nset key top left\nset xtics (" << tics
+     << ")\n"
         "set multiplot layout 2,2 title 'Uniform grid: max(nx,ny,nz) = d * cbrt(n), n = "
      << sweep.primitives << ", " << sweep.rays << " rays; dashed line: the default d = 3'\n"
      << "mark = \"set arrow 1 from 3, graph 0 to 3, graph 1 nohead dt 2 lw 2 lc rgb '#d62728'\"\n"
