@@ -450,11 +450,11 @@ int run_cost(const CostArgs& a) {
     t << line;
   }
   t << "\n";
-  std::snprintf(line, sizeof line, "%-52s %-5s %-34s %10s %10s %9s\n", "technique", "cuts", "measured as",
+  std::snprintf(line, sizeof line, "%-60s %-5s %-34s %10s %10s %9s\n", "technique", "cuts", "measured as",
                 "before", "after", "cut");
   t << line;
   for (const CostFactor& f : r.factors) {
-    std::snprintf(line, sizeof line, "%-52s %-5s %-34s %10.3f %10.3f %8.2fx\n", f.technique.c_str(),
+    std::snprintf(line, sizeof line, "%-60s %-5s %-34s %10.3f %10.3f %8.2fx\n", f.technique.c_str(),
                   f.factor.c_str(), f.measure.c_str(), f.before, f.after, f.cut());
     t << line;
   }
