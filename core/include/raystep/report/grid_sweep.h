@@ -40,8 +40,11 @@ struct GridSweep {
   std::vector<GridSweepRow> rows;
 };
 
-// row_done (optional): after each density, e.g. to fill a chart. cancel (optional): stop after the current row.
-// Throws InputError("", 0, ...) for a density outside (0, 64] or NaN.
+// Single-threaded and without globals, so a GUI worker thread can run it. row_done (optional): after each
+// density, from the calling thread, e.g. to fill a chart. cancel (optional): looked at every few thousand
+// rays; once set, the row being measured is dropped and the rows finished so far are returned. Throws
+// InputError("", 0, ...) for a density outside (0, 64] or NaN, reps outside 1..1000, more than 2^26 random
+// rays, and InputError(scene.path, 0, ...) for a scene without primitives.
 GridSweep run_grid_sweep(const Scene& scene, const GridSweepOptions& options,
                          const std::function<void(const GridSweepRow&)>& row_done = nullptr,
                          const std::atomic<bool>* cancel = nullptr);
