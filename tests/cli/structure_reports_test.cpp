@@ -3,6 +3,7 @@
 // sweep's rows move the way they must, and bad input exits 2 with one line.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -66,7 +67,8 @@ class StructureReports : public ::testing::Test {
   void SetUp() override {
     dir_ =
         fs::path(::testing::TempDir()) /
-        ("raystep_reports_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        ("raystep_reports_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+         std::to_string(::getpid()));  // the pid: two checkouts' test runs at once never share a folder
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
