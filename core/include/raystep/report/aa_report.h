@@ -38,12 +38,14 @@ struct AaReportRow {
   int seeds = 1;
   double rays_per_pixel = 0.0;  // primary rays per pixel (mean over seeds)
   RayCounts rays;               // rays by kind, mean over seeds (rounded)
-  double seconds = 0.0;         // median wall time of one render
+  double seconds = 0.0;         // median wall time of one render (deterministic methods: of min(3, seeds)
+                                // identical renders, so that their time is a median too)
   double rmse = 0.0;            // mean over seeds
   double rmse_min = 0.0, rmse_max = 0.0, rmse_stddev = 0.0;  // spread over seeds (equal for one seed)
   double max_error = 0.0;       // the largest pixel error (mean over seeds)
   std::vector<double> seed_rmse;  // one per seed, in seed order
-  std::vector<std::string> images;  // when written: the PFM of each seed, relative to the report folder
+  std::vector<std::string> images;  // when written: the PFM of each seed, file names inside hooks.image_dir
+                                    // (e.g. "jitter-4-seed1.pfm", "regular-3.pfm")
 };
 
 struct AaReport {
@@ -63,7 +65,8 @@ struct AaReportHooks {
   std::function<void(const AaReport& so_far, const AaReportRow& row)> row_done;
   // Overall fraction done in [0, 1].
   std::function<void(double)> progress;
-  // When set and true, the report stops after the current render and returns what it has.
+  // When set and true, the report stops after the current render and returns the rows it completed (a
+  // method cut short is left out: its seeds would not compare with the others').
   const std::atomic<bool>* cancel = nullptr;
   // When not empty: each render's image is written here as PFM (the reference as reference.pfm).
   std::string image_dir;
