@@ -25,7 +25,8 @@ struct AaReportOptions {
 };
 
 // The default methods: none, regular:2..8, jitter:2..8, random:4..64 (powers of two), adaptive at several
-// thresholds (depth 3).
+// thresholds (depth 3) and, at threshold 0.1, depths 1 and 2 (on a black-and-white scene every threshold
+// below 1 refines the same pixels: only the depth changes anything there).
 std::vector<std::string> default_aa_methods();
 
 // Throws InputError("", 0, "bad method list: ...") naming the first bad entry, or for an empty list.
@@ -55,8 +56,9 @@ struct AaReport {
   double reference_rmse = 0.0;      // the reference's own estimated error (0 for exact)
   double reference_seconds = 0.0;
   std::vector<AaReportRow> rows;
-  // Least-squares slopes of log(rmse) against log(rays per pixel), per method with at least two counts;
-  // the theory at edges: regular about -1/2, jitter about -3/4, random -1/2.
+  // Least-squares slopes of log(rmse) against log(rays per pixel), per method with at least two counts
+  // (adaptive excluded: its rays are an outcome, not a setting); the theory at edges: regular between -1/2
+  // (edges along the grid) and -1 (slanted edges), jitter about -3/4, random -1/2.
   std::vector<std::pair<std::string, double>> slopes;
 };
 
