@@ -48,6 +48,11 @@ bool BruteForce::intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& c
   return brute_walk(*geometry_, ray, hit, false, counters);
 }
 
+bool BruteForce::occluded_counted(const Ray& ray, CountingRecorder& counters) const {
+  Hit hit;
+  return brute_walk(*geometry_, ray, &hit, true, counters);
+}
+
 // ---- Bounding volumes: objects whose boxes the ray enters, nearest box first ----
 
 void BoundingVolumes::build(const Geometry& geometry) {
@@ -109,6 +114,11 @@ bool BoundingVolumes::occluded(const Ray& ray) const {
 
 bool BoundingVolumes::intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const {
   return walk(ray, hit, false, counters);
+}
+
+bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counters) const {
+  Hit hit;
+  return walk(ray, &hit, true, counters);
 }
 
 // ---- Factory ----

@@ -2,6 +2,7 @@
 // the same two queries on the same primitive ids, so each can be checked against brute force.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,6 +25,15 @@ class Accelerator {
   virtual bool occluded(const Ray& ray) const = 0;
   // intersect(), counting its work (cells or nodes visited, primitive tests, mailbox hits): heat maps.
   virtual bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const = 0;
+  // occluded(), counting its work: the cost report counts the shadow rays' tests too. The default counts a
+  // nearest-hit query, which tests at least as many primitives as an any-hit query.
+  virtual bool occluded_counted(const Ray& ray, CountingRecorder& counters) const {
+    Hit hit;
+    return intersect_counted(ray, &hit, counters);
+  }
+  // The bytes the built structure allocated (its arrays' capacities), not counting the geometry it refers to
+  // nor the per-thread mailbox stamps (4 bytes per primitive per thread). `raystep compare` reports it.
+  virtual size_t memory_bytes() const { return 0; }
 };
 
 // The names accepted by make_accelerator, for --help texts.

@@ -16,6 +16,8 @@ class BoundingVolumes final : public Accelerator {
   bool intersect(const Ray& ray, Hit* hit) const override;
   bool occluded(const Ray& ray) const override;
   bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override;
+  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override;
+  size_t memory_bytes() const override { return boxes_.capacity() * sizeof(Bounds3); }
 
  private:
   template <class Recorder>

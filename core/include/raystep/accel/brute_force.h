@@ -12,6 +12,8 @@ class BruteForce final : public Accelerator {
   bool intersect(const Ray& ray, Hit* hit) const override;
   bool occluded(const Ray& ray) const override;
   bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override;
+  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override;
+  size_t memory_bytes() const override { return 0; }  // nothing but the geometry
 
  private:
   const Geometry* geometry_ = nullptr;

@@ -46,6 +46,14 @@ class UniformGrid final : public Accelerator {
   bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
     return traverse(ray, hit, false, counters);
   }
+  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
+    Hit hit;
+    return traverse(ray, &hit, true, counters);
+  }
+  size_t memory_bytes() const override {
+    return cell_start_.capacity() * sizeof(uint32_t) + prim_index_.capacity() * sizeof(uint32_t) +
+           occupied_.capacity() * sizeof(uint64_t);
+  }
 
   // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
   template <class Recorder>

@@ -27,6 +27,15 @@ class KdTree final : public Accelerator {
   bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
     return traverse(ray, hit, false, counters);
   }
+  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
+    Hit hit;
+    return traverse(ray, &hit, true, counters);
+  }
+  // Nodes, primitive lists and the per-node build information the debugger shows (boxes, parents, costs).
+  size_t memory_bytes() const override {
+    return tree_.nodes.capacity() * sizeof(KdNode) + tree_.info.capacity() * sizeof(KdNodeInfo) +
+           tree_.prim_index.capacity() * sizeof(uint32_t);
+  }
 
   // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
   template <class Recorder>

@@ -1,0 +1,190 @@
+#include "raystep/report/structure_compare.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "raystep/accel/bounding_volumes.h"
+#include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree.h"
+#include "raystep/render/camera.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+
+HitAgreement compare_hits(const Hit& brute, const Hit& other) {
+  if (brute.found() != other.found()) return HitAgreement::differs;
+  if (!brute.found()) return HitAgreement::same;
+  if (brute.t != other.t) return HitAgreement::differs;
+  return brute.prim == other.prim ? HitAgreement::same : HitAgreement::tie;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+bool cancelled(const std::atomic<bool>* cancel) {
+  return cancel && cancel->load(std::memory_order_relaxed);
+}
+
+// Thrown inside to leave a half-measured structure; never escapes compare_structures.
+struct Cancelled {};
+
+constexpr size_t kCancelStride = 4096;
+
+const char* step_name(const Accelerator& accel) {
+  if (dynamic_cast<const UniformGrid*>(&accel)) return "cells";
+  if (dynamic_cast<const KdTree*>(&accel)) return "nodes";
+  if (dynamic_cast<const BoundingVolumes*>(&accel)) return "boxes";
+  return "-";
+}
+
+// One ray set, and the evenly spread subset brute force traces (every stride-th ray).
+struct RaySet {
+  std::vector<Ray> rays;
+  std::vector<Ray> subset;
+  std::vector<Hit> reference;  // brute force's hits on the subset
+  size_t stride = 1;
+};
+
+void choose_subset(RaySet* set, uint64_t prims, uint64_t budget) {
+  uint64_t most = std::max<uint64_t>(1, budget / std::max<uint64_t>(prims, 1));
+  set->stride = set->rays.empty() ? 1 : size_t((set->rays.size() + most - 1) / most);
+  set->stride = std::max<size_t>(set->stride, 1);
+  set->subset.clear();
+  for (size_t i = 0; i < set->rays.size(); i += set->stride) set->subset.push_back(set->rays[i]);
+}
+
+// Counts the work on rays (hits into *hits), then times reps uninstrumented passes.
+StructureRaySet measure(const Accelerator& accel, const std::vector<Ray>& rays, int reps,
+                        std::vector<Hit>* hits, const std::atomic<bool>* cancel) {
+  StructureRaySet out;
+  out.rays = rays.size();
+  hits->assign(rays.size(), Hit{});
+  CountingRecorder counts;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    accel.intersect_counted(rays[i], &(*hits)[i], counts);
+    if (i % kCancelStride == 0 && cancelled(cancel)) throw Cancelled{};
+  }
+  const double n = double(std::max<size_t>(rays.size(), 1));
+  out.steps_per_ray = double(counts.cells + counts.nodes) / n;
+  out.tests_per_ray = double(counts.prim_tests) / n;
+  std::vector<double> passes;
+  for (int r = 0; r < reps; ++r) {
+    auto t0 = Clock::now();
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Hit hit;
+      accel.intersect(rays[i], &hit);
+      if (i % kCancelStride == 0 && cancelled(cancel)) throw Cancelled{};
+    }
+    passes.push_back(seconds_since(t0));
+  }
+  out.seconds = median(passes);
+  out.mrays_per_second = out.seconds > 0 ? double(rays.size()) / out.seconds * 1e-6 : 0.0;
+  return out;
+}
+
+}  // namespace
+
+StructureComparison compare_structures(const Scene& scene, const StructureCompareOptions& options,
+                                       const StructureCompareHooks& hooks) {
+  std::vector<std::string> names = options.structures.empty() ? accelerator_names() : options.structures;
+  // Every name is checked before any work, so a typo at the end of a list fails at once.
+  for (const std::string& name : names) make_accelerator(name, options.build);
+  if (options.reps < 1 || options.reps > 1000) throw InputError("", 0, "compare: reps must be 1..1000");
+  if (options.random_rays > (uint64_t(1) << 26))
+    throw InputError("", 0, "compare: at most 67108864 random rays");
+  if (scene.geometry.size() == 0)
+    throw InputError(scene.path, 0, "the scene has no primitives to compare structures on");
+
+  StructureComparison result;
+  result.scene_path = scene.path;
+  result.primitives = scene.geometry.size();
+  int w = options.camera_width, h = options.camera_height;
+  if (w <= 0 || h <= 0) {
+    w = scene.render.width;
+    h = scene.render.height;
+    double scale = std::min(1.0, 512.0 / double(std::max(w, h)));
+    w = std::max(1, int(std::lround(w * scale)));
+    h = std::max(1, int(std::lround(h * scale)));
+  }
+  result.camera_width = w;
+  result.camera_height = h;
+  RaySet sets[2];
+  sets[0].rays = camera_rays(scene.camera, w, h);
+  if (options.random_rays > 0)
+    sets[1].rays = random_rays(scene.geometry.bounds(), options.random_rays, options.seed);
+  for (RaySet& s : sets) choose_subset(&s, result.primitives, options.brute_test_budget);
+  result.camera_rays = sets[0].rays.size();
+  result.random_rays = sets[1].rays.size();
+  result.camera_checked = sets[0].subset.size();
+  result.random_checked = sets[1].subset.size();
+
+  // Stages: the reference, then each structure; progress moves by stage.
+  const double stages = double(names.size() + 1);
+  auto progress = [&](double done) {
+    if (hooks.progress) hooks.progress(std::min(1.0, done / stages));
+  };
+  try {
+    // The reference: brute force's hits on each subset.
+    std::unique_ptr<Accelerator> brute = make_accelerator("brute");
+    brute->build(scene.geometry);
+    for (RaySet& s : sets) {
+      s.reference.resize(s.subset.size());
+      for (size_t i = 0; i < s.subset.size(); ++i) {
+        brute->intersect(s.subset[i], &s.reference[i]);
+        if (i % kCancelStride == 0 && cancelled(hooks.cancel)) throw Cancelled{};
+      }
+    }
+    progress(1);
+
+    for (size_t a = 0; a < names.size(); ++a) {
+      if (cancelled(hooks.cancel)) break;
+      std::unique_ptr<Accelerator> accel = make_accelerator(names[a], options.build);
+      StructureCompareRow row;
+      row.name = names[a];
+      row.steps = step_name(*accel);
+      std::vector<double> builds;
+      for (int r = 0; r < options.reps; ++r) {
+        auto t0 = Clock::now();
+        accel->build(scene.geometry);
+        builds.push_back(seconds_since(t0));
+        if (cancelled(hooks.cancel)) throw Cancelled{};
+      }
+      row.build_seconds = median(builds);
+      row.memory_bytes = accel->memory_bytes();
+      const bool is_brute = names[a] == "brute";
+      for (int k = 0; k < 2; ++k) {
+        RaySet& s = sets[k];
+        StructureRaySet& out = k == 0 ? row.camera : row.random;
+        // Brute force runs on the subset only; every other structure on all rays, checked on the subset.
+        std::vector<Hit> hits;
+        out = measure(*accel, is_brute ? s.subset : s.rays, options.reps, &hits, hooks.cancel);
+        out.checked = s.subset.size();
+        for (size_t i = 0; i < s.subset.size(); ++i) {
+          const Hit& mine = is_brute ? hits[i] : hits[i * s.stride];
+          HitAgreement agreement = compare_hits(s.reference[i], mine);
+          out.disagreements += agreement == HitAgreement::differs;
+          out.ties += agreement == HitAgreement::tie;
+        }
+        progress(double(a + 1) + 0.5 * (k + 1));
+      }
+      result.rows.push_back(row);
+      if (hooks.row_done) hooks.row_done(result.rows.back());
+    }
+  } catch (const Cancelled&) {
+  }
+  return result;
+}
+
+}  // namespace raystep
