@@ -33,7 +33,12 @@ void addRow(vtkTable* t, double x, double y) {
 
 std::string tickLabel(double v) {
   std::ostringstream s;
-  s.precision(3);
+  if (v >= 1.0 && v < 1e7) {
+    s.setf(std::ios::fixed);  // 1000, not 1e+03
+    s.precision(0);
+  } else {
+    s.precision(3);
+  }
   s << v;
   return s.str();
 }

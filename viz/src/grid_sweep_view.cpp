@@ -80,18 +80,17 @@ const std::vector<Panel>& panels() {
        false,
        {{"references_per_prim", "references per primitive", chartcolor::green,
          [](const GridSweepRow& r) { return r.references_per_prim; }}}},
-      {"Time: tracing all rays, building the grid",
+      // Linear from 0: where the walk's and the tests' costs balance, the time has its minimum.
+      {"Trace time: all rays, median pass (the minimum is the best d)",
+       "milliseconds",
+       false,
+       {{"trace_ms", "trace", chartcolor::purple,
+         [](const GridSweepRow& r) { return r.trace_seconds * 1e3; }}}},
+      {"Build time of the grid (memory: in the table)",
        "milliseconds (log scale)",
        true,
-       {{"trace_ms", "trace", chartcolor::purple,
-         [](const GridSweepRow& r) { return r.trace_seconds * 1e3; }},
-        {"build_ms", "build", chartcolor::orange,
+       {{"build_ms", "build", chartcolor::orange,
          [](const GridSweepRow& r) { return r.build_seconds * 1e3; }}}},
-      {"Memory of the grid (cells and references)",
-       "KiB (log scale)",
-       true,
-       {{"memory_kib", "memory", chartcolor::skyBlue,
-         [](const GridSweepRow& r) { return r.bytes / 1024.0; }}}},
   };
   return p;
 }
@@ -171,11 +170,11 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
     c->SetTitle(p.title);
     c->GetTitleProperties()->SetFontSize(13);
     c->GetTitleProperties()->SetBold(true);
-    // Beside the plot (the curves cross everywhere inside it), with short labels: the title says the rest.
+    // Short labels (the title says the rest), top centre, in head room the y axis leaves for it (redraw):
+    // the curves cross everywhere else.
     c->SetShowLegend(p.quantities.size() > 1);
-    c->GetLegend()->SetInline(false);
     c->GetLegend()->GetLabelProperties()->SetFontSize(11);
-    c->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+    c->GetLegend()->SetHorizontalAlignment(vtkChartLegend::CENTER);
     c->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
     c->GetAxis(vtkAxis::BOTTOM)->SetTitle("grid density d (log scale)");
     c->GetAxis(vtkAxis::LEFT)->SetTitle(p.yTitle);
@@ -218,7 +217,7 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   split->addWidget(below);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 1);
-  split->setSizes({470, 200});
+  split->setSizes({440, 230});
   layout->addWidget(split, 1);
   status_ = new QLabel;
   status_->setObjectName("gridSweepStatus");
@@ -406,6 +405,7 @@ void GridSweepView::done(const GridSweep& sweep, const QString& state, const QSt
     sweep_ = sweep;
   }
   if (state == "done") progress_->setValue(progress_->maximum());
+  table_->scrollToTop();
   if (state == "failed") {
     status_->setText(tr("<span style='color:#b00'>The sweep failed: %1</span>").arg(error.toHtmlEscaped()));
   } else {
@@ -490,7 +490,8 @@ void GridSweepView::updateChosenText() {
   const float dd = chosen_ > 0.f ? chosen_ : d_->markerDensity;
   const SceneData* scene = session_->scene();
   if (!(dd > 0.f) || !scene || sweep_.rows.empty()) {
-    chosenText_->setText(tr("After the sweep, the slider chooses d; the charts mark it with a dashed line."));
+    chosenText_->setText(
+        tr("After the sweep, the slider chooses d; the charts mark it with a dashed vertical line."));
     return;
   }
   const Geometry& g = scene->scene.geometry;
@@ -498,7 +499,8 @@ void GridSweepView::updateChosenText() {
   const GridSweepRow* measured = nullptr;
   for (const GridSweepRow& r : sweep_.rows)
     if (r.density == dd) measured = &r;
-  QString t = tr("<b>d = %1</b>: max(nx, ny, nz) = round(%1 &times; %2) = %3, so the grid is %4 cells")
+  QString t = tr("<b>d = %1</b> (the dashed line): max(nx, ny, nz) = round(%1 &times; %2) = %3, so the grid "
+                 "is %4 cells")
                   .arg(double(dd), 0, 'g', 3)
                   .arg(std::cbrt(double(std::max<size_t>(1, g.size()))), 0, 'f', 2)
                   .arg(std::max({res[0], res[1], res[2]}))
@@ -553,7 +555,10 @@ void GridSweepView::redraw() {
     }
     if (!(yhi >= ylo)) ylo = p.log ? 1.0 : 0.0, yhi = p.log ? 10.0 : 1.0;
     if (p.log) {
-      chartutil::setLogRange(c->GetAxis(vtkAxis::LEFT), ylo, yhi);
+      // About a third of the height above the data for the legend.
+      const double decades = std::log10(yhi / ylo);
+      const double room = p.quantities.size() > 1 ? std::pow(10.0, std::max(0.5, 0.55 * decades)) : 1.0;
+      chartutil::setLogRange(c->GetAxis(vtkAxis::LEFT), ylo, yhi * room);
     } else {
       chartutil::setLinearRange(c->GetAxis(vtkAxis::LEFT), std::min(0.0, ylo), yhi);
     }
@@ -573,6 +578,7 @@ void GridSweepView::redraw() {
       plot->SetWidth(1.5f);
       plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
       plot->SetLabel(QString("d = %1").arg(mark, 0, 'g', 3).toStdString());
+      plot->SetLegendVisibility(false);  // the text under the slider says what the dashed line is
       if (auto* pp = vtkPlotPoints::SafeDownCast(plot)) pp->SetMarkerStyle(vtkPlotPoints::NONE);
     }
     c->RecalculateBounds();
