@@ -75,6 +75,34 @@ TEST(Report, AaChartHasOnePointPerRowInOrder) {
   Rgb8Image img = read_png_rgb8(png);
   for (const char* f : {"regular", "jitter", "random", "none"})
     EXPECT_GT(countColor(img, a["colors"][f], 0, 0, img.width - 1, img.height - 1, 12), 20) << f;
+
+#ifdef RAYSTEP_CLI_EXE
+  // The same report from the command line: the same methods in the same order, the same errors (seeded).
+  const std::string dir = kOut + "/report-aa-small-cli";
+  const std::string cmd = std::string("'") + RAYSTEP_CLI_EXE + "' aa-report '" + kAliasing +
+                          "' --methods none,regular:2,jitter:2,random:4 --size 32x24 --seeds 2 -o '" + dir +
+                          "' > /dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::istringstream csv(slurp(dir + "/report.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<std::string> header;
+  for (std::stringstream h(line); std::getline(h, line, ',');) header.push_back(line);
+  const size_t rmseCol = size_t(std::find(header.begin(), header.end(), "rmse") - header.begin());
+  const size_t specCol = size_t(std::find(header.begin(), header.end(), "spec") - header.begin());
+  ASSERT_LT(rmseCol, header.size());
+  size_t i = 0;
+  for (; std::getline(csv, line) && i < rows.size(); ++i) {
+    std::vector<std::string> cells;
+    for (std::stringstream c(line); std::getline(c, line, ',');) cells.push_back(line);
+    ASSERT_GT(cells.size(), rmseCol);
+    EXPECT_EQ(cells[specCol], rows[i]["spec"].get<std::string>());
+    EXPECT_NEAR(std::stod(cells[rmseCol]), rows[i]["rmse"].get<double>(),
+                1e-8 * rows[i]["rmse"].get<double>())
+        << rows[i]["spec"];
+  }
+  EXPECT_EQ(i, rows.size());
+#endif
 }
 
 TEST(Report, CancelStopsTheReport) {

@@ -53,6 +53,9 @@ namespace {
 // The method families in the order of the legend; "none" is one point of its own.
 const char* const kFamilies[] = {"regular", "jitter", "random", "adaptive"};
 
+// Without a Size, the report renders the scene at most this many pixels on its long side.
+constexpr int kDefaultSide = 128;
+
 const QColor& familyColor(const std::string& family) {
   static const std::map<std::string, QColor> colors = {{"regular", chartcolor::blue},
                                                        {"jitter", chartcolor::vermillion},
@@ -131,7 +134,7 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   size_ = new QLineEdit;
   size_->setObjectName("aaReportSize");
   size_->setPlaceholderText(tr("scene's"));
-  size_->setToolTip(tr("WxH, e.g. 64x48; empty: the scene's size"));
+  size_->setToolTip(tr("WxH, e.g. 64x48; empty: the scene's size, at most 128 pixels on its long side"));
   size_->setMaximumWidth(80);
   options->addWidget(size_);
   options->addWidget(new QLabel(tr("Seeds:")));
@@ -192,6 +195,10 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   table_->setHorizontalHeaderLabels({tr("method"), tr("spec"), tr("seeds"), tr("rays / pixel"),
                                      tr("rays cast"), tr("time / render"), tr("RMSE"), tr("RMSE min .. max"),
                                      tr("largest pixel error")});
+  table_->horizontalHeaderItem(4)->setToolTip(
+      tr("All rays one render cast: primary, shadow, reflected and refracted (mean over seeds)"));
+  table_->horizontalHeaderItem(5)->setToolTip(tr("Median wall time of one render"));
+  table_->horizontalHeaderItem(7)->setToolTip(tr("The spread of the RMSE over the seeds of a random method"));
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->verticalHeader()->setVisible(false);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
@@ -256,10 +263,14 @@ void AaReportView::updateHeader() {
   QString now = scene ? QFileInfo(QString::fromStdString(scene->path)).fileName() : QString();
   QString t;
   if (!report_.rows.empty() || running_) {
-    t = tr("<b>%1</b>, %2 x %3 pixels, rendered through the %4.")
+    t = tr("<b>%1</b>, %2 x %3 pixels%4, rendered through the %5.")
             .arg(sceneName_)
             .arg(report_.width)
             .arg(report_.height)
+            .arg(reducedFrom_.isEmpty()
+                     ? QString()
+                     : tr(" (the scene's %1 reduced, so that the report is quick: Size sets it)")
+                           .arg(reducedFrom_))
             .arg(structureName_);
     if (!report_.reference_kind.empty())
       t += report_.reference_kind == "exact"
@@ -284,6 +295,7 @@ QString AaReportView::start() {
     QApplication::processEvents();  // the old run's last rows and its end
   }
   error_.clear();
+  reducedFrom_.clear();
   auto structure = session_->structureShared();
   try {
     if (!structure)
@@ -304,6 +316,16 @@ QString AaReportView::start() {
       }
       if (!okW || !okH || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096)
         throw InputError("", 0, "size '" + size.toStdString() + "': expected WxH with 1 <= W, H <= 4096");
+    } else {
+      // The scene's size, at most kDefaultSide on its long side: 27 methods over 5 seeds of a 320 x 320
+      // scene with shadows take minutes; the chart should fill in while the student watches.
+      const int sw = structure->scene->scene.render.width, sh = structure->scene->scene.render.height;
+      const int longSide = std::max(sw, sh);
+      if (longSide > kDefaultSide) {
+        o.width = std::max(1, int(std::lround(double(sw) * kDefaultSide / longSide)));
+        o.height = std::max(1, int(std::lround(double(sh) * kDefaultSide / longSide)));
+        reducedFrom_ = QString("%1 x %2").arg(sw).arg(sh);
+      }
     }
     o.seeds = seeds_->value();
 
@@ -569,7 +591,7 @@ void AaReportView::redraw() {
   // The reference's own error: below it the measured error says little.
   if (any && report_.reference_rmse > 0.0) {
     const double y = report_.reference_rmse;
-    vtkPlot* p = add("reference error", {{xlo, y}, {xhi > xlo ? xhi : xlo * 2, y}}, chartcolor::grey, 1.5f,
+    vtkPlot* p = add("reference error", {{xlo, y}, {xhi > xlo ? xhi : xlo * 2, y}}, chartcolor::grey, 2.f,
                      true, tr("the reference's own error"));
     p->GetPen()->SetLineType(vtkPen::DOT_LINE);
     if (auto* pp = vtkPlotPoints::SafeDownCast(p)) pp->SetMarkerStyle(vtkPlotPoints::NONE);

@@ -34,7 +34,8 @@ class AaReportView : public QWidget {
   explicit AaReportView(Session* session, QWidget* parent = nullptr);
   ~AaReportView() override;  // cancels a running report and waits for its current render
 
-  // The options of the next run; methods: comma-separated specs ("" : the defaults), size 0: the scene's.
+  // The options of the next run; methods: comma-separated specs ("" : the defaults), size 0: the scene's,
+  // at most 128 pixels on its long side (the header says so).
   void setMethods(const QString& methods);
   void setReference(const QString& reference);  // "auto", "exact" or "jitter:K"
   void setReportSize(int width, int height);
@@ -76,6 +77,7 @@ class AaReportView : public QWidget {
   AaReport report_;
   QString state_ = "idle", error_;
   QString sceneName_, structureName_;
+  QString reducedFrom_;  // the scene's size, when the report renders it smaller (no Size given)
   bool running_ = false;
   std::atomic<bool> cancel_{false};
   std::atomic<int> cancelAfterRows_{0};
