@@ -6,6 +6,7 @@
 #include <map>
 
 #include <QApplication>
+#include <QCloseEvent>
 #include <QComboBox>
 #include <QFileInfo>
 #include <QHBoxLayout>
@@ -398,6 +399,11 @@ QString AaReportView::start() {
     status_->setText(tr("<span style='color:#b00'>%1</span>").arg(error_.toHtmlEscaped()));
   }
   return error_;
+}
+
+void AaReportView::closeEvent(QCloseEvent* event) {
+  cancel();
+  QWidget::closeEvent(event);
 }
 
 void AaReportView::cancel() {

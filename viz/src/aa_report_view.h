@@ -65,6 +65,9 @@ class AaReportView : public QWidget {
  Q_SIGNALS:
   void finished();
 
+ protected:
+  void closeEvent(QCloseEvent* event) override;  // closing the window cancels a run under way
+
  private:
   void addRow(const AaReport& soFar, const AaReportRow& row);
   void done(const AaReport& report, const QString& state, const QString& error);

@@ -6,6 +6,7 @@
 #include <map>
 
 #include <QApplication>
+#include <QCloseEvent>
 #include <QFileInfo>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -344,6 +345,11 @@ QString GridSweepView::start() {
     status_->setText(tr("<span style='color:#b00'>%1</span>").arg(error_.toHtmlEscaped()));
   }
   return error_;
+}
+
+void GridSweepView::closeEvent(QCloseEvent* event) {
+  cancel();
+  QWidget::closeEvent(event);
 }
 
 void GridSweepView::cancel() {

@@ -1,9 +1,9 @@
 // The grid sweep in the debugger (lecture: "how fine should the grid be? max(nx, ny, nz) = d * cbrt(n)"):
 // core's run_grid_sweep on the current scene, on a worker thread, drawn as its rows come against the
 // density d: cells and primitive tests per ray (the trade-off), references per primitive, trace and build
-// time (memory in the table). A slider over the measured densities (and the values between them) rebuilds the main
-// window's grid at the chosen d, so that the 3D view and the heat map show that grid; the charts mark it.
-// VTK stays inside the .cpp.
+// time (memory in the table). A slider over the measured densities (and the values between them) rebuilds the
+// main window's grid at the chosen d, so that the 3D view and the heat map show that grid; the charts mark
+// it. VTK stays inside the .cpp.
 #pragma once
 
 #include <atomic>
@@ -58,6 +58,9 @@ class GridSweepView : public QWidget {
   void finished();
   // The user chose density d on the slider: the main window rebuilds its grid with it.
   void densityChosen(float d);
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;  // closing the window cancels a run under way
 
  private:
   void addRow(const GridSweepRow& row);
