@@ -39,7 +39,7 @@ RenderResult render(const Built& b, const std::string& aa, uint64_t seed) {
 }
 
 TEST(Reference, ShippedFlatScenesAreExact) {
-  for (const char* name : {"aliasing.json", "coverage.json"}) {
+  for (const char* name : {"aliasing.json", "coverage.json", "grid_edges.json"}) {
     Scene s = shipped(name);
     EXPECT_EQ(exact_coverage_unavailable(s, s.render.width, s.render.height), "") << name;
   }
