@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -184,6 +185,26 @@ std::string adaptive_verdict(const AaReport& r) {
   return s.str();
 }
 
+// Adaptive rows at one depth whose pictures are the same whatever the threshold: the scene is black and
+// white.
+std::string same_thresholds(const AaReport& r) {
+  std::map<std::pair<int, std::pair<double, double>>, std::vector<std::string>> groups;
+  for (const AaReportRow& row : r.rows)
+    if (row.method == "adaptive")
+      groups[{parse_antialiasing(row.spec).max_depth, {row.rays_per_pixel, row.rmse}}].push_back(row.spec);
+  std::string s;
+  for (const auto& [key, specs] : groups) {
+    if (specs.size() < 2) continue;
+    s += "\n" + std::to_string(specs.size()) + " thresholds at depth " + std::to_string(key.first) +
+         " gave the same picture (";
+    for (size_t i = 0; i < specs.size(); ++i) s += (i ? ", " : "") + specs[i];
+    s += "): where every pixel is one of two colours, the contrast (max - min) / (max + min) of its samples "
+         "is "
+         "0 or 1, so any threshold below 1 refines the same pixels; only the depth changes the cost.\n";
+  }
+  return s;
+}
+
 void write_markdown(const std::string& path, const AaReport& r, const std::string& command) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "# Anti-aliasing: error against rays and time\n\n";
@@ -204,7 +225,14 @@ void write_markdown(const std::string& path, const AaReport& r, const std::strin
            "mean "
            "over seeds 1..N with its spread (min..max). Max error: the largest pixel error (mean over "
            "seeds). "
-           "Seconds: median wall time of one render.\n\n";
+           "Seconds: median wall time of one render.";
+    std::vector<double> times;
+    for (const AaReportRow& row : r.rows) times.push_back(row.seconds);
+    std::sort(times.begin(), times.end());
+    if (!times.empty() && times[times.size() / 2] < 0.01)
+      out << " Most renders here take under 10 ms, where starting the threads weighs as much as tracing: for "
+             "times that mean something, use a larger `--size`.";
+    out << "\n\n";
     out << "| method | spec | rays/pixel (N) | rays: primary | shadow | reflected | refracted | seconds | "
            "RMSE | "
            "spread (min..max) | max error | seeds |\n";
@@ -220,7 +248,7 @@ void write_markdown(const std::string& path, const AaReport& r, const std::strin
            "counts.\n\n| method | fitted slope | theory at edges |\n|---|---:|---|\n";
     for (const auto& [method, slope] : r.slopes)
       out << "| " << method << " | " << fmt(slope, 3) << " | " << theory_text(method) << " |\n";
-    out << "\n## Adaptive sampling against jitter:4\n\n" << adaptive_verdict(r);
+    out << "\n## Adaptive sampling against jitter:4\n\n" << adaptive_verdict(r) << same_thresholds(r);
     out << "\n## Plots\n\n![error against rays](error_vs_rays.png)\n\n![error against "
            "time](error_vs_time.png)\n\n"
         << "Each plot is drawn by gnuplot from `report.csv` with the script beside it (`gnuplot "
