@@ -295,7 +295,7 @@ std::string plot_body(const AaReport& r, bool against_time) {
   s << "set ylabel 'RMSE against the reference (log scale)'\n";
   if (x_hi > 0) s << "set xrange [" << fmt(x_lo / 1.5) << ":" << fmt(x_hi * 1.5) << "]\n";
   if (y_hi > 0) {
-    const double lo = y_lo / 1.3, hi = y_hi * 1.3;
+    const double lo = y_lo / 1.6, hi = y_hi * 1.3;
     s << "set yrange [" << fmt(lo) << ":" << fmt(lo * std::pow(hi / lo, 1.0 / 0.7)) << "]\n";
   }
   // Each theory line is drawn in its method's colour through that method's first measured point, so that
@@ -326,25 +326,28 @@ std::string plot_body(const AaReport& r, bool against_time) {
                     ") with lines dt " + t.dash + " lw 1.5 lc rgb '" + method_colour(t.method) +
                     "' title 'theory " + var + t.label + ", through " + anchor->spec + "'");
   }
-  // Adaptive points are labelled with their depth and thresholds: the student cannot tell them apart
-  // otherwise, and on a black-and-white scene several thresholds fall on one point.
-  std::vector<std::pair<const AaReportRow*, std::string>> labels;
+  // Adaptive points are labelled by depth, once per depth at its first point ("depth 3, T 0.4 → 0.02": the
+  // line runs from the first threshold to the last): the student cannot tell them apart otherwise, and a
+  // label per point overlaps its neighbours.
+  std::vector<std::pair<const AaReportRow*, std::vector<float>>> labels;  // first row, thresholds in order
   for (const AaReportRow& row : r.rows) {
     if (row.method != "adaptive") continue;
     const AntiAliasing aa = parse_antialiasing(row.spec);
-    std::pair<const AaReportRow*, std::string>* same = nullptr;
-    for (auto& l : labels)
-      if (l.first->rays_per_pixel == row.rays_per_pixel && l.first->rmse == row.rmse &&
-          parse_antialiasing(l.first->spec).max_depth == aa.max_depth)
-        same = &l;
-    if (same)
-      same->second += "/" + fmt(aa.threshold, 3);
+    auto same_depth = std::find_if(labels.begin(), labels.end(), [&](const auto& l) {
+      return parse_antialiasing(l.first->spec).max_depth == aa.max_depth;
+    });
+    if (same_depth != labels.end())
+      same_depth->second.push_back(aa.threshold);
     else
-      labels.emplace_back(&row, "depth " + std::to_string(aa.max_depth) + ", T " + fmt(aa.threshold, 3));
+      labels.push_back({&row, {aa.threshold}});
   }
-  for (const auto& [row, text] : labels)
+  for (const auto& [row, thresholds] : labels) {
+    std::string text = "depth " + std::to_string(parse_antialiasing(row->spec).max_depth) + ", threshold " +
+                       fmt(thresholds.front(), 3);
+    if (thresholds.size() > 1) text += " → " + fmt(thresholds.back(), 3);
     s << "set label '" << text << "' at " << fmt(x_of(*row), 9) << "," << fmt(row->rmse, 9)
-      << " offset 1,0.4 left font ',9' tc rgb '" << method_colour("adaptive") << "'\n";
+      << " offset -1,-0.9 right font ',9' tc rgb '" << method_colour("adaptive") << "'\n";
+  }
   s << "plot \\\n";
   for (size_t i = 0; i < items.size(); ++i) s << "  " << items[i] << (i + 1 < items.size() ? ", \\\n" : "\n");
   if (items.empty()) s << "  NaN notitle\n";
