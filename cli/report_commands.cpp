@@ -430,7 +430,7 @@ int run_aa_report(const AaReportArgs& a) {
   }
   if (a.reference == "exact")
     if (std::string why = exact_coverage_unavailable(scene, options.width, options.height); !why.empty())
-      throw InputError("", 0, "--reference exact: " + why + " (use --reference jitter:K or auto)");
+      throw InputError("", 0, "--reference exact: " + why + "; use --reference jitter:K or auto");
   std::unique_ptr<Accelerator> accel;
   try {
     accel = make_accelerator(a.accel, StructureOptions{});
