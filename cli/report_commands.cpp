@@ -233,7 +233,8 @@ void write_markdown(const std::string& path, const AaReport& r, const std::strin
       out << " Most renders here take under 10 ms, where starting the threads weighs as much as tracing: for "
              "times that mean something, use a larger `--size`.";
     out << "\n\n";
-    out << "| method | spec | rays/pixel (N) | rays: primary | shadow | reflected | refracted | seconds | "
+    out << "| method | spec | samples per pixel N | rays: primary | shadow | reflected | refracted | seconds "
+           "| "
            "RMSE | "
            "spread (min..max) | max error | seeds |\n";
     out << "|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|\n";
@@ -244,7 +245,8 @@ void write_markdown(const std::string& path, const AaReport& r, const std::strin
           << (row.seeds > 1 ? fmt(row.rmse_min, 3) + "..." + fmt(row.rmse_max, 3) : std::string("-")) << " | "
           << fmt(row.max_error, 3) << " | " << row.seeds << " |\n";
     out << "\n## Slopes: RMSE ~ N^slope\n\n"
-        << "Least-squares fit of log(RMSE) against log(N), N the rays per pixel, over each method's sample "
+        << "Least-squares fit of log(RMSE) against log(N), N the samples (primary rays) per pixel, over each "
+           "method's sample "
            "counts.\n\n| method | fitted slope | theory at edges |\n|---|---:|---|\n";
     for (const auto& [method, slope] : r.slopes)
       out << "| " << method << " | " << fmt(slope, 3) << " | " << theory_text(method) << " |\n";
