@@ -91,6 +91,14 @@ TEST(Reference, EachConditionRefusesOnItsOwn) {
     EXPECT_NE(why(s).find("overlap"), std::string::npos);
   }
   {
+    Scene s = base;  // two triangles overlapping only outside the image (x > 64): nothing on screen overlaps
+    s.geometry.add_triangle(glm::vec3(62, 40, 0), glm::vec3(80, 40, 0), glm::vec3(80, 47, 0));
+    s.geometry.add_triangle(glm::vec3(70, 38, 1), glm::vec3(90, 38, 1), glm::vec3(90, 47, 1));
+    EXPECT_EQ(why(s), "");
+    s.geometry.add_triangle(glm::vec3(61, 39, 2), glm::vec3(66, 39, 2), glm::vec3(66, 46, 2));  // on screen
+    EXPECT_NE(why(s).find("overlap"), std::string::npos);
+  }
+  {
     Scene s = base;  // a triangle sharing an edge (58,14)-(20,43) with the first, outside it: no overlap
     s.geometry.add_triangle(glm::vec3(58, 14, 0), glm::vec3(60, 45, 0), glm::vec3(20, 43, 0));
     EXPECT_EQ(why(s), "");
