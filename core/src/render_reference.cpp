@@ -43,10 +43,12 @@ std::vector<glm::dvec2> clip_half_plane(const std::vector<glm::dvec2>& in, const
   return out;
 }
 
-// Area of the intersection of two counter-clockwise triangles (convex clipping, one edge of b at a time).
-double overlap_area(const FlatTriangle& a, const FlatTriangle& b) {
+// Area of the intersection of two counter-clockwise triangles inside the image (convex clipping, one edge of
+// b at a time, then the image's rectangle: an overlap off screen changes no pixel).
+double overlap_area(const FlatTriangle& a, const FlatTriangle& b, const glm::dvec2& image) {
   std::vector<glm::dvec2> p = a.polygon;
   for (int k = 0; k < 3 && p.size() >= 3; ++k) p = clip_half_plane(p, b.polygon[k], b.polygon[(k + 1) % 3]);
+  if (p.size() >= 3) p = clip_to_box(p, glm::dvec2(0.0), image);
   return p.size() >= 3 ? std::fabs(signed_area(p)) : 0.0;
 }
 
@@ -104,7 +106,8 @@ std::string flat_triangles(const Scene& scene, int width, int height, std::vecto
     for (size_t j = i + 1; j < order.size() && (*out)[order[j]].lo.x < a.hi.x; ++j) {
       const FlatTriangle& b = (*out)[order[j]];
       if (b.lo.y >= a.hi.y || a.lo.y >= b.hi.y) continue;
-      if (overlap_area(a, b) > kOverlapTolerance) return "two triangles overlap on screen";
+      if (overlap_area(a, b, glm::dvec2(width, height)) > kOverlapTolerance)
+        return "two triangles overlap on screen";
     }
   }
   return "";

@@ -50,7 +50,8 @@ class AaReportCli : public ::testing::Test {
 
   Outcome run(const std::string& args) const {
     const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd = std::string(RAYSTEP_EXE) + " aa-report " + args + " >" + out + " 2>" + err + " </dev/null";
+    const std::string cmd =
+        std::string(RAYSTEP_EXE) + " aa-report " + args + " >" + out + " 2>" + err + " </dev/null";
     const int status = std::system(cmd.c_str());
     Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
     fs::remove(out);

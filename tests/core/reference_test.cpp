@@ -39,7 +39,7 @@ RenderResult render(const Built& b, const std::string& aa, uint64_t seed) {
 }
 
 TEST(Reference, ShippedFlatScenesAreExact) {
-  for (const char* name : {"aliasing.json", "coverage.json"}) {
+  for (const char* name : {"aliasing.json", "coverage.json", "grid_edges.json"}) {
     Scene s = shipped(name);
     EXPECT_EQ(exact_coverage_unavailable(s, s.render.width, s.render.height), "") << name;
   }
@@ -88,6 +88,14 @@ TEST(Reference, EachConditionRefusesOnItsOwn) {
   {
     Scene s = base;  // a second triangle over the first one's middle
     s.geometry.add_triangle(glm::vec3(20, 15, 1), glm::vec3(30, 15, 1), glm::vec3(25, 25, 1));
+    EXPECT_NE(why(s).find("overlap"), std::string::npos);
+  }
+  {
+    Scene s = base;  // two triangles overlapping only outside the image (x > 64): nothing on screen overlaps
+    s.geometry.add_triangle(glm::vec3(62, 40, 0), glm::vec3(80, 40, 0), glm::vec3(80, 47, 0));
+    s.geometry.add_triangle(glm::vec3(70, 38, 1), glm::vec3(90, 38, 1), glm::vec3(90, 47, 1));
+    EXPECT_EQ(why(s), "");
+    s.geometry.add_triangle(glm::vec3(61, 39, 2), glm::vec3(66, 39, 2), glm::vec3(66, 46, 2));  // on screen
     EXPECT_NE(why(s).find("overlap"), std::string::npos);
   }
   {
