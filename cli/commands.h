@@ -112,6 +112,32 @@ struct AaReportArgs {
   std::string output;                  // the report folder
 };
 
+// structure_commands.cpp: the structures and the cost formula measured, each into a report folder.
+struct CompareArgs {
+  std::string scene;
+  std::string accel = "brute,bvol,grid,kd,kd-median";
+  uint64_t rays = 65536;            // random rays
+  std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, capped at 512)
+  int reps = 3;
+  std::string output;  // report folder
+};
+struct GridSweepArgs {
+  std::string scene;
+  std::optional<std::string> densities;  // "0.5,1,2,..." (default: 0.5 .. 8)
+  uint64_t rays = 65536;
+  std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, capped at 256)
+  int reps = 3;
+  std::string output;
+};
+struct CostArgs {
+  std::string scene;
+  std::optional<std::string> size;
+  std::optional<std::string> aa;
+  std::optional<std::string> accel;  // structures (default: all but brute)
+  int threads = 0;
+  std::string output;  // optional report folder
+};
+
 int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
@@ -121,6 +147,9 @@ int run_rays(const RaysArgs& args);
 int run_info(const InfoArgs& args);
 int run_sah(const SahArgs& args);
 int run_kdtree_stats(const KdStatsArgs& args);
+int run_compare(const CompareArgs& args);
+int run_grid_sweep_command(const GridSweepArgs& args);
+int run_cost(const CostArgs& args);
 int run_lesson_check(const LessonCheckArgs& args);
 int run_lesson_command(const LessonCommandArgs& args);
 int run_lesson_answers(const LessonAnswersArgs& args);

@@ -136,6 +136,50 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
   kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
 
+  CompareArgs compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare",
+      "Structures side by side: build time, memory, Mrays/s, work per ray, disagreements with brute force");
+  compare_cmd->add_option("scene", compare.scene, "scene .json or mesh .obj")->required();
+  compare_cmd->add_option("--accel", compare.accel, "comma-separated structures: " + accel_help().substr(24))
+      ->capture_default_str();
+  compare_cmd->add_option("--rays", compare.rays, "random rays (besides one camera ray per pixel)")
+      ->capture_default_str();
+  compare_cmd->add_option("--size", compare.size,
+                          "camera rays: image size WxH (default: the scene's, at most 512)");
+  compare_cmd->add_option("--reps", compare.reps, "timed passes; the median is reported")
+      ->capture_default_str();
+  compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
+      ->required();
+
+  GridSweepArgs sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "grid-sweep",
+      "The grid's density d in max(nx,ny,nz) = d*cbrt(n) against cells, tests, memory and time");
+  sweep_cmd->add_option("scene", sweep.scene, "scene .json or mesh .obj")->required();
+  sweep_cmd->add_option("--densities", sweep.densities,
+                        "comma-separated d values in (0, 64] (default: 0.5,0.75,1,1.5,2,3,4,6,8)");
+  sweep_cmd->add_option("--rays", sweep.rays, "random rays (besides one camera ray per pixel)")
+      ->capture_default_str();
+  sweep_cmd->add_option("--size", sweep.size,
+                        "camera rays: image size WxH (default: the scene's, at most 256)");
+  sweep_cmd->add_option("--reps", sweep.reps, "timed passes; the median is reported")->capture_default_str();
+  sweep_cmd->add_option("-o,--output", sweep.output, "report folder (report.csv, report.md, sweep.png)")
+      ->required();
+
+  CostArgs cost;
+  CLI::App* cost_cmd = app.add_subcommand(
+      "cost",
+      "The lecture's cost formula m^2 k^2 n 2^d against the tests counted, and what each technique cuts");
+  cost_cmd->add_option("scene", cost.scene, "scene .json or mesh .obj")->required();
+  cost_cmd->add_option("--size", cost.size, "image size WxH (default: the scene's)");
+  cost_cmd->add_option("--aa", cost.aa,
+                       "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  cost_cmd->add_option("--accel", cost.accel, "comma-separated structures (default: all but brute)");
+  cost_cmd->add_option("--threads", cost.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
+  cost_cmd->add_option("-o,--output", cost.output,
+                       "also write a report folder (report.csv, factors.csv, report.md)");
+
   TraceInfoArgs trace_info;
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
@@ -199,6 +243,9 @@ int main(int argc, char** argv) {
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
+    if (*compare_cmd) return run_compare(compare);
+    if (*sweep_cmd) return run_grid_sweep_command(sweep);
+    if (*cost_cmd) return run_cost(cost);
     if (*lesson_check_cmd) return run_lesson_check(lesson_check);
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);
     if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);

@@ -146,8 +146,16 @@ CostReport run_cost_report(const Scene& scene_in, const CostReportOptions& optio
            min_weight, render.aa))
     return report;
   const CostRow full = report.rows[0], terminated = report.rows[1];
-  report.factors.push_back({"adaptive ray termination", "2^d", "rays per primary ray", full.rays_per_sample,
-                            terminated.rays_per_sample});
+  // The ray tree's size without its shadow rays: the formula's 2^d counts reflected and refracted rays.
+  auto tree_rays = [](const CostRow& row) {
+    return row.rays.primary
+               ? double(row.rays.primary + row.rays.reflected + row.rays.refracted) / double(row.rays.primary)
+               : 0.0;
+  };
+  report.factors.push_back(
+      {"adaptive ray termination", "2^d",
+       "ray-tree rays per sample (2^d = " + std::to_string(1ull << std::min(report.depth, 62)) + ")",
+       tree_rays(full), tree_rays(terminated)});
 
   // Each structure, with adaptive termination: the n factor.
   for (const std::string& name : names) {

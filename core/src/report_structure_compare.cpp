@@ -124,7 +124,7 @@ StructureComparison compare_structures(const Scene& scene, const StructureCompar
   sets[0].rays = camera_rays(scene.camera, w, h);
   if (options.random_rays > 0)
     sets[1].rays = random_rays(scene.geometry.bounds(), options.random_rays, options.seed);
-  for (RaySet& s : sets) choose_subset(&s, result.primitives, options.brute_test_budget);
+  for (RaySet& s : sets) choose_subset(&s, result.primitives, options.test_budget);
   result.camera_rays = sets[0].rays.size();
   result.random_rays = sets[1].rays.size();
   result.camera_checked = sets[0].subset.size();
@@ -163,20 +163,33 @@ StructureComparison compare_structures(const Scene& scene, const StructureCompar
       }
       row.build_seconds = median(builds);
       row.memory_bytes = accel->memory_bytes();
-      const bool is_brute = names[a] == "brute";
       for (int k = 0; k < 2; ++k) {
         RaySet& s = sets[k];
         StructureRaySet& out = k == 0 ? row.camera : row.random;
-        // Brute force runs on the subset only; every other structure on all rays, checked on the subset.
-        std::vector<Hit> hits;
-        out = measure(*accel, is_brute ? s.subset : s.rays, options.reps, &hits, hooks.cancel);
-        out.checked = s.subset.size();
+        // First the checked subset: the hits to compare with brute force's, and the work per ray, from which
+        // the cost of all rays is foreseen.
+        std::vector<Hit> hits(s.subset.size());
+        CountingRecorder counts;
         for (size_t i = 0; i < s.subset.size(); ++i) {
-          const Hit& mine = is_brute ? hits[i] : hits[i * s.stride];
-          HitAgreement agreement = compare_hits(s.reference[i], mine);
-          out.disagreements += agreement == HitAgreement::differs;
-          out.ties += agreement == HitAgreement::tie;
+          accel->intersect_counted(s.subset[i], &hits[i], counts);
+          if (i % kCancelStride == 0 && cancelled(hooks.cancel)) throw Cancelled{};
         }
+        uint64_t disagreements = 0, ties = 0;
+        for (size_t i = 0; i < s.subset.size(); ++i) {
+          HitAgreement agreement = compare_hits(s.reference[i], hits[i]);
+          disagreements += agreement == HitAgreement::differs;
+          ties += agreement == HitAgreement::tie;
+        }
+        // Then all rays, timed and counted, unless that would take more tests than the budget (brute force,
+        // or bounding volumes around one big object): such a structure is measured on the subset.
+        const double foreseen =
+            double(counts.prim_tests) / double(std::max<size_t>(s.subset.size(), 1)) * double(s.rays.size());
+        const bool all = s.subset.size() == s.rays.size() || foreseen <= double(options.test_budget);
+        // A structure measured on the subset is slow: one timed pass of it lasts long enough to be steady.
+        out = measure(*accel, all ? s.rays : s.subset, all ? options.reps : 1, &hits, hooks.cancel);
+        out.checked = s.subset.size();
+        out.disagreements = disagreements;
+        out.ties = ties;
         progress(double(a + 1) + 0.5 * (k + 1));
       }
       result.rows.push_back(row);

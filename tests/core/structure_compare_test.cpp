@@ -81,8 +81,8 @@ TEST(StructureCompare, EveryStructureAgreesWithBruteForce) {
 TEST(StructureCompare, BruteForceSubsetKeepsToItsBudget) {
   Scene scene = soup_scene(300);
   StructureCompareOptions o = small_options();
-  o.structures = {"brute", "grid"};
-  o.brute_test_budget = 302 * 100;  // 100 rays per set
+  o.structures = {"brute", "grid", "bvol"};
+  o.test_budget = 302 * 100;  // 100 rays per set
   StructureComparison c = compare_structures(scene, o);
   EXPECT_EQ(c.random_checked, 100u);
   EXPECT_EQ(c.camera_checked, 100u);
@@ -90,6 +90,9 @@ TEST(StructureCompare, BruteForceSubsetKeepsToItsBudget) {
   EXPECT_EQ(c.rows[1].random.rays, 3000u);  // the grid traces all, checked on the subset
   EXPECT_EQ(c.rows[1].random.checked, 100u);
   EXPECT_EQ(c.rows[1].disagreements(), 0u);
+  // One object, one box: bounding volumes test nearly every primitive, so they too are timed on the subset.
+  EXPECT_EQ(c.rows[2].random.rays, 100u);
+  EXPECT_EQ(c.rows[2].random.checked, 100u);
 }
 
 TEST(StructureCompare, MemoryIsTheGridsArrays) {

@@ -14,24 +14,24 @@
 namespace raystep {
 
 struct GridSweepOptions {
-  std::vector<float> densities;             // empty: 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8
+  std::vector<float> densities;  // empty: 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8
   int camera_width = 0, camera_height = 0;  // primary rays (0: the scene's size, capped at 256 x 256)
   uint64_t random_rays = 65536;             // random rays through the bounds (0: none)
   uint64_t seed = 1;
-  int reps = 3;  // timed passes; the median is reported
+  int reps = 3;                             // timed passes; the median is reported
 };
 
 struct GridSweepRow {
   float density = 0.f;
   std::array<int, 3> resolution{1, 1, 1};
-  uint64_t cells = 0;  // nx * ny * nz
+  uint64_t cells = 0;              // nx * ny * nz
   double references_per_prim = 0.0;
   double build_seconds = 0.0;
-  double bytes = 0.0;                                                      // the grid's memory
+  double bytes = 0.0;              // the grid's memory
   double cells_per_ray = 0.0, tests_per_ray = 0.0, mailbox_per_ray = 0.0;  // over all rays
-  double trace_seconds = 0.0;                                              // median pass over all rays
+  double trace_seconds = 0.0;      // median pass over all rays
   double mrays_per_second = 0.0;
-  bool coarsened = false;  // the reference budget lowered the resolution
+  bool coarsened = false;          // the reference budget lowered the resolution
 };
 
 struct GridSweep {
