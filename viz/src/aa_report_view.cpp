@@ -519,6 +519,7 @@ void AaReportView::redraw() {
   // need not grow with the rays).
   std::map<std::string, std::vector<std::pair<double, double>>> byFamily;
   std::map<std::string, std::vector<std::pair<double, size_t>>> order;  // rays per pixel, index
+  std::map<std::string, std::vector<std::string>> specs;                // per point, for the tooltips
   double xlo = HUGE_VAL, xhi = -HUGE_VAL, ylo = HUGE_VAL, yhi = -HUGE_VAL;
   for (const AaReportRow& r : report_.rows) {
     const double x = xOf(r), y = r.rmse;
@@ -526,15 +527,25 @@ void AaReportView::redraw() {
     if (!(x > 0.0) || !(y > 0.0)) continue;  // a log axis has no place for 0 (an exact picture)
     order[r.method].push_back({r.rays_per_pixel, byFamily[r.method].size()});
     byFamily[r.method].push_back({x, y});
+    specs[r.method].push_back(r.spec);
     xlo = std::min(xlo, x), xhi = std::max(xhi, x), ylo = std::min(ylo, y), yhi = std::max(yhi, y);
   }
   for (auto& [family, pts] : byFamily) {
     auto& o = order[family];
     std::stable_sort(o.begin(), o.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<std::pair<double, double>> sorted;
-    for (const auto& [rays, i] : o) sorted.push_back(pts[i]);
+    std::vector<std::string> sortedSpecs;
+    for (const auto& [rays, i] : o) sorted.push_back(pts[i]), sortedSpecs.push_back(specs[family][i]);
     pts = sorted;
+    specs[family] = sortedSpecs;
   }
+  // Hovering a point names its method: "jitter:4: 16 rays per pixel, RMSE 0.0108".
+  auto label = [&](vtkPlot* p, const std::string& family) {
+    vtkNew<vtkStringArray> names;
+    for (const std::string& spec : specs[family]) names->InsertNextValue(spec);
+    p->SetIndexedLabels(names);
+    p->SetTooltipLabelFormat(time ? "%i: %x ms per render, RMSE %y" : "%i: %x rays per pixel, RMSE %y");
+  };
   auto add = [&](const std::string& name, const std::vector<std::pair<double, double>>& pts,
                  const QColor& color, float width, bool line, const QString& label) -> vtkPlot* {
     auto t = chartutil::makeTable("x", "y");
@@ -552,6 +563,7 @@ void AaReportView::redraw() {
     if (it == byFamily.end()) continue;
     vtkPlot* p = add(family, it->second, familyColor(family), 2.f, true,
                      familyLabel(family) + QString(" (%1)").arg(it->second.size()));
+    label(p, family);
     if (auto* pp = vtkPlotPoints::SafeDownCast(p)) {
       pp->SetMarkerStyle(vtkPlotPoints::CIRCLE);
       pp->SetMarkerSize(8.f);
@@ -561,6 +573,7 @@ void AaReportView::redraw() {
     auto* pp = vtkPlotPoints::SafeDownCast(
         add("none", it->second, familyColor("none"), 2.f, false, familyLabel("none")));
     if (pp) {
+      label(pp, "none");
       pp->SetMarkerStyle(vtkPlotPoints::SQUARE);
       pp->SetMarkerSize(11.f);
     }

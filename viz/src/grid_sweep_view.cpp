@@ -39,6 +39,7 @@
 #include <vtkPlotPoints.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 #include <vtkVector.h>
@@ -536,12 +537,17 @@ void GridSweepView::redraw() {
     double ylo = HUGE_VAL, yhi = -HUGE_VAL;
     for (const Quantity& q : p.quantities) {
       std::vector<std::pair<double, double>> pts;
+      std::vector<std::pair<double, std::string>> names;  // hovering a point names its grid
       for (const GridSweepRow& r : sweep_.rows) {
         const double y = q.value(r);
         if (!(r.density > 0.f) || !std::isfinite(y) || (p.log && !(y > 0.0))) continue;
         pts.push_back({double(r.density), y});
+        names.push_back({double(r.density), "d = " + chartutil::tickLabel(r.density) + ", grid " +
+                                                resolutionText(r.resolution).toStdString()});
       }
       std::stable_sort(pts.begin(), pts.end());
+      std::stable_sort(names.begin(), names.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
       auto t = chartutil::makeTable("d", q.key);
       for (const auto& [x, y] : pts) {
         chartutil::addRow(t, x, y);
@@ -554,6 +560,10 @@ void GridSweepView::redraw() {
       plot->SetColor(uchar(q.color.red()), uchar(q.color.green()), uchar(q.color.blue()), 255);
       plot->SetWidth(2.f);
       plot->SetLabel(q.label);
+      vtkNew<vtkStringArray> labels;
+      for (const auto& n : names) labels->InsertNextValue(n.second);
+      plot->SetIndexedLabels(labels);
+      plot->SetTooltipLabelFormat(std::string("%i: ") + q.label + " = %y");
       if (auto* pp = vtkPlotPoints::SafeDownCast(plot)) {
         pp->SetMarkerStyle(vtkPlotPoints::CIRCLE);
         pp->SetMarkerSize(7.f);
