@@ -143,6 +143,19 @@ TEST(Report, SweepSliderRebuildsTheGridAtTheChosenDensity) {
   EXPECT_FALSE(s["grid"]["explicit_resolution"].get<bool>());
   EXPECT_EQ(maxOf(s["grid"]["resolution"]), int(std::lround(2.0 * std::cbrt(n))));
   EXPECT_EQ(s["grid"]["resolution"], g["rows"][1]["resolution"]);  // the grid the sweep measured at d = 2
+  // One point per density in each chart, with the sweep's values.
+  ASSERT_EQ(g["series"]["cells_per_ray"].size(), 3u);
+  ASSERT_EQ(g["series"]["tests_per_ray"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(g["series"]["cells_per_ray"][i][0].get<double>(), g["rows"][i]["density"].get<double>());
+    EXPECT_NEAR(g["series"]["cells_per_ray"][i][1].get<double>(), g["rows"][i]["cells_per_ray"].get<double>(),
+                1e-5 * g["rows"][i]["cells_per_ray"].get<double>());
+    EXPECT_NEAR(g["series"]["tests_per_ray"][i][1].get<double>(), g["rows"][i]["tests_per_ray"].get<double>(),
+                1e-5 * g["rows"][i]["tests_per_ray"].get<double>());
+  }
+  // The walk's trade-off: a finer grid, more cells per ray, fewer tests.
+  EXPECT_LT(g["rows"][0]["cells_per_ray"].get<double>(), g["rows"][2]["cells_per_ray"].get<double>());
+  EXPECT_GT(g["rows"][0]["tests_per_ray"].get<double>(), g["rows"][2]["tests_per_ray"].get<double>());
   EXPECT_FLOAT_EQ(g["marker_density"].get<float>(), 2.f);
   EXPECT_EQ(g["series"]["marker0"][0][0].get<double>(), 2.0);  // the charts mark d = 2
 
@@ -165,6 +178,10 @@ TEST(Report, BadReportOptionsExit2) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("error: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("bogus"), std::string::npos) << r.err;
+  r = gui("'" + kCornell + "' --report aa --report-reference exact --report-size 16x16 --quit",
+          "report-bad-reference");  // a pinhole camera: no exact coverage
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("error: --report aa: no exact reference"), std::string::npos) << r.err;
   r = gui("'" + kCornell + "' --sweep-choose 2 --quit", "report-bad-choose");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--sweep-choose"), std::string::npos) << r.err;
