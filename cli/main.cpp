@@ -158,7 +158,8 @@ int main(int argc, char** argv) {
       "The grid's density d in max(nx,ny,nz) = d*cbrt(n) against cells, tests, memory and time");
   sweep_cmd->add_option("scene", sweep.scene, "scene .json or mesh .obj")->required();
   sweep_cmd->add_option("--densities", sweep.densities,
-                        "comma-separated d values in (0, 64] (default: 0.5,0.75,1,1.5,2,3,4,6,8)");
+                        "comma-separated d values in (0, 64], measured in increasing order "
+                        "(default: 0.5,0.75,1,1.5,2,3,4,6,8)");
   sweep_cmd->add_option("--rays", sweep.rays, "random rays (besides one camera ray per pixel)")
       ->capture_default_str();
   sweep_cmd->add_option("--size", sweep.size,

@@ -277,7 +277,13 @@ int run_compare(const CompareArgs& a) {
 int run_grid_sweep_command(const GridSweepArgs& a) {
   ReportFolder folder(a.output);
   GridSweepOptions options;
-  if (a.densities) options.densities = parse_densities(*a.densities);
+  if (a.densities) {
+    // In increasing order, each once: the rows are a curve against d.
+    options.densities = parse_densities(*a.densities);
+    std::sort(options.densities.begin(), options.densities.end());
+    options.densities.erase(std::unique(options.densities.begin(), options.densities.end()),
+                            options.densities.end());
+  }
   if (a.rays > (uint64_t(1) << 26)) throw InputError("", 0, "--rays must be at most 67108864");
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
@@ -345,8 +351,17 @@ int run_grid_sweep_command(const GridSweepArgs& a) {
 
   // One figure, four panels sharing the log x axis of d, each with the default d = 3 marked.
   std::ostringstream gp;
-  gp << "set datafile separator ','\nset logscale x 2\nset xrange [0.4:10]\nset grid\nset key top left\n"
-        "set xtics ('0.5' 0.5, '0.75' 0.75, '1' 1, '1.5' 1.5, '2' 2, '3' 3, '4' 4, '6' 6, '8' 8)\n"
+  // The x axis spans the densities measured and the default d = 3, with a tic at each.
+  float d_lo = 3.f, d_hi = 3.f;
+  std::string tics = "'3' 3";
+  for (const GridSweepRow& r : sweep.rows) {
+    d_lo = std::min(d_lo, r.density);
+    d_hi = std::max(d_hi, r.density);
+    if (r.density != 3.f) tics += ", '" + fmt("%g", r.density) + "' " + fmt("%g", r.density);
+  }
+  gp << "set datafile separator ','\nset logscale x 2\nset xrange [" << fmt("%g", d_lo * 0.8) << ":"
+     << fmt("%g", d_hi * 1.25) << "]\nset grid\nset key top left\nset xtics (" << tics
+     << ")\n"
         "set multiplot layout 2,2 title 'Uniform grid: max(nx,ny,nz) = d * cbrt(n), n = "
      << sweep.primitives << ", " << sweep.rays << " rays; dashed line: the default d = 3'\n"
      << "mark = \"set arrow 1 from 3, graph 0 to 3, graph 1 nohead dt 2 lw 2 lc rgb '#d62728'\"\n"
@@ -435,13 +450,30 @@ int run_cost(const CostArgs& a) {
     t << line;
   }
   t << "\n";
-  std::snprintf(line, sizeof line, "%-52s %-5s %-34s %10s %10s %9s\n", "technique", "cuts", "measured as",
+  std::snprintf(line, sizeof line, "%-60s %-5s %-34s %10s %10s %9s\n", "technique", "cuts", "measured as",
                 "before", "after", "cut");
   t << line;
   for (const CostFactor& f : r.factors) {
-    std::snprintf(line, sizeof line, "%-52s %-5s %-34s %10.3f %10.3f %8.2fx\n", f.technique.c_str(),
+    std::snprintf(line, sizeof line, "%-60s %-5s %-34s %10.3f %10.3f %8.2fx\n", f.technique.c_str(),
                   f.factor.c_str(), f.measure.c_str(), f.before, f.after, f.cut());
     t << line;
+  }
+  // What a student asks next: why the counts fall short of the formula, and why a cut may be 1x.
+  if (!r.rows.empty() && r.rows[0].rays.primary > 0) {
+    const CostRow& full = r.rows[0];
+    const double primary = double(full.rays.primary);
+    const double tree = double(full.rays.primary + full.rays.reflected + full.rays.refracted) / primary;
+    const double shadow = double(full.rays.shadow) / primary;
+    t << "\nwhy brute force makes "
+      << fmt("%.2f%%", r.predicted > 0 ? 100.0 * double(full.tests) / r.predicted : 0)
+      << " of the formula's tests:\n  a sample's ray tree has " << fmt("%.2f", tree)
+      << " rays, not 2^d = " << fmt("%.0f", std::ldexp(1.0, r.depth))
+      << ": the formula lets every hit spawn a reflected and a refracted ray,\n"
+         "  but only mirror and glass materials do; add "
+      << fmt("%.2f", shadow) << " shadow rays per sample, which stop at their first hit.\n";
+    if (!r.factors.empty() && r.factors[0].cut() < 1.005)
+      t << "  adaptive termination cuts nothing here: no path's weight (the product of the mirror and\n"
+           "  transparency factors along it) fell below min_weight before the depth limit.\n";
   }
   std::printf("%s", t.str().c_str());
 
@@ -463,6 +495,8 @@ int run_cost(const CostArgs& a) {
         out << buf;
       }
     });
+    // The printed tables and their explanation, as the terminal showed them.
+    write_file_atomically(folder->file("report.txt"), [&](std::ostream& out) { out << t.str(); });
     write_file_atomically(folder->file("factors.csv"), [&](std::ostream& out) {
       out << "technique,factor,measure,before,after,cut\n";
       for (const CostFactor& f : r.factors)
@@ -491,7 +525,7 @@ int run_cost(const CostArgs& a) {
          << " | " << fmt("%.3f", f.after) << " | " << fmt("%.2fx", f.cut()) << " |\n";
     write_file_atomically(folder->file("report.md"), [&](std::ostream& out) { out << md.str(); });
     folder->commit();
-    std::printf("\nwrote %s (report.csv, factors.csv, report.md)\n", a.output.c_str());
+    std::printf("\nwrote %s (report.csv, factors.csv, report.md, report.txt)\n", a.output.c_str());
   }
   return 0;
 }

@@ -168,16 +168,16 @@ CostReport run_cost_report(const Scene& scene_in, const CostReportOptions& optio
   // Adaptive sampling: the k^2 factor.
   const std::string sampler_accel = names.empty() ? std::string("brute") : names.front();
   if (aa_adaptive) {
-    report.factors.push_back({"adaptive sampling (" + report.aa + ") against its full refinement", "k^2",
+    report.factors.push_back({"adaptive sampling (" + report.aa + ") vs. full refinement", "k^2",
                               "samples per pixel", double(max_samples_per_pixel(render.aa)),
                               terminated.samples_per_pixel});
   } else {
     const CostRow* row = run("adaptive sampling " + to_string(adaptive) + ", " + sampler_accel, sampler_accel,
                              min_weight, adaptive);
     if (!row) return report;
-    report.factors.push_back(
-        {"adaptive sampling (" + row->aa + ") against regular:" + std::to_string(k_compared), "k^2",
-         "samples per pixel", double(k_compared * k_compared), row->samples_per_pixel});
+    report.factors.push_back({"adaptive sampling (" + row->aa + ") vs. regular:" + std::to_string(k_compared),
+                              "k^2", "samples per pixel", double(k_compared * k_compared),
+                              row->samples_per_pixel});
   }
   return report;
 }

@@ -128,7 +128,7 @@ TEST_F(StructureReports, CompareFindsNoDisagreementOnAnyShippedSceneOrMesh) {
     SCOPED_TRACE(input);
     fs::remove_all(path("cmp"));
     Outcome r = run("compare " + input + " --rays 3000 --size 40x30 --reps 1 -o " + path("cmp"));
-    ASSERT_EQ(r.code, 0) << r.err;
+    ASSERT_EQ(r.code, 0) << "stderr: " << r.err << "\nstdout: " << r.out;
     std::vector<CsvRow> rows = read_csv(path("cmp/report.csv"));
     ASSERT_EQ(rows.size(), 5u);
     const char* names[] = {"brute", "bvol", "grid", "kd", "kd-median"};
@@ -171,6 +171,7 @@ TEST_F(StructureReports, CostMeetsTheFormulaExactlyWhereItIsExact) {
   EXPECT_NE(r.out.find("m^2 = 10 x 8 = 80 pixels"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(path("cost/factors.csv")));
   EXPECT_TRUE(fs::exists(path("cost/report.md")));
+  EXPECT_EQ(slurp(path("cost/report.txt")), r.out.substr(0, r.out.find("\nwrote ")));
 }
 
 TEST_F(StructureReports, CostNeverExceedsTheBoundOnTheCornellBox) {

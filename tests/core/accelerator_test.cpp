@@ -114,6 +114,42 @@ TEST(Accelerator, CountedQueriesGiveTheSameHitsAndCountWork) {
   }
 }
 
+// occluded_counted answers as occluded() does and counts no more tests than a nearest-hit query; memory_bytes
+// is the structure's own arrays (zero for brute force, which has none).
+TEST(Accelerator, CountedOcclusionAgreesAndMemoryIsCounted) {
+  Geometry g = make_clusters(9);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(-6.f, 6.f);
+  for (const std::string& name : accelerator_names()) {
+    auto acc = make_accelerator(name);
+    acc->build(g);
+    CountingRecorder any, nearest;
+    int same = 0, occluded = 0;
+    const int kRays = 500;
+    for (int i = 0; i < kRays; ++i) {
+      Ray r;
+      r.origin = glm::vec3(u(rng), u(rng), u(rng));
+      r.direction = g.prim_bounds(rng() % g.size()).center() - r.origin;
+      r.tmax = 1.f;  // a shadow ray to the primitive's centre
+      Hit h;
+      bool o = acc->occluded_counted(r, any);
+      same += o == acc->occluded(r);
+      occluded += o;
+      acc->intersect_counted(r, &h, nearest);
+    }
+    EXPECT_EQ(same, kRays) << name;
+    EXPECT_GT(occluded, 0) << name;
+    EXPECT_EQ(any.rays, uint64_t(kRays)) << name;
+    EXPECT_LE(any.prim_tests, nearest.prim_tests) << name;
+    if (name == "brute") {
+      EXPECT_EQ(acc->memory_bytes(), 0u);
+      EXPECT_LT(any.prim_tests, nearest.prim_tests);  // it stops at the first hit
+    } else {
+      EXPECT_GT(acc->memory_bytes(), 0u) << name;
+    }
+  }
+}
+
 // Two coincident triangles, and a third whose edge the ray passes through: the same t from several primitives.
 // Every structure that promises brute force's answer gives the lower id.
 TEST(Accelerator, TiesGoToTheLowerPrimitiveId) {
