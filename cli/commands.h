@@ -102,6 +102,18 @@ struct LessonAnswersArgs {
   std::string file;
 };
 
+// report_commands.cpp: `raystep aa-report`, speed against error for anti-aliasing (report/aa_report.h).
+struct AaReportArgs {
+  std::string scene;
+  std::optional<std::string> methods;  // comma-separated anti-aliasing specs; default: default_aa_methods()
+  std::string reference = "auto";      // exact | jitter:K | auto
+  std::optional<std::string> size;     // "WxH", default the scene's
+  int seeds = 5;                       // seeds of each random method (jitter, random)
+  int threads = 0;                     // 0: all cores
+  std::string accel = "grid";
+  std::string output;                  // the report folder
+};
+
 // structure_commands.cpp: the structures and the cost formula measured, each into a report folder.
 struct CompareArgs {
   std::string scene;
@@ -129,6 +141,7 @@ struct CostArgs {
 };
 
 int run_render(const RenderArgs& args);
+int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
 int run_trace_info(const TraceInfoArgs& args);
 int run_cast(const CastArgs& args);

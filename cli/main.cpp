@@ -208,6 +208,24 @@ int main(int argc, char** argv) {
       lesson_cmd->add_subcommand("answers", "Print every question's computed answer and its reason");
   lesson_answers_cmd->add_option("lesson", lesson_answers.file, "lesson file (.md)")->required();
 
+  AaReportArgs aa_report;
+  CLI::App* aa_report_cmd = app.add_subcommand(
+      "aa-report", "Anti-aliasing speed against error: every method rendered, timed and measured, with plots");
+  aa_report_cmd->add_option("scene", aa_report.scene, "scene .json or mesh .obj")->required();
+  aa_report_cmd->add_option("--methods", aa_report.methods,
+                            "comma-separated anti-aliasing specs, e.g. none,jitter:2,jitter:4,adaptive:0.1:3 "
+                            "(default: none, regular:2..8, jitter:2..8, random:4..64, adaptive at 5 thresholds)");
+  aa_report_cmd->add_option("--reference", aa_report.reference,
+                            "exact (area coverage) | jitter:K (two seeds) | auto (exact where possible, else jitter:16)")
+      ->capture_default_str();
+  aa_report_cmd->add_option("--size", aa_report.size, "image size WxH (default: the scene's)");
+  aa_report_cmd->add_option("--seeds", aa_report.seeds, "seeds of each jitter and random method")->capture_default_str();
+  aa_report_cmd->add_option("--threads", aa_report.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
+  aa_report_cmd->add_option("--accel", aa_report.accel, accel_help())->capture_default_str();
+  aa_report_cmd->add_option("-o,--output", aa_report.output,
+                            "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -223,6 +241,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*render_cmd) return run_render(render);
+    if (*aa_report_cmd) return run_aa_report(aa_report);
     if (*cast_cmd) return run_cast(cast);
     if (*rays_cmd) return run_rays(rays);
     if (*info_cmd) return run_info(info);

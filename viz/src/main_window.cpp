@@ -24,7 +24,9 @@
 #include <QtConcurrent>
 #include <optional>
 
+#include "aa_report_view.h"
 #include "event_list.h"
+#include "grid_sweep_view.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_pane.h"
@@ -222,6 +224,42 @@ void MainWindow::buildMenus() {
                      : s == 1.5 ? tr("1.5 (lecture room)")
                                 : QString::number(s),
                      this, [this, s] { setPresenterScale(s); });
+  // The reports on the current scene: opened (and run, the first time) in windows of their own.
+  QMenu* reports = menuBar()->addMenu(tr("&Reports"));
+  reports->addAction(tr("&Anti-aliasing: error against rays..."), this, [this] {
+    AaReportView* v = aaReportView();
+    v->show();
+    v->raise();
+    if (v->state() == "idle" && session_->structure()) v->start();
+  });
+  reports->addAction(tr("&Grid sweep: density d against cost..."), this, [this] {
+    GridSweepView* v = gridSweepView();
+    v->show();
+    v->raise();
+    if (v->state() == "idle" && session_->scene()) v->start();
+  });
+}
+
+AaReportView* MainWindow::aaReportView() {
+  if (!aaReport_) aaReport_ = new AaReportView(session_, this);
+  return aaReport_;
+}
+
+GridSweepView* MainWindow::gridSweepView() {
+  if (!gridSweep_) {
+    gridSweep_ = new GridSweepView(session_, this);
+    connect(gridSweep_, &GridSweepView::densityChosen, this, &MainWindow::buildGridAtDensity);
+  }
+  return gridSweep_;
+}
+
+void MainWindow::buildGridAtDensity(float density) {
+  if (!session_->scene()) return;
+  StructureOptions o = structure_->options();
+  o.grid.density = density;
+  o.grid.resolution.reset();  // the density rule, not an explicit resolution
+  structure_->setStructure("grid", o);
+  buildStructure();
 }
 
 Presenter* MainWindow::openLesson(const Lesson& lesson) {

@@ -40,6 +40,8 @@ class TreeView;
 class SahChart;
 class LessonPane;
 class Presenter;
+class AaReportView;
+class GridSweepView;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -89,6 +91,11 @@ class MainWindow : public QMainWindow {
   void ensurePicture();
   void ensureHeat();
   void exportSahCsv(const QString& path);
+  // Reports > ...: the anti-aliasing report and the grid sweep, each a window of its own (made when first
+  // asked for). The sweep's slider rebuilds the grid here at the density it chooses.
+  AaReportView* aaReportView();
+  GridSweepView* gridSweepView();
+  void buildGridAtDensity(float density);  // the structure panel's grid options with density d, built
 
   // Presenter mode: the lesson pane docked on the right, beside the debugger, and the presenter that enters
   // the lesson's steps (none entered yet). A second lesson replaces the first.
@@ -141,6 +148,8 @@ class MainWindow : public QMainWindow {
   EventList* eventList_;
   TreeView* treeView_;
   SahChart* sahChart_;
+  AaReportView* aaReport_ = nullptr;
+  GridSweepView* gridSweep_ = nullptr;
   QDockWidget* kdDock_;
   QSplitter* rightSplit_ = nullptr;
   QSplitter* leftSplit_ =

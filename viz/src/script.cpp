@@ -34,6 +34,7 @@
 #include "raystep/trace/heatmap.h"
 #include "raystep/util/error.h"
 #include "replay.h"
+#include "report_script.h"
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
@@ -125,6 +126,7 @@ QJsonObject dumpState(MainWindow& w) {
   o["kd_panel"] = w.kdPanelVisible();
   o["last_error"] = w.lastError();
   if (w.presenter()) o["lesson"] = w.presenter()->dumpState();
+  addReportState(w, o);
   return o;
 }
 
@@ -203,6 +205,7 @@ void defineOptions(QCommandLineParser& p) {
       "LIST");
   opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).",
       "FILE");
+  defineReportOptions(p);
   opt("quit", "Quit when done (scripted mode).");
 }
 
@@ -305,6 +308,7 @@ void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
       fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
     window.exportSahCsv(p.value("export-sah"));
   }
+  writeReportOutputs(window, p);
   if (p.isSet("dump-state")) writeJson(p.value("dump-state"), dumpState(window));
 }
 
@@ -362,6 +366,7 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
   }
   if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
   if (p.isSet("open-lesson-bad")) window.openLessonReportingErrors(p.value("open-lesson-bad"));
+  runReportActions(window, p);
 }
 
 void finish(MainWindow& window) {
@@ -486,6 +491,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",     "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next"};
   bool anyScript = quit;
+  for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
 
   try {

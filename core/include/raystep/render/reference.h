@@ -1,8 +1,9 @@
 // The reference an anti-aliased picture is measured against. Exact where the lecture's pre-filter is exact:
 // flat-coloured triangles seen orthographically, no two overlapping on screen, so that a pixel's true value
 // is the background plus each triangle's colour times the area of the pixel it covers (render/coverage.h).
-// Elsewhere a stratified render with many samples, whose own error is estimated from two independent seeds
-// (the RMS difference of two renders is sqrt(2) times either one's RMS error) and stated with the figures.
+// Elsewhere a stratified render with many samples: the mean of two independent seeds, whose own error is
+// estimated from their difference (the RMS difference of two renders is sqrt(2) times either one's RMS error,
+// and their mean's error is 1/sqrt(2) of either one's: RMS difference / 2) and stated with the figures.
 #pragma once
 
 #include <functional>
@@ -29,12 +30,13 @@ std::optional<glm::vec3> exact_pixel_value(const Scene& scene, int width, int he
 struct Reference {
   Image image;
   std::string kind;             // "exact" or "jitter:K"
-  double estimated_rmse = 0.0;  // 0 for exact; for jitter:K the estimate from two seeds
+  double estimated_rmse = 0.0;  // 0 for exact; for jitter:K the estimate from two seeds (RMS difference / 2)
 };
 
 // spec: "exact", "jitter:K" or "auto" (exact where available, else jitter:16). Throws InputError("", 0, ...)
 // for another spec, or "exact" on a scene without an exact reference (the message gives the reason).
-// progress (optional) receives the fraction done in [0, 1].
+// progress (optional) receives the fraction done in [0, 1]. Exact coverage is cheap and single-threaded; a
+// jitter:K reference is two renders (seeds 0x5eed0001 and 0x5eed0002, which no report uses) and their mean.
 Reference make_reference(const Scene& scene, const Accelerator& accel, int width, int height,
                          const std::string& spec, int threads,
                          const std::function<void(double)>& progress = nullptr);

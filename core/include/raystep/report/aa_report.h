@@ -25,7 +25,8 @@ struct AaReportOptions {
 };
 
 // The default methods: none, regular:2..8, jitter:2..8, random:4..64 (powers of two), adaptive at several
-// thresholds (depth 3).
+// thresholds (depth 3) and, at threshold 0.1, depths 1 and 2 (on a black-and-white scene every threshold
+// below 1 refines the same pixels: only the depth changes anything there).
 std::vector<std::string> default_aa_methods();
 
 // Throws InputError("", 0, "bad method list: ...") naming the first bad entry, or for an empty list.
@@ -38,12 +39,14 @@ struct AaReportRow {
   int seeds = 1;
   double rays_per_pixel = 0.0;  // primary rays per pixel (mean over seeds)
   RayCounts rays;               // rays by kind, mean over seeds (rounded)
-  double seconds = 0.0;         // median wall time of one render
+  double seconds = 0.0;         // median wall time of one render (deterministic methods: of min(3, seeds)
+                                // identical renders, so that their time is a median too)
   double rmse = 0.0;            // mean over seeds
   double rmse_min = 0.0, rmse_max = 0.0, rmse_stddev = 0.0;  // spread over seeds (equal for one seed)
   double max_error = 0.0;       // the largest pixel error (mean over seeds)
   std::vector<double> seed_rmse;  // one per seed, in seed order
-  std::vector<std::string> images;  // when written: the PFM of each seed, relative to the report folder
+  std::vector<std::string> images;  // when written: the PFM of each seed, file names inside hooks.image_dir
+                                    // (e.g. "jitter-4-seed1.pfm", "regular-3.pfm")
 };
 
 struct AaReport {
@@ -53,8 +56,9 @@ struct AaReport {
   double reference_rmse = 0.0;      // the reference's own estimated error (0 for exact)
   double reference_seconds = 0.0;
   std::vector<AaReportRow> rows;
-  // Least-squares slopes of log(rmse) against log(rays per pixel), per method with at least two counts;
-  // the theory at edges: regular about -1/2, jitter about -3/4, random -1/2.
+  // Least-squares slopes of log(rmse) against log(rays per pixel), per method with at least two counts
+  // (adaptive excluded: its rays are an outcome, not a setting); the theory at edges: regular between -1/2
+  // (edges along the grid) and -1 (slanted edges), jitter about -3/4, random -1/2.
   std::vector<std::pair<std::string, double>> slopes;
 };
 
@@ -63,7 +67,8 @@ struct AaReportHooks {
   std::function<void(const AaReport& so_far, const AaReportRow& row)> row_done;
   // Overall fraction done in [0, 1].
   std::function<void(double)> progress;
-  // When set and true, the report stops after the current render and returns what it has.
+  // When set and true, the report stops after the current render and returns the rows it completed (a
+  // method cut short is left out: its seeds would not compare with the others').
   const std::atomic<bool>* cancel = nullptr;
   // When not empty: each render's image is written here as PFM (the reference as reference.pfm).
   std::string image_dir;

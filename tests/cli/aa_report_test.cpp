@@ -1,0 +1,214 @@
+// `raystep aa-report` end to end: the folder it writes (CSV, Markdown, PFM images, plots) agrees with itself,
+// and bad method lists, scenes, references and sizes exit 2 with one line and leave nothing behind.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "raystep/io/image_io.h"
+#include "raystep/render/reference.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+class AaReportCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::path(::testing::TempDir()) /
+        ("raystep_aa_report_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  static std::string scene(const std::string& name) {
+    return std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name;
+  }
+
+  static std::string slurp(const std::string& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+
+  Outcome run(const std::string& args) const {
+    const std::string out = path("stdout.txt"), err = path("stderr.txt");
+    const std::string cmd =
+        std::string(RAYSTEP_EXE) + " aa-report " + args + " >" + out + " 2>" + err + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  void expect_error(const Outcome& r, const std::string& prefix) const {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("error: " + prefix, 0), 0u) << "stderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
+  }
+
+  // Nothing in the test folder but what the test put there: no report, no temporary folder.
+  void expect_no_report() const {
+    for (const auto& entry : fs::directory_iterator(dir_))
+      EXPECT_EQ(entry.path().filename().string().find("report"), std::string::npos) << entry.path();
+  }
+
+  fs::path dir_;
+};
+
+// report.csv as rows of column name -> text.
+std::vector<std::map<std::string, std::string>> read_csv(const std::string& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, sep)) out.push_back(item);
+    if (!s.empty() && s.back() == sep) out.push_back("");
+    return out;
+  };
+  if (std::getline(in, line)) header = split(line, ',');
+  while (std::getline(in, line)) {
+    const std::vector<std::string> cells = split(line, ',');
+    EXPECT_EQ(cells.size(), header.size()) << line;
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < std::min(cells.size(), header.size()); ++i) row[header[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<std::string> split_images(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ';')) out.push_back(item);
+  return out;
+}
+
+bool gnuplot_installed() {
+  return std::system("gnuplot -e 'exit' >/dev/null 2>&1") == 0;
+}
+
+// The acceptance test: each row's RMSE recomputed from the PFM images the report wrote equals the CSV's.
+TEST_F(AaReportCli, RmseRecomputedFromTheImagesMatchesTheCsv) {
+  const std::string out = path("report");
+  const Outcome r =
+      run(scene("aliasing.json") +
+          " --methods none,regular:2,regular:3,jitter:2,jitter:3,random:4,adaptive:0.1:2 --seeds 3"
+          " --size 32x24 --threads 1 -o " +
+          out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("reference exact"), std::string::npos) << r.out;
+  const raystep::Image reference = raystep::read_pfm(out + "/images/reference.pfm");
+  EXPECT_EQ(reference.width, 32);
+  const auto rows = read_csv(out + "/report.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  for (const auto& row : rows) {
+    const std::vector<std::string> images = split_images(row.at("images"));
+    const int seeds = std::stoi(row.at("seeds"));
+    const bool random = row.at("method") == "jitter" || row.at("method") == "random";
+    EXPECT_EQ(seeds, random ? 3 : 1) << row.at("spec");
+    ASSERT_EQ(images.size(), size_t(seeds)) << row.at("spec");
+    double sum = 0.0, lo = INFINITY, hi = 0.0, max_error = 0.0;
+    for (const std::string& image : images) {
+      const raystep::Image picture = raystep::read_pfm(out + "/" + image);
+      const double e = raystep::rmse(picture, reference);
+      sum += e;
+      lo = std::min(lo, e);
+      hi = std::max(hi, e);
+      max_error += raystep::max_abs_error(picture, reference);
+    }
+    const double mean = sum / seeds;
+    EXPECT_NEAR(std::stod(row.at("rmse")), mean, 1e-7 * mean) << row.at("spec");
+    EXPECT_NEAR(std::stod(row.at("rmse_min")), lo, 1e-7 * lo) << row.at("spec");
+    EXPECT_NEAR(std::stod(row.at("rmse_max")), hi, 1e-7 * hi) << row.at("spec");
+    EXPECT_NEAR(std::stod(row.at("max_error")), max_error / seeds, 1e-6) << row.at("spec");
+    EXPECT_GT(mean, 0.0);
+    if (random) EXPECT_LT(lo, hi) << row.at("spec");
+    EXPECT_EQ(std::stoull(row.at("rays_total")),
+              std::stoull(row.at("rays_primary")));  // no lights, no mirrors
+  }
+  EXPECT_EQ(rows[1].at("samples_per_pixel"), "4");
+  EXPECT_EQ(rows[1].at("rays_primary"), std::to_string(4 * 32 * 24));
+
+  const std::string md = slurp(out + "/report.md");
+  EXPECT_NE(md.find("| jitter | jitter:3 |"), std::string::npos);
+  EXPECT_NE(md.find("**exact**"), std::string::npos);
+  EXPECT_NE(md.find("| regular | "), std::string::npos);  // a slope row
+  EXPECT_NE(md.find("Adaptive sampling against jitter:4"), std::string::npos);
+  for (const char* plot : {"error_vs_rays", "error_vs_time"}) {
+    EXPECT_TRUE(fs::exists(out + "/" + plot + ".gp")) << plot;
+    if (gnuplot_installed()) EXPECT_GT(fs::file_size(out + "/" + plot + ".png"), 1000u) << plot;
+  }
+  // Only the report folder is left: no temporary folder beside it.
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir_)) entries += entry.path().filename() != "report";
+  EXPECT_EQ(entries, 0);
+}
+
+TEST_F(AaReportCli, ReplacesAnExistingFolderWhole) {
+  const std::string out = path("report");
+  fs::create_directories(out + "/images");
+  std::ofstream(out + "/stale.txt") << "old";
+  const Outcome r = run(scene("coverage.json") + " --methods none,jitter:2 --seeds 2 --size 16x12 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(out + "/stale.txt"));
+  EXPECT_TRUE(fs::exists(out + "/report.csv"));
+  EXPECT_TRUE(fs::exists(out + "/images/jitter-2-seed2.pfm"));
+}
+
+// A scene without an exact reference: auto falls back to jitter:16 and states its own error.
+TEST_F(AaReportCli, StratifiedReferenceStatesItsOwnError) {
+  const std::string out = path("report");
+  const Outcome r = run(scene("spheres.json") + " --methods none,jitter:2 --seeds 2 --size 16x12 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = slurp(out + "/report.md");
+  EXPECT_NE(md.find("**jitter:16**"), std::string::npos) << md;
+  EXPECT_NE(md.find("own RMSE is estimated at"), std::string::npos);
+  EXPECT_NE(r.out.find("its own RMSE about"), std::string::npos) << r.out;
+}
+
+TEST_F(AaReportCli, BadInputExitsTwoWithOneLine) {
+  const std::string a = scene("aliasing.json"), out = " -o " + path("report");
+  expect_error(run(a + " --methods jitter:0" + out), "--methods: bad anti-aliasing 'jitter:0'");
+  expect_error(run(a + " --methods none,,jitter:2" + out), "--methods: bad anti-aliasing ''");
+  expect_error(run(a + " --methods none,bogus" + out), "--methods: bad anti-aliasing 'bogus'");
+  expect_error(run(a + " --methods random:99999" + out), "--methods: ");
+  expect_error(run(a + " --reference bogus" + out), "--reference 'bogus'");
+  expect_error(run(a + " --reference jitter:0" + out), "--reference 'jitter:0'");
+  expect_error(run(scene("cornell.json") + " --reference exact" + out),
+               "--reference exact: the camera is a pinhole");
+  expect_error(run(a + " --size 0x4" + out), "--size '0x4'");
+  expect_error(run(a + " --size big" + out), "--size 'big'");
+  expect_error(run(a + " --seeds 0" + out), "--seeds");
+  expect_error(run(a + " --threads -1" + out), "--threads");
+  expect_error(run(path("missing.json") + out), path("missing.json"));
+  std::ofstream(path("broken.json")) << "{ \"objects\": [ }";
+  expect_error(run(path("broken.json") + out), path("broken.json"));
+  expect_error(run(a + " -o " + path("no/such/folder/report")), path("no/such/folder/report"));
+  expect_no_report();
+}
+
+}  // namespace
