@@ -23,6 +23,7 @@
 #include "raystep/io/image_io.h"
 #include "raystep/io/ray_files.h"
 #include "raystep/render/camera.h"
+#include "raystep/render/reference.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/ray_sets.h"
@@ -348,9 +349,12 @@ int run_trace(const TraceArgs& a) {
     py = int(p[1]);
   }
   auto record = [&]() {
-    if (aa)  // TracePixel::exact stays empty: the exact value is not known here
-      return record_pixel_trace(scene, *accel, w, h, px, py, *aa, seed, a.secondary, a.scene,
-                                file_content_hash(a.scene));
+    if (aa) {  // with the exact pre-filtered value, where the scene has one (render/reference.h)
+      Trace t = record_pixel_trace(scene, *accel, w, h, px, py, *aa, seed, a.secondary, a.scene,
+                                   file_content_hash(a.scene));
+      t.pixel->exact = exact_pixel_value(scene, w, h, px, py);
+      return t;
+    }
     std::vector<RayRequest> requests;
     if (by_hand) requests.push_back(*by_hand);
     else requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "raystep/trace/trace_file.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -159,3 +161,24 @@ TEST_F(PixelTraceCli, BadOptionsExitTwoWithOneLine) {
 }
 
 }  // namespace
+
+// The exact pre-filtered value travels with the pixel where the scene has one (flat triangles seen
+// orthographically): the covered fraction of pixel (30, 38), from the triangle's vertices by the shoelace
+// formula; a pinhole scene has none.
+TEST_F(PixelTraceCli, TheExactValueWhereTheSceneHasOne) {
+  const std::string flat = path("flat.json"), lit = path("lit.json");
+  ASSERT_EQ(run("trace " + scene("aliasing.json") + " --pixel 30,38 --aa jitter:2 -o " + flat).code, 0);
+  const raystep::Trace t = raystep::read_trace_json(flat);
+  ASSERT_TRUE(t.pixel.has_value());
+  ASSERT_TRUE(t.pixel->exact.has_value());
+  // Pixel (30, 38) is the square [30, 31] x [9, 10] of the plane; the edge from (6, 5) to (58, 14) crosses it
+  // at y = 5 + 9 (x - 6) / 52, so the covered part above the edge has area 10 - 5 - 9 (30.5 - 6) / 52.
+  const double covered = 10.0 - 5.0 - 9.0 * (30.5 - 6.0) / 52.0;
+  EXPECT_NEAR(t.pixel->exact->x, covered, 1e-6);
+  EXPECT_NE(run("trace-info " + flat).out.find(", exact ("), std::string::npos);
+
+  ASSERT_EQ(run("trace " + scene("cornell.json") + " --pixel 100,100 --aa jitter:2 -o " + lit).code, 0);
+  const raystep::Trace u = raystep::read_trace_json(lit);
+  ASSERT_TRUE(u.pixel.has_value());
+  EXPECT_FALSE(u.pixel->exact.has_value());
+}
