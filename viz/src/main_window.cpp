@@ -28,6 +28,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_pane.h"
+#include "pixel_inspector.h"
 #include "presenter.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
@@ -107,6 +108,15 @@ MainWindow::MainWindow() : session_(new Session(this)) {
                        QDockWidget::DockWidgetFloatable);
   addDockWidget(Qt::BottomDockWidgetArea, kdDock_);
   kdDock_->hide();
+  // The traced pixel's samples, in a dock below (beside the kd dock when both are open).
+  pixelInspector_ = new PixelInspector(session_);
+  pixelDock_ = new QDockWidget(tr("Pixel inspector: the traced pixel's samples"), this);
+  pixelDock_->setObjectName("pixelDock");
+  pixelDock_->setWidget(pixelInspector_);
+  pixelDock_->setFeatures(QDockWidget::DockWidgetClosable | QDockWidget::DockWidgetMovable |
+                          QDockWidget::DockWidgetFloatable);
+  addDockWidget(Qt::BottomDockWidgetArea, pixelDock_);
+  pixelDock_->hide();
   buildMenus();
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
@@ -116,6 +126,9 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
     try {
       tracePixel(x, y);
+      // An anti-aliased pixel opens its inspector (without anti-aliasing it stays as the user left it).
+      if (const TracePixel* px = session_->pixel(); px && px->sampling.aa.mode != AntiAliasing::Mode::none)
+        showPixelInspector();
     } catch (const std::exception& e) {
       showError(QString::fromStdString(e.what()));
     }
@@ -205,6 +218,9 @@ void MainWindow::buildMenus() {
   QAction* dock = kdDock_->toggleViewAction();
   dock->setText(tr("kd-tree and SAH &inspector"));
   view->addAction(dock);
+  QAction* pixel = pixelDock_->toggleViewAction();
+  pixel->setText(tr("&Pixel inspector (the traced pixel's samples)"));
+  view->addAction(pixel);
   view->addSeparator();
   QAction* full = view->addAction(tr("&Full screen"), this, [this] {
     if (isFullScreen())
@@ -331,14 +347,14 @@ QString MainWindow::pictureKeyNow() const {
 }
 
 QString MainWindow::heatKeyNow() const {
-  // The samples map depends on the anti-aliasing too; the traversal counts do not.
+  // The samples and error maps depend on the anti-aliasing too; the traversal counts do not.
   const QString q = imageView_->heatQuantity();
   return QString("%1 %2x%3 %4 %5")
       .arg(quintptr(session_->structure()))
       .arg(session_->imageWidth())
       .arg(session_->imageHeight())
       .arg(q)
-      .arg(q == "samples" ? imageView_->antiAliasing() : QString());
+      .arg(q == "samples" || q == "error" ? imageView_->antiAliasing() : QString());
 }
 
 void MainWindow::ensurePicture() {
@@ -469,6 +485,11 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
   ++generation_["build"];  // a structure still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
   session_->setTrace(trace, path);
+  // A trace of an anti-aliased pixel shows its samples without the scene.
+  if (trace->pixel)
+    showPixelInspector();
+  else
+    hidePixelInspector();
   // The structure panel names the trace's kd-tree and its options (shown only: there is no scene to build
   // on).
   if (trace->structure.kind != "grid") {
@@ -732,7 +753,8 @@ void MainWindow::renderPicture() {
               .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
                    l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
                    l.toString(qulonglong(rays.total()))));
-      if (imageView_->heatQuantity() == "samples") ensureHeat();  // the new anti-aliasing's samples
+      // The new anti-aliasing's samples or error.
+      if (imageView_->heatQuantity() == "samples" || imageView_->heatQuantity() == "error") ensureHeat();
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
     });
   });
@@ -773,8 +795,28 @@ void MainWindow::tracePixel(int x, int y) {
     throw InputError("", 0,
                      "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +
                          std::to_string(w) + "x" + std::to_string(h) + " image");
-  auto trace = std::make_shared<const Trace>(viz::tracePixel(*grid, w, h, x, y, imageView_->secondaryRays()));
-  session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y));
+  // Every sample's rays with anti-aliasing (the pixel's trace then holds its samples); the centre ray
+  // without.
+  const AntiAliasing aa = antiAliasingOf(grid->scene->scene, imageView_->antiAliasing().toStdString());
+  auto trace =
+      std::make_shared<const Trace>(viz::tracePixel(*grid, aa, w, h, x, y, imageView_->secondaryRays()));
+  std::shared_ptr<const TracePixel> centre;
+  if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
+  session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
+}
+
+void MainWindow::showPixelInspector() {
+  if (pixelDock_->isVisible()) return;
+  pixelDock_->show();
+  resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
+}
+
+void MainWindow::hidePixelInspector() {
+  pixelDock_->hide();
+}
+
+bool MainWindow::pixelInspectorVisible() const {
+  return pixelDock_->isVisible();
 }
 
 void MainWindow::exportTrace(const QString& path) {

@@ -40,6 +40,7 @@ class TreeView;
 class SahChart;
 class LessonPane;
 class Presenter;
+class PixelInspector;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -83,6 +84,11 @@ class MainWindow : public QMainWindow {
   void showKdPanel();
   void hideKdPanel();
   bool kdPanelVisible() const;
+  // The pixel inspector: the dock below with the traced pixel's samples (opened by a click on a pixel when
+  // the picture is anti-aliased, and by a trace with a pixel section).
+  void showPixelInspector();
+  void hidePixelInspector();
+  bool pixelInspectorVisible() const;
   // The picture and the heat map for the current structure, size, anti-aliasing and heat quantity: made again
   // only when one of these differs from what they were made for (entering a lesson step changes the pixel far
   // more often than the picture).
@@ -117,6 +123,7 @@ class MainWindow : public QMainWindow {
   StructurePanel* structurePanel() const { return structure_; }
   TreeView* treeView() const { return treeView_; }
   SahChart* sahChart() const { return sahChart_; }
+  PixelInspector* pixelInspector() const { return pixelInspector_; }
   QString lastError() const { return lastError_; }
 
  private:
@@ -142,6 +149,8 @@ class MainWindow : public QMainWindow {
   TreeView* treeView_;
   SahChart* sahChart_;
   QDockWidget* kdDock_;
+  PixelInspector* pixelInspector_;
+  QDockWidget* pixelDock_;
   QSplitter* rightSplit_ = nullptr;
   QSplitter* leftSplit_ =
       nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
