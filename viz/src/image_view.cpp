@@ -62,6 +62,7 @@ void ImageCanvas::setHeat(const HeatMap* heat, double opacity) {
     }
   }
   heatMax_ = heat->max_value;
+  heatUnit_ = heat->unit;
   heatLabel_ = heat_quantity_label(heat->quantity);
   update();
 }
@@ -163,10 +164,11 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
               x1 = std::min(s.width() - 1, int((width() - r.left()) / z));
     const int y0 = std::max(0, int(-r.top() / z)),
               y1 = std::min(s.height() - 1, int((height() - r.top()) / z));
-    const double radius = std::clamp(z / 14.0, 1.5, 3.5);
+    // Small dots in one colour that shows on black and on white (the picture stays readable beneath them).
+    const double radius = std::clamp(z / 20.0, 1.0, 2.5);
     p.setRenderHint(QPainter::Antialiasing, true);
-    p.setPen(QPen(QColor(0, 0, 0), 1.0));
-    p.setBrush(QColor(255, 255, 255));
+    p.setPen(Qt::NoPen);
+    p.setBrush(QColor(255, 120, 0));
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
         const PixelSampling* ps = sampleSource_(x, y);
@@ -197,7 +199,9 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
                  rampColor(1.f - float(y) / float(b.height() - 1)));
     p.setPen(Qt::white);
     p.drawRect(b.adjusted(0, 0, -1, -1));
-    p.drawText(QPoint(b.right() + 4, b.top() + 10), QString::number(heatMax_));
+    // In the quantity's own unit (the error map counts thousandths: its top reads 0.135, not 135).
+    p.drawText(QPoint(b.right() + 4, b.top() + 10),
+               heatUnit_ == 1.0 ? QString::number(heatMax_) : QString::number(heatMax_ * heatUnit_, 'g', 3));
     p.drawText(QPoint(b.right() + 4, b.bottom()), "0");
     p.save();
     p.translate(b.left() - 4, b.center().y());

@@ -66,6 +66,7 @@ class ImageCanvas : public QWidget {
   QRect barRect() const;
   QImage image_, heatImage_;
   uint32_t heatMax_ = 0;
+  double heatUnit_ = 1.0;
   QString heatLabel_;
   double heatOpacity_ = 0.7;
   int selX_ = -1, selY_ = -1;

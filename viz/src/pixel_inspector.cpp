@@ -37,7 +37,8 @@ QColor outlineFor(const QColor& c) {
 
 // Adaptive squares outlined by depth: depth 0 (the pixel) dark, deeper squares lighter on the ramp.
 QColor depthColour(int depth, int maxDepth) {
-  glm::vec3 c = viridis(maxDepth > 0 ? 0.25f + 0.75f * float(depth) / float(maxDepth) : 1.f);
+  // Viridis from blue to green only: its yellow end is the current square's colour.
+  glm::vec3 c = viridis(maxDepth > 0 ? 0.2f + 0.5f * float(depth) / float(maxDepth) : 0.7f);
   return QColor(srgb_encode8(c.r), srgb_encode8(c.g), srgb_encode8(c.b));
 }
 
@@ -184,7 +185,7 @@ PixelCanvas::PixelCanvas(Session* session, QWidget* parent) : QWidget(parent), s
 }
 
 QRectF PixelCanvas::pixelRect() const {
-  const double side = std::max(20, std::min(width(), height()) - 16);
+  const double side = std::max(20, std::min(width(), height()) - 28);  // room for the rings at the edges
   return QRectF((width() - side) / 2.0, (height() - side) / 2.0, side, side);
 }
 
@@ -446,19 +447,22 @@ void PixelInspector::refresh() {
     v += tr("<br>(the mean of the leaf squares' values, each weighted by its area)");
   if (px->exact) {
     const glm::vec3 e = glm::abs(s.value - *px->exact);
-    v += tr("<br>exact (area coverage): <b>%1</b><br>error of the average: <b>%2</b> (largest channel; %3)")
+    // The error per channel only where the channels differ (a grey scene has one number).
+    const bool grey = e.r == e.g && e.g == e.b;
+    v += tr("<br>exact (area coverage): <b>%1</b><br>error of the average: <b>%2</b>%3")
              .arg(rgbText(*px->exact))
              .arg(num(std::max({e.r, e.g, e.b}), 4))
-             .arg(rgbText(e, 4));
+             .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)));
   } else {
-    v += tr("<br><i>no exact value: the scene is not flat-coloured polygons seen orthographically</i>");
+    v += tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles seen "
+            "orthographically</i>");
   }
   values_->setText(v);
   QString legend =
-      tr("<span style='color:#ccc'>Each disc is a sample at its position, filled with the colour its "
+      tr("<span>Each disc is a sample at its position, filled with the colour its "
          "ray brought back; the <span style='color:%1'>cyan ring</span> is the sample whose ray is "
          "replayed (click another).")
-          .arg(palette::ray.name());
+          .arg(palette::ray.darker(150).name());
   if (s.aa.mode == AntiAliasing::Mode::regular)
     legend += tr(" Dashed: the %1 x %1 strata; each sample sits at its stratum's centre.").arg(s.aa.k);
   if (s.aa.mode == AntiAliasing::Mode::jitter)
@@ -567,7 +571,7 @@ void PixelInspector::refreshSquare() {
     samples += QString("%1%2 %3").arg(k ? ", " : "").arg(k < 4 ? tr("corner") : tr("centre")).arg(i);
   }
   why_->setText(
-      tr("<b>Why:</b> %1<br><span style='color:#aaa'>samples: %2; contrast per channel (max - min) / "
+      tr("<b>Why:</b> %1<br><span style='color:#555'>samples: %2; contrast per channel (max - min) / "
          "(max + min): r %3, g %4, b %5</span>")
           .arg(QString::fromStdString(explainSquare(*px, sq)).toHtmlEscaped())
           .arg(samples)
