@@ -31,4 +31,37 @@ std::vector<RayRequest> pixel_rays(const Scene& scene, const Accelerator& accel,
   return out;
 }
 
+PixelSampleRays pixel_sample_rays(const Scene& scene, const Accelerator& accel, int width, int height, int px,
+                                  int py, const AntiAliasing& aa, uint64_t seed, bool secondary) {
+  // The renderer's radiance (render_image): the camera's ray through (x, y), traced by the Whitted tracer;
+  // the listener hears every ray in the order it is cast, each primary ray opening the next sample.
+  const ProjectiveCamera camera(scene.camera, width, height);
+  WhittedTracer tracer(scene, accel);
+  PixelSampleRays out;
+  int sample = -1;
+  RayListener listener = [&](const Ray& ray, RayKind kind, int depth) {
+    if (kind == RayKind::primary)
+      ++sample;
+    else if (!secondary)
+      return;
+    RayRequest r;
+    r.ray = ray;
+    r.kind = kind;
+    r.depth = depth;
+    r.has_pixel = true;
+    r.pixel[0] = px;
+    r.pixel[1] = py;
+    r.sample = sample;
+    out.rays.push_back(r);
+  };
+  tracer.set_listener(&listener);
+  RayCounts counts;
+  const RadianceFn radiance = [&](float x, float y) {
+    return tracer.trace_primary(camera.generate(x, y), &counts);
+  };
+  Pcg32 rng = pixel_rng(seed, px, py, width);
+  out.sampling = sample_pixel(aa, px, py, rng, radiance);
+  return out;
+}
+
 }  // namespace raystep

@@ -19,6 +19,7 @@
 
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
+#include "raystep/render/pixel_samples.h"
 #include "raystep/render/sampler.h"
 #include "raystep/util/error.h"
 
@@ -116,7 +117,8 @@ RenderResult render_image(const Scene& scene, const Accelerator& accel, const Re
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < width; ++x) {
         const uint64_t pixel = uint64_t(y) * uint64_t(width) + uint64_t(x);
-        Pcg32 rng(options.seed, pixel);  // the pixel's own stream: independent of scheduling
+        // The pixel's own stream: independent of scheduling, and the one the pixel inspector replays.
+        Pcg32 rng = pixel_rng(options.seed, x, y, width);
         const PixelEstimate e = estimate_pixel(options.aa, x, y, rng, radiance);
         result.image.pixels[pixel] = e.value;
         result.samples[pixel] = e.samples;
