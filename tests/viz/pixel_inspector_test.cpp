@@ -193,6 +193,7 @@ TEST(PixelInspector, TraceOfAnAntiAliasedPixelOpensWithItsInspector) {
                              "pixel-inspector-export");
   EXPECT_FALSE(scene["inspector"]["visible"].get<bool>());  // not asked for in scripted mode
   const json opened = inspect("'" + trace + "' --sample 4", "pixel-inspector-open-trace");
+  ASSERT_TRUE(opened.contains("inspector"));
   const json& in = opened["inspector"];
   EXPECT_TRUE(in["visible"].get<bool>());
   EXPECT_EQ(in["samples"], scene["inspector"]["samples"]);

@@ -454,8 +454,9 @@ void PixelInspector::refresh() {
              .arg(num(std::max({e.r, e.g, e.b}), 4))
              .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)));
   } else {
-    v += tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles seen "
-            "orthographically</i>");
+    v +=
+        tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles seen "
+           "orthographically</i>");
   }
   values_->setText(v);
   QString legend =
