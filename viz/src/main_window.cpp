@@ -753,6 +753,17 @@ void MainWindow::renderPicture() {
               .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
                    l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
                    l.toString(qulonglong(rays.total()))));
+      // The traced pixel follows the picture's anti-aliasing: the inspector shows the samples the picture used.
+      if (const TracePixel* px = session_->pixel(); px && session_->scene() && session_->trace()) {
+        AntiAliasing now;
+        try {
+          now = antiAliasingOf(grid->scene->scene, aa);
+        } catch (const std::exception&) {
+          now = px->sampling.aa;
+        }
+        if (to_string(now) != to_string(px->sampling.aa) && px->sampling.x < w && px->sampling.y < h)
+          tracePixel(px->sampling.x, px->sampling.y);
+      }
       // The new anti-aliasing's samples or error.
       if (imageView_->heatQuantity() == "samples" || imageView_->heatQuantity() == "error") ensureHeat();
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);

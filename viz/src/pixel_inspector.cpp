@@ -117,15 +117,16 @@ std::string explainSquare(const TracePixel& pixel, int index) {
   const PixelSampling& s = pixel.sampling;
   if (index < 0 || index >= int(s.squares.size())) return "";
   const AdaptiveSquare& q = s.squares[size_t(index)];
-  const double n = double(2 << s.aa.max_depth);
   const QString where =
       q.depth == 0
           ? QString("The whole pixel")
           : QString("Square %1 (depth %2, side 1/%3 of the pixel)").arg(index).arg(q.depth).arg(1 << q.depth);
-  (void)n;
   int c = 0;
   const float contrast = largestContrast(q, &c);
-  const char* channel[3] = {"red", "green", "blue"};
+  const char* channels[3] = {"red", "green", "blue"};
+  // Name the channel only where the channels differ (on a grey scene "in red" would mislead).
+  const bool oneValue = q.contrast.r == q.contrast.g && q.contrast.g == q.contrast.b;
+  const QString inChannel = oneValue ? QString() : QString(" in the %1 channel").arg(channels[c]);
   const QString t = QString::number(double(s.aa.threshold), 'g', 3);
   const QString sampled =
       q.new_samples == 5 ? QString("all five samples are new")
@@ -139,9 +140,9 @@ std::string explainSquare(const TracePixel& pixel, int index) {
     case AdaptiveSquare::Outcome::subdivided:
       why = QString(
                 "%1: its four corners and centre are sampled (%2). The samples disagree: contrast %3 > "
-                "threshold %4 (in %5), so this square is split into four, and each quadrant is sampled the "
+                "threshold %4%5, so this square is split into four, and each quadrant is sampled the "
                 "same way.")
-                .arg(where, sampled, num(contrast, 2), t, channel[c]);
+                .arg(where, sampled, num(contrast, 2), t, inChannel);
       break;
     case AdaptiveSquare::Outcome::agree:
       why = QString(
@@ -151,23 +152,23 @@ std::string explainSquare(const TracePixel& pixel, int index) {
                 .arg(where, sampled, num(contrast, 2), t, rgbText(q.value));
       break;
     case AdaptiveSquare::Outcome::depth_limit:
-      why =
-          contrast > s.aa.threshold
-              ? QString(
-                    "%1: its four corners and centre are sampled (%2). Contrast %3 > threshold %4 (in %5), "
-                    "but "
-                    "the depth limit %6 is reached: the square is not split further, and the mean of its "
-                    "five "
-                    "samples, %7, stands for it.")
-                    .arg(where, sampled, num(contrast, 2), t, channel[c])
-                    .arg(s.aa.max_depth)
-                    .arg(rgbText(q.value))
-              : QString(
-                    "%1: its four corners and centre are sampled (%2). Depth limit %3 reached (contrast %4, "
-                    "threshold %5): the mean of its five samples, %6, stands for the square.")
-                    .arg(where, sampled)
-                    .arg(s.aa.max_depth)
-                    .arg(num(contrast, 2), t, rgbText(q.value));
+      why = contrast > s.aa.threshold
+                ? QString(
+                      "%1: its four corners and centre are sampled (%2). Contrast %3 > threshold %4%5, "
+                      "but "
+                      "the depth limit %6 is reached: the square is not split further, and the mean of its "
+                      "five "
+                      "samples, %7, stands for it.")
+                      .arg(where, sampled, num(contrast, 2), t, inChannel)
+                      .arg(s.aa.max_depth)
+                      .arg(rgbText(q.value))
+                : QString(
+                      "%1: its four corners and centre are sampled (%2). The depth limit %3 is reached "
+                      "(contrast %4, "
+                      "threshold %5): the mean of its five samples, %6, stands for the square.")
+                      .arg(where, sampled)
+                      .arg(s.aa.max_depth)
+                      .arg(num(contrast, 2), t, rgbText(q.value));
       break;
   }
   if (q.depth == 0 && q.outcome == AdaptiveSquare::Outcome::subdivided)
@@ -252,7 +253,7 @@ void PixelCanvas::paintEvent(QPaintEvent*) {
     squareSamples.assign(q.samples, q.samples + 5);
   }
 
-  const double radius = std::clamp(spacing(s.aa, side) * 0.28, 3.0, 11.0);
+  const double radius = std::clamp(spacing(s.aa, side) * 0.28, 4.0, 11.0);
   for (size_t i = 0; i < s.samples.size(); ++i) {
     const QPointF c = samplePos(int(i));
     const QColor fill = toQColor(s.samples[i].colour);
