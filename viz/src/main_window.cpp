@@ -484,6 +484,7 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
   auto t0 = std::chrono::steady_clock::now();
   ++generation_["build"];  // a structure still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
+  pixelInspector_->canvas()->setBackdrop(QImage());  // no scene: no view inside the pixel
   session_->setTrace(trace, path);
   // A trace of an anti-aliased pixel shows its samples without the scene.
   if (trace->pixel)
@@ -813,6 +814,8 @@ void MainWindow::tracePixel(int x, int y) {
       std::make_shared<const Trace>(viz::tracePixel(*grid, aa, w, h, x, y, imageView_->secondaryRays()));
   std::shared_ptr<const TracePixel> centre;
   if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
+  // The backdrop before the trace: the inspector's legend mentions it when the new pixel is shown.
+  pixelInspector_->canvas()->setBackdrop(pixelBackdrop(*grid, w, h, x, y));
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
 }
 

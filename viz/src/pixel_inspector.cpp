@@ -185,6 +185,11 @@ PixelCanvas::PixelCanvas(Session* session, QWidget* parent) : QWidget(parent), s
   connect(session_, &Session::squareChanged, this, qOverload<>(&QWidget::update));
 }
 
+void PixelCanvas::setBackdrop(const QImage& image) {
+  backdrop_ = image;
+  update();
+}
+
 QRectF PixelCanvas::pixelRect() const {
   const double side = std::max(20, std::min(width(), height()) - 28);  // room for the rings at the edges
   return QRectF((width() - side) / 2.0, (height() - side) / 2.0, side, side);
@@ -212,8 +217,14 @@ void PixelCanvas::paintEvent(QPaintEvent*) {
   const PixelSampling& s = px->sampling;
   const QRectF r = pixelRect();
   const double side = r.width();
-  // The pixel's area, neutral grey, so that black and white samples both show.
+  // The pixel's area, neutral grey, so that black and white samples both show; over it, faintly, the scene
+  // inside the pixel.
   p.fillRect(r, QColor(96, 96, 104));
+  if (!backdrop_.isNull()) {
+    p.setOpacity(0.45);
+    p.drawImage(r, backdrop_);
+    p.setOpacity(1.0);
+  }
 
   auto toScreen = [&](double fx, double fy) { return QPointF(r.left() + fx * side, r.top() + fy * side); };
   if (s.aa.mode == AntiAliasing::Mode::regular || s.aa.mode == AntiAliasing::Mode::jitter) {
@@ -482,6 +493,10 @@ void PixelInspector::refresh() {
   }
   if (s.aa.mode == AntiAliasing::Mode::none)
     legend += tr(" Without anti-aliasing the pixel is its centre ray.");
+  if (canvas_->hasBackdrop())
+    legend +=
+        tr(" Faint beneath the samples: the scene inside the pixel, seen through 64 x 64 extra rays (for "
+           "reference only: the picture used the samples).");
   legend_->setText(legend + "</span>");
 
   table_->setRowCount(int(s.samples.size()));

@@ -9,6 +9,7 @@
 
 #include <string>
 
+#include <QImage>
 #include <QJsonObject>
 #include <QWidget>
 
@@ -42,6 +43,10 @@ class PixelCanvas : public QWidget {
   explicit PixelCanvas(Session* session, QWidget* parent = nullptr);
   // Where sample i's centre is drawn (widget coordinates), for scripted clicks and tests.
   QPointF samplePos(int i) const;
+  // The scene inside the pixel, drawn faintly under the samples (null: none, as for a trace without its
+  // scene).
+  void setBackdrop(const QImage& image);
+  bool hasBackdrop() const { return !backdrop_.isNull(); }
   QSize sizeHint() const override { return {260, 260}; }
   QSize minimumSizeHint() const override { return {160, 160}; }
   bool hasHeightForWidth() const override { return true; }
@@ -57,6 +62,7 @@ class PixelCanvas : public QWidget {
  private:
   QRectF pixelRect() const;
   Session* session_;
+  QImage backdrop_;
 };
 
 class PixelInspector : public QWidget {

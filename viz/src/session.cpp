@@ -108,6 +108,26 @@ PixelSampling samplePixel(const StructureData& s, const AntiAliasing& aa, int wi
                       [&](float x, float y) { return tracer.trace_primary(camera.generate(x, y), &counts); });
 }
 
+QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n) {
+  const Scene& scene = s.scene->scene;
+  const ProjectiveCamera camera(scene.camera, width, height);
+  const WhittedTracer tracer(scene, *s.accel);
+  RayCounts counts;
+  QImage img(n, n, QImage::Format_RGB888);
+  for (int j = 0; j < n; ++j) {
+    uchar* row = img.scanLine(j);
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 c = tracer.trace_primary(
+          camera.generate(float(px) + (float(i) + 0.5f) / float(n), float(py) + (float(j) + 0.5f) / float(n)),
+          &counts);
+      row[3 * i] = srgb_encode8(c.r);
+      row[3 * i + 1] = srgb_encode8(c.g);
+      row[3 * i + 2] = srgb_encode8(c.b);
+    }
+  }
+  return img;
+}
+
 TracePixel centrePixel(const StructureData& s, int width, int height, int px, int py) {
   TracePixel p;
   p.sampling = samplePixel(s, AntiAliasing{}, width, height, px, py);
