@@ -313,9 +313,16 @@ int run_info(const InfoArgs& a) {
 int run_trace(const TraceArgs& a) {
   if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
+  if (a.aa && !a.pixel) throw InputError("", 0, "trace: --aa goes with --pixel");
+  if (a.seed && !a.aa) throw InputError("", 0, "trace: --seed goes with --aa");
   if (a.build_events && a.format != "json") throw InputError("", 0, "trace: --build-events needs --format json");
   check_output_folder(a.output);
+  // The anti-aliasing spec is checked before the scene is read: a typo costs nothing.
+  std::optional<AntiAliasing> aa;
+  if (a.aa && *a.aa != "scene") aa = parse_antialiasing(*a.aa);
   Scene scene = load_scene(a.scene);
+  if (a.aa && *a.aa == "scene") aa = scene.render.aa;
+  const uint64_t seed = a.seed ? *a.seed : scene.render.seed;
   auto accel = build_structure(a.structure);
   if (!records_events(*accel))
     throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid, kd or kd-median)");
@@ -341,6 +348,9 @@ int run_trace(const TraceArgs& a) {
     py = int(p[1]);
   }
   auto record = [&]() {
+    if (aa)  // TracePixel::exact stays empty: the exact value is not known here
+      return record_pixel_trace(scene, *accel, w, h, px, py, *aa, seed, a.secondary, a.scene,
+                                file_content_hash(a.scene));
     std::vector<RayRequest> requests;
     if (by_hand) requests.push_back(*by_hand);
     else requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
@@ -517,7 +527,7 @@ int run_kdtree_stats(const KdStatsArgs& a) {
 
 int run_trace_info(const TraceInfoArgs& a) {
   Trace trace = read_trace_json(a.trace);
-  std::printf("%s: valid raystep trace, version %d\n", a.trace.c_str(), kTraceVersion);
+  std::printf("%s: valid raystep trace, version %d\n", a.trace.c_str(), trace.version);
   std::printf("%s", trace_summary(trace).c_str());
   return 0;
 }

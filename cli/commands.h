@@ -64,6 +64,8 @@ struct TraceArgs {
   bool secondary = false;            // also the shadow, reflected and refracted rays the pixel spawns
   bool build_events = false;         // kd-trees: also stream every build event into the trace
   std::optional<std::string> size;   // image size for --pixel, default the scene's
+  std::optional<std::string> aa;     // with --pixel: the anti-aliased pixel's samples ("scene": the scene's)
+  std::optional<uint64_t> seed;      // with --aa: the sampling seed, default the scene's
   std::string format = "json";       // json | csv
   std::string output;
 };

@@ -108,6 +108,11 @@ int main(int argc, char** argv) {
   trace_cmd->add_flag("--build-events", trace.build_events,
                       "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
+  trace_cmd->add_option(
+      "--aa", trace.aa,
+      "with --pixel: record the anti-aliased pixel, every sample and its rays: none | regular:K | "
+      "jitter:K | random:N | adaptive:T[:D] | scene (the scene's setting)");
+  trace_cmd->add_option("--seed", trace.seed, "with --aa: the sampling seed (default: the scene's)");
   trace_cmd->add_option("--format", trace.format, "json (the trace format) | csv (one event per row)")
       ->capture_default_str()
       ->check(CLI::IsMember({"json", "csv"}));

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/json_locate.h"
 #include "raystep/scene/json_tape.h"
 #include "raystep/util/atomic_file.h"
@@ -37,6 +38,7 @@ const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", 
                                                      "next_node_beyond"};
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
 const char* const kAxes[3] = {"x", "y", "z"};
+const char* const kOutcomes[3] = {"agree", "depth_limit", "subdivided"};  // AdaptiveSquare::Outcome
 }  // namespace
 
 const char* event_type_name(EventType type) { return kEventNames[int(type)]; }
@@ -170,6 +172,54 @@ RayCounters count_events(const std::vector<Event>& events) {
   return c;
 }
 
+// The pixel section: its head on one line, then one sample and one square per line.
+std::string pixel_json(const TracePixel& p) {
+  const PixelSampling& s = p.sampling;
+  ordered head;
+  head["x"] = s.x;
+  head["y"] = s.y;
+  head["width"] = p.width;
+  head["height"] = p.height;
+  head["seed"] = p.seed;
+  head["aa"] = to_string(s.aa);
+  head["value"] = vec(s.value);
+  if (p.exact) head["exact"] = vec(*p.exact);
+  std::string h = head.dump();
+  h.pop_back();  // reopen the object to append the samples and squares, one per line
+  std::ostringstream out;
+  out << h << ",\n  \"samples\": [";
+  for (size_t i = 0; i < s.samples.size(); ++i) {
+    const PixelSample& ps = s.samples[i];
+    ordered j;
+    j["px"] = number(ps.px);
+    j["py"] = number(ps.py);
+    j["colour"] = vec(ps.colour);
+    if (ps.stratum[0] >= 0) j["stratum"] = {ps.stratum[0], ps.stratum[1]};
+    if (ps.lattice[0] >= 0) j["lattice"] = {ps.lattice[0], ps.lattice[1]};
+    out << (i ? ",\n   " : "\n   ") << j.dump();
+  }
+  out << (s.samples.empty() ? "],\n" : "\n  ],\n");
+  out << "  \"squares\": [";
+  for (size_t i = 0; i < s.squares.size(); ++i) {
+    const AdaptiveSquare& q = s.squares[i];
+    ordered j;
+    j["parent"] = q.parent;
+    j["depth"] = q.depth;
+    j["i0"] = q.i0;
+    j["j0"] = q.j0;
+    j["size"] = q.size;
+    j["samples"] = {q.samples[0], q.samples[1], q.samples[2], q.samples[3], q.samples[4]};
+    j["new_samples"] = q.new_samples;
+    j["contrast"] = vec(q.contrast);
+    j["outcome"] = kOutcomes[int(q.outcome)];
+    j["children"] = {q.children[0], q.children[1], q.children[2], q.children[3]};
+    j["value"] = vec(q.value);
+    out << (i ? ",\n   " : "\n   ") << j.dump();
+  }
+  out << (s.squares.empty() ? "]}" : "\n  ]}");
+  return out.str();
+}
+
 }  // namespace
 
 std::string build_event_json(const TraceBuildEvent& b, size_t seq) {
@@ -238,6 +288,7 @@ std::string trace_json_rest(const Trace& t) {
     s[p.key] = p.is_text ? ordered(p.text) : integral ? ordered(int64_t(p.number)) : ordered(p.number);
   }
   out << " \"structure\": " << s.dump() << ",\n";
+  if (t.pixel) out << " \"pixel\": " << pixel_json(*t.pixel) << ",\n";
 
   out << " \"rays\": [";
   for (size_t r = 0; r < t.rays.size(); ++r) {
@@ -250,6 +301,7 @@ std::string trace_json_rest(const Trace& t) {
     head["kind"] = ray_kind_name(tr.kind);
     head["depth"] = tr.depth;
     if (tr.has_pixel) head["pixel"] = {tr.pixel[0], tr.pixel[1]};
+    if (tr.sample >= 0) head["sample"] = tr.sample;
     RayCounters c = count_events(tr.events);
     head["counters"] = {{"cells", c.cells},         {"nodes", c.nodes},   {"prim_tests", c.prim_tests},
                         {"prim_hits", c.prim_hits}, {"mailbox_hits", c.mailbox_hits},
@@ -319,10 +371,10 @@ void write_trace_json(const std::string& path, const Trace& trace) {
 
 void write_trace_csv(const std::string& path, const Trace& t) {
   enum Col { ray, seq, type, i, j, k, t_enter, t_exit, t_max_x, t_max_y, t_max_z, t_delta_x, t_delta_y, t_delta_z,
-             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, kColumns };
+             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, sample, kColumns };
   static const char* const kHeader =
       "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
-      "node,depth,t_min,t_max,prim,hit,t,reason\n";
+      "node,depth,t_min,t_max,prim,hit,t,reason,sample\n";  // sample: appended in version 2
   auto num = [](float v) {
     if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
     char buf[32];
@@ -337,6 +389,7 @@ void write_trace_csv(const std::string& path, const Trace& t) {
         row[ray] = std::to_string(r);
         row[seq] = std::to_string(e.seq);
         row[type] = event_type_name(e.type);
+        if (t.rays[r].sample >= 0) row[sample] = std::to_string(t.rays[r].sample);
         switch (e.type) {
           case EventType::cell:
             for (int a = 0; a < 3; ++a) {
@@ -508,6 +561,131 @@ int name_index(std::string_view name, const char* const (&names)[N]) {
   return -1;
 }
 
+// The pixel section (version 2): every index in range, every sample where its pattern puts it, the adaptive
+// tree well formed (parents before children, each child naming its parent).
+template <class Capped>
+TracePixel read_pixel(const Reader& rd, const Value& jp, const Path& pp, Capped capped) {
+  TracePixel p;
+  PixelSampling& s = p.sampling;
+  constexpr int64_t kMaxSide = 1 << 15;  // render_image's limit
+  p.width = int(rd.integer_at(jp, pp, "width", 1, kMaxSide));
+  p.height = int(rd.integer_at(jp, pp, "height", 1, kMaxSide));
+  s.x = int(rd.integer_at(jp, pp, "x", 0, p.width - 1));
+  s.y = int(rd.integer_at(jp, pp, "y", 0, p.height - 1));
+  const Value seed = rd.member(jp, pp, "seed");
+  if (!seed.is_number_integer() || (seed.kind() != Value::Kind::number_unsigned && seed.get_int64() < 0))
+    rd.fail(pp.key("seed"), "expected an integer in 0..2^64-1");
+  p.seed = uint64_t(seed.get_int64());
+  const std::string spec = rd.text_at(jp, pp, "aa");
+  try {
+    s.aa = parse_antialiasing(spec);
+  } catch (const InputError& e) {
+    rd.fail(pp.key("aa"), e.detail());
+  }
+  s.value = rd.vec_at(jp, pp, "value");
+  if (jp.contains("exact")) p.exact = rd.vec_at(jp, pp, "exact");
+
+  // Samples: as many as the pattern casts, each inside the pixel, labelled with its stratum or lattice point.
+  using Mode = AntiAliasing::Mode;
+  const Value samples = rd.array_at(jp, pp, "samples");
+  const Path sp = pp.key("samples");
+  const size_t count = samples.size();
+  const bool stratified = s.aa.mode == Mode::regular || s.aa.mode == Mode::jitter;
+  const bool adaptive = s.aa.mode == Mode::adaptive;
+  const size_t expected = stratified                  ? size_t(s.aa.k) * size_t(s.aa.k)
+                          : s.aa.mode == Mode::random ? size_t(s.aa.k)
+                          : s.aa.mode == Mode::none   ? 1
+                                                      : 0;
+  if (adaptive ? count < 5 || count > max_samples_per_pixel(s.aa) : count != expected)
+    rd.fail(sp,
+            std::to_string(count) + " samples, but " + spec + " casts " +
+                (adaptive ? "5.." + std::to_string(max_samples_per_pixel(s.aa)) : std::to_string(expected)));
+  const int n = 2 << s.aa.max_depth;  // adaptive: lattice steps per pixel side
+  auto pair = [&](const Value& v, const Path& path, int64_t hi) {
+    if (!v.is_array() || v.size() != 2) rd.fail(path, "expected [i, j]");
+    return std::array<int, 2>{int(rd.integer(v[0], path.at(0), 0, hi)),
+                              int(rd.integer(v[1], path.at(1), 0, hi))};
+  };
+  s.samples.reserve(capped(count));
+  for (size_t i = 0; i < count; ++i) {
+    const Path ip = sp.at(i);
+    const Value js = samples[i];
+    PixelSample ps;
+    ps.px = rd.real_at(js, ip, "px");
+    ps.py = rd.real_at(js, ip, "py");
+    if (!(ps.px >= float(s.x) && ps.px <= float(s.x + 1)))
+      rd.fail(ip.key("px"), "outside pixel " + std::to_string(s.x) + "'s span [x, x+1]");
+    if (!(ps.py >= float(s.y) && ps.py <= float(s.y + 1)))
+      rd.fail(ip.key("py"), "outside pixel row " + std::to_string(s.y) + "'s span [y, y+1]");
+    ps.colour = rd.vec_at(js, ip, "colour");
+    if (stratified) {
+      const std::array<int, 2> c = pair(rd.member(js, ip, "stratum"), ip.key("stratum"), s.aa.k - 1);
+      ps.stratum[0] = c[0];
+      ps.stratum[1] = c[1];
+    } else if (js.contains("stratum")) {
+      rd.fail(ip.key("stratum"), "only regular and jittered samples have a stratum");
+    }
+    if (adaptive) {
+      const std::array<int, 2> c = pair(rd.member(js, ip, "lattice"), ip.key("lattice"), n);
+      ps.lattice[0] = c[0];
+      ps.lattice[1] = c[1];
+    } else if (js.contains("lattice")) {
+      rd.fail(ip.key("lattice"), "only adaptive samples lie on the lattice");
+    }
+    s.samples.push_back(ps);
+  }
+
+  // Adaptive squares, depth first.
+  const Value squares = jp.contains("squares") ? rd.array_at(jp, pp, "squares") : Value();
+  const Path qp = pp.key("squares");
+  const size_t nsq = squares.exists() ? squares.size() : 0;
+  if (adaptive && nsq == 0) rd.fail(qp, "adaptive sampling has at least the whole pixel's square");
+  if (!adaptive && nsq > 0) rd.fail(qp, "only adaptive sampling has squares");
+  s.squares.reserve(capped(nsq));
+  for (size_t i = 0; i < nsq; ++i) {
+    const Path ip = qp.at(i);
+    const Value jq = squares[i];
+    AdaptiveSquare q;
+    q.parent = int(rd.integer_at(jq, ip, "parent", i == 0 ? -1 : 0, int64_t(i) - 1));
+    q.depth = int(rd.integer_at(jq, ip, "depth", 0, s.aa.max_depth));
+    q.i0 = int(rd.integer_at(jq, ip, "i0", 0, n));
+    q.j0 = int(rd.integer_at(jq, ip, "j0", 0, n));
+    q.size = int(rd.integer_at(jq, ip, "size", 1, n));
+    const Value idx = rd.array_at(jq, ip, "samples");
+    const Path xp = ip.key("samples");
+    if (idx.size() != 5) rd.fail(xp, "expected the 5 sample indices (4 corners, then the centre)");
+    for (int k = 0; k < 5; ++k) q.samples[k] = int(rd.integer(idx[k], xp.at(k), 0, int64_t(count) - 1));
+    q.new_samples = int(rd.integer_at(jq, ip, "new_samples", 0, 5));
+    q.contrast = rd.vec_at(jq, ip, "contrast");
+    const std::string_view outcome = rd.view_at(jq, ip, "outcome");
+    const int o = name_index(outcome, kOutcomes);
+    if (o < 0)
+      rd.fail(ip.key("outcome"),
+              "unknown outcome \"" + std::string(outcome) + "\" (agree, depth_limit, subdivided)");
+    q.outcome = AdaptiveSquare::Outcome(o);
+    const Value ch = rd.array_at(jq, ip, "children");
+    const Path cp = ip.key("children");
+    if (ch.size() != 4) rd.fail(cp, "expected 4 children (-1 for none)");
+    const bool split = q.outcome == AdaptiveSquare::Outcome::subdivided;
+    for (int k = 0; k < 4; ++k)
+      q.children[k] = int(split ? rd.integer(ch[k], cp.at(k), int64_t(i) + 1, int64_t(nsq) - 1)
+                                : rd.integer(ch[k], cp.at(k), -1, -1));
+    q.value = rd.vec_at(jq, ip, "value");
+    if (q.parent >= 0) {
+      const AdaptiveSquare& parent = s.squares[size_t(q.parent)];
+      if (parent.outcome != AdaptiveSquare::Outcome::subdivided ||
+          std::find(parent.children, parent.children + 4, int(i)) == parent.children + 4)
+        rd.fail(ip.key("parent"), "square " + std::to_string(q.parent) + " does not list it as a child");
+    }
+    s.squares.push_back(q);
+  }
+  for (size_t i = 0; i < s.squares.size(); ++i)
+    for (int c : s.squares[i].children)
+      if (c >= 0 && s.squares[size_t(c)].parent != int(i))
+        rd.fail(qp.at(size_t(c)).key("parent"), "expected " + std::to_string(i) + ", the square listing it");
+  return p;
+}
+
 }  // namespace
 
 Trace parse_trace_json(const std::string& text, const std::string& name) {
@@ -544,11 +722,13 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   std::string_view format = format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
   if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
   int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
-  if (version != kTraceVersion)
-    rd.fail("version", "unsupported trace version " + std::to_string(version) + " (this raystep reads version " +
+  if (version < kTraceOldestVersion || version > kTraceVersion)
+    rd.fail("version", "unsupported trace version " + std::to_string(version) +
+                           " (this raystep reads versions " + std::to_string(kTraceOldestVersion) + " to " +
                            std::to_string(kTraceVersion) + ")");
 
   Trace t;
+  t.version = int(version);
   const Value scene = rd.member(doc, root, "scene");
   t.scene_path = rd.text_at(scene, "scene", "path");
   t.scene_hash = rd.text_at(scene, "scene", "hash");
@@ -590,6 +770,10 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     return a;
   };
 
+  // Version 2: an anti-aliased pixel's samples (version 1 had no such key: a reader ignores keys it does not
+  // know).
+  if (version >= 2 && doc.contains("pixel")) t.pixel = read_pixel(rd, doc.find("pixel"), "pixel", capped);
+
   const Value rays = rd.array_at(doc, root, "rays");
   t.rays.reserve(capped(rays.size()));
   const Path rays_path = "rays";
@@ -613,6 +797,10 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       tr.has_pixel = true;
       tr.pixel[0] = int(rd.integer(px[0], pp.at(0), 0, 1 << 20));
       tr.pixel[1] = int(rd.integer(px[1], pp.at(1), 0, 1 << 20));
+    }
+    if (version >= 2 && jr.contains("sample")) {
+      if (!t.pixel) rd.fail(rp.key("sample"), "a ray's sample needs the trace's \"pixel\" section");
+      tr.sample = int(rd.integer_at(jr, rp, "sample", 0, int64_t(t.pixel->sampling.samples.size()) - 1));
     }
     const Value events = rd.array_at(jr, rp, "events");
     const Path events_path = rp.key("events");
@@ -858,6 +1046,42 @@ Trace read_trace_json(const std::string& path) {
   return parse_trace_json(text, path);
 }
 
+namespace {
+
+std::string rgb(const glm::vec3& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", double(v.x), double(v.y), double(v.z));
+  return buf;
+}
+
+// The pixel section in two or three lines: the pattern, the samples, the adaptive tree, the value.
+std::string pixel_summary(const TracePixel& p) {
+  const PixelSampling& s = p.sampling;
+  std::ostringstream out;
+  out << "pixel " << s.x << "," << s.y << " of " << p.width << "x" << p.height << ": aa " << to_string(s.aa)
+      << ", seed " << p.seed << ", " << s.samples.size() << " sample(s)\n";
+  if (!s.squares.empty()) {
+    size_t n[3] = {0, 0, 0};
+    int depth = 0;
+    for (const AdaptiveSquare& q : s.squares) {
+      ++n[int(q.outcome)];
+      depth = std::max(depth, q.depth);
+    }
+    out << "adaptive: " << s.squares.size() << " squares, depth " << depth << " reached (limit "
+        << s.aa.max_depth << "), " << n[2] << " subdivided, " << n[0] << " agree, " << n[1]
+        << " at the depth limit; threshold " << s.aa.threshold << "\n";
+  }
+  out << "value " << rgb(s.value);
+  if (p.exact) {
+    const glm::vec3 d = s.value - *p.exact;
+    out << ", exact " << rgb(*p.exact) << ", error " << rgb(d);
+  }
+  out << "\n";
+  return out.str();
+}
+
+}  // namespace
+
 std::string trace_summary(const Trace& t) {
   std::ostringstream out;
   out << "trace: " << t.rays.size() << " ray(s), structure " << t.structure.kind;
@@ -872,6 +1096,7 @@ std::string trace_summary(const Trace& t) {
     if (!from.empty()) out << " (coarsened from " << from << (why.empty() ? "" : ": " + why) << ")";
   }
   out << ", scene " << t.scene_path << " (" << t.scene_primitives << " primitives)\n";
+  if (t.pixel) out << pixel_summary(*t.pixel);
   std::map<std::string, size_t> totals;
   for (size_t r = 0; r < t.rays.size(); ++r) {
     const TracedRay& tr = t.rays[r];
@@ -879,6 +1104,7 @@ std::string trace_summary(const Trace& t) {
     const Event& end = tr.events.back();
     out << "ray " << r << ": " << ray_kind_name(tr.kind) << ", depth " << tr.depth;
     if (tr.has_pixel) out << ", pixel " << tr.pixel[0] << "," << tr.pixel[1];
+    if (tr.sample >= 0) out << ", sample " << tr.sample;
     out << ", " << tr.events.size() << " events, ";
     if (t.structure.kind == "grid") out << c.cells << " cells, ";
     else out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";

@@ -27,6 +27,7 @@ void record_rays(const Geometry& geometry, const std::vector<RayRequest>& rays, 
     tr.has_pixel = req.has_pixel;
     tr.pixel[0] = req.pixel[0];
     tr.pixel[1] = req.pixel[1];
+    tr.sample = req.sample;
     tr.events = rec.events();
     for (const Event& e : tr.events)
       if (e.prim >= 0) prims.insert(e.prim);

@@ -186,7 +186,8 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   TrapScene s;
   std::string text = trace_to_json(s.trace());
   expect_rejected(text, "\"raystep-trace\"", "\"other-trace\"", "not a raystep trace");
-  expect_rejected(text, "\"version\": 1", "\"version\": 7", "unsupported trace version 7");
+  expect_rejected(text, "\"version\": 2", "\"version\": 7", "unsupported trace version 7");
+  expect_rejected(text, "\"version\": 2", "\"version\": 0", "unsupported trace version 0");
   expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"", "unknown event type \"teleport\"",
                   line_of(text, "\"type\":\"mailbox_hit\""));
   expect_rejected(text, "\"prim\":1", "\"prim\":99", "rays[0].events[6].prim: value 99 out of range 0..2");

@@ -1,6 +1,7 @@
 // Trace files: the recorded traversal of one or more rays, the contract between core and the debugger and
-// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 1; docs/trace-format.md
-// lists every field) read back by a validating reader, and CSV with one event per row.
+// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 2, which adds an
+// anti-aliased pixel's samples; docs/trace-format.md lists every field) read back by a validating reader that
+// also reads version 1, and CSV with one event per row.
 #pragma once
 
 #include <array>
@@ -17,7 +18,8 @@
 namespace raystep {
 
 constexpr const char* kTraceFormat = "raystep-trace";
-constexpr int kTraceVersion = 1;
+constexpr int kTraceVersion = 2;        // what the writer writes
+constexpr int kTraceOldestVersion = 1;  // the oldest version the reader reads
 
 // A build parameter of the structure: a number or a text.
 struct TraceParam {
@@ -93,6 +95,7 @@ struct TracePixel {
 };
 
 struct Trace {
+  int version = kTraceVersion;  // read: the document's version; the writer always writes kTraceVersion
   std::string scene_path;
   std::string scene_hash;  // "fnv1a64:<16 hex digits>" of the scene file's bytes
   uint64_t scene_primitives = 0;
