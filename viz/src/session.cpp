@@ -145,19 +145,10 @@ Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int 
     std::vector<RayRequest> requests = pixel_rays(sd.scene, *s.accel, width, height, px, py, secondary);
     return record_trace(sd.scene.geometry, *s.accel, requests, sd.path, sd.hash);
   }
-  const uint64_t seed = sd.scene.render.seed;
-  PixelSampleRays rays = pixel_sample_rays(sd.scene, *s.accel, width, height, px, py, aa, seed, secondary);
-  Trace trace = record_trace(sd.scene.geometry, *s.accel, rays.rays, sd.path, sd.hash);
-  // One traced ray per request, in order: each keeps the sample it descends from.
-  for (size_t i = 0; i < trace.rays.size() && i < rays.rays.size(); ++i)
-    if (trace.rays[i].sample < 0) trace.rays[i].sample = rays.rays[i].sample;
-  TracePixel pixel;
-  pixel.sampling = std::move(rays.sampling);
-  pixel.width = width;
-  pixel.height = height;
-  pixel.seed = seed;
-  pixel.exact = exact_pixel_value(sd.scene, width, height, px, py);
-  trace.pixel = std::move(pixel);
+  // The same trace as `raystep trace --pixel X,Y --aa SPEC` records, with the exact value where there is one.
+  Trace trace = record_pixel_trace(sd.scene, *s.accel, width, height, px, py, aa, sd.scene.render.seed, secondary,
+                                   sd.path, sd.hash);
+  if (trace.pixel) trace.pixel->exact = exact_pixel_value(sd.scene, width, height, px, py);
   return trace;
 }
 
