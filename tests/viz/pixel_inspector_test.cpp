@@ -203,6 +203,21 @@ TEST(PixelInspector, TraceOfAnAntiAliasedPixelOpensWithItsInspector) {
   EXPECT_EQ(opened["ray_sample"].get<int>(), 4);
 }
 
+#ifdef RAYSTEP_CLI_EXE
+// The GUI's trace of an anti-aliased pixel is the command line's, byte for byte (Cornell: no exact value).
+TEST(PixelInspector, ExportedPixelTraceIsTheCommandLinesTrace) {
+  const std::string gt = kOut + "/pixel-export-gui.json", ct = kOut + "/pixel-export-cli.json";
+  GuiRun r =
+      gui("'" + kCornell + "' --aa jitter:2 --pixel 160,200 --secondary --export-trace '" + gt + "' --quit",
+          "pixel-export");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' trace '" + kCornell +
+                          "' --pixel 160,200 --aa jitter:2 --secondary -o '" + ct + "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(gt), slurp(ct)) << "the GUI's export and `raystep trace --aa` differ";
+}
+#endif
+
 TEST(PixelInspector, OverlayDrawsOnlyTheVisiblePixels) {
   const json st = inspect("'" + kAliasing + "' --aa jitter:4 --pixel 30,38 --zoom 12 --sample-overlay",
                           "pixel-inspector-overlay");
