@@ -455,8 +455,7 @@ void PixelInspector::refresh() {
   const QColor avg = toQColor(s.value);
   swatch_->setStyleSheet(QString("background: %1; border: 1px solid #ddd;").arg(avg.name()));
   QString v = tr("average (box filter): <b>%1</b>").arg(rgbText(s.value));
-  if (s.aa.mode == AntiAliasing::Mode::adaptive)
-    v += tr("<br>(the mean of the leaf squares' values, each weighted by its area)");
+  if (s.aa.mode == AntiAliasing::Mode::adaptive) v += tr("<br>(the leaf squares' values, weighted by area)");
   if (px->exact) {
     const glm::vec3 e = glm::abs(s.value - *px->exact);
     // The error per channel only where the channels differ (a grey scene has one number).
@@ -466,9 +465,10 @@ void PixelInspector::refresh() {
              .arg(num(std::max({e.r, e.g, e.b}), 4))
              .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)));
   } else {
-    v +=
-        tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles seen "
-           "orthographically</i>");
+    v += session_->scene()
+             ? tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles "
+                  "seen orthographically</i>")
+             : tr("<br><i>the trace holds no exact value (open its scene to compute one)</i>");
   }
   values_->setText(v);
   QString legend =
