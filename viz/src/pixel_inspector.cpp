@@ -222,6 +222,7 @@ void PixelCanvas::paintEvent(QPaintEvent*) {
   p.fillRect(r, QColor(96, 96, 104));
   if (!backdrop_.isNull()) {
     p.setOpacity(0.45);
+    p.setRenderHint(QPainter::SmoothPixmapTransform, true);  // an edge reads as a line, not a staircase
     p.drawImage(r, backdrop_);
     p.setOpacity(1.0);
   }
@@ -445,25 +446,28 @@ void PixelInspector::refresh() {
     return;
   }
   const PixelSampling& s = px->sampling;
-  title_->setText(tr("<b>Pixel (%1, %2)</b> of %3 x %4, anti-aliasing %5: <b>%6 samples</b> cast.")
+  title_->setText(tr("<b>Pixel (%1, %2)</b> of %3 x %4, anti-aliasing %5: <b>%6</b> cast.")
                       .arg(s.x)
                       .arg(s.y)
                       .arg(px->width)
                       .arg(px->height)
                       .arg(QString::fromStdString(describeAntiAliasing(s.aa)).toHtmlEscaped())
-                      .arg(s.samples.size()));
+                      .arg(s.samples.size() == 1 ? tr("1 sample") : tr("%1 samples").arg(s.samples.size())));
   const QColor avg = toQColor(s.value);
   swatch_->setStyleSheet(QString("background: %1; border: 1px solid #ddd;").arg(avg.name()));
-  QString v = tr("average (box filter): <b>%1</b>").arg(rgbText(s.value));
+  QString v = (s.samples.size() == 1 ? tr("value (the one sample): <b>%1</b>")
+                                     : tr("average (box filter): <b>%1</b>"))
+                  .arg(rgbText(s.value));
   if (s.aa.mode == AntiAliasing::Mode::adaptive) v += tr("<br>(the leaf squares' values, weighted by area)");
   if (px->exact) {
     const glm::vec3 e = glm::abs(s.value - *px->exact);
     // The error per channel only where the channels differ (a grey scene has one number).
     const bool grey = e.r == e.g && e.g == e.b;
-    v += tr("<br>exact (area coverage): <b>%1</b><br>error of the average: <b>%2</b>%3")
+    v += tr("<br>exact (area coverage): <b>%1</b><br>error of the %4: <b>%2</b>%3")
              .arg(rgbText(*px->exact))
              .arg(num(std::max({e.r, e.g, e.b}), 4))
-             .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)));
+             .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)))
+             .arg(s.samples.size() == 1 ? tr("value") : tr("average"));
   } else {
     v += session_->scene()
              ? tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles "
@@ -494,9 +498,7 @@ void PixelInspector::refresh() {
   if (s.aa.mode == AntiAliasing::Mode::none)
     legend += tr(" Without anti-aliasing the pixel is its centre ray.");
   if (canvas_->hasBackdrop())
-    legend +=
-        tr(" Faint beneath the samples: the scene inside the pixel, seen through 64 x 64 extra rays (for "
-           "reference only: the picture used the samples).");
+    legend += tr(" Faint beneath: the scene inside the pixel (64 x 64 extra rays, for reference only).");
   legend_->setText(legend + "</span>");
 
   table_->setRowCount(int(s.samples.size()));
