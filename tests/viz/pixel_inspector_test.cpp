@@ -101,6 +101,9 @@ TEST(PixelInspector, PositionsAndColoursAreTheSamplersAndTheRenderers) {
     // The scene is flat and orthographic: the exact value is shown with the error of the average.
     ASSERT_TRUE(in.contains("exact"));
     EXPECT_NE(in["values"].get<std::string>().find("error of the "), std::string::npos);
+    // The scene inside the pixel beneath the samples, and the legend says so.
+    EXPECT_TRUE(in["backdrop"].get<bool>());
+    EXPECT_NE(in["legend"].get<std::string>().find("scene inside the pixel"), std::string::npos);
     // Every sample's ray is in the trace (without anti-aliasing: the centre ray).
     EXPECT_EQ(st["trace_rays"].get<size_t>(), want.samples.size());
   }
@@ -200,6 +203,7 @@ TEST(PixelInspector, TraceOfAnAntiAliasedPixelOpensWithItsInspector) {
   EXPECT_EQ(in["value"], scene["inspector"]["value"]);
   EXPECT_EQ(in["exact"], scene["inspector"]["exact"]);
   EXPECT_EQ(in["sample"].get<int>(), 4);
+  EXPECT_FALSE(in["backdrop"].get<bool>());  // no scene to look inside the pixel
   EXPECT_EQ(opened["ray_sample"].get<int>(), 4);
 }
 

@@ -117,6 +117,9 @@ MainWindow::MainWindow() : session_(new Session(this)) {
                           QDockWidget::DockWidgetFloatable);
   addDockWidget(Qt::BottomDockWidgetArea, pixelDock_);
   pixelDock_->hide();
+  connect(pixelDock_, &QDockWidget::visibilityChanged, this, [this](bool visible) {
+    if (visible) drawPixelBackdrop();  // opened from the View menu too
+  });
   buildMenus();
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
@@ -814,14 +817,25 @@ void MainWindow::tracePixel(int x, int y) {
       std::make_shared<const Trace>(viz::tracePixel(*grid, aa, w, h, x, y, imageView_->secondaryRays()));
   std::shared_ptr<const TracePixel> centre;
   if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
-  // The backdrop before the trace: the inspector's legend mentions it when the new pixel is shown.
-  pixelInspector_->canvas()->setBackdrop(pixelBackdrop(*grid, w, h, x, y));
+  // The scene inside the pixel, beneath the samples: 4096 more rays, cast only while the inspector is open (a
+  // lesson step that does not show it stays as fast as before); before the trace, whose legend mentions it.
+  pixelInspector_->canvas()->setBackdrop(pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y) : QImage());
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
+}
+
+void MainWindow::drawPixelBackdrop() {
+  const StructureData* grid = session_->structure();
+  const TracePixel* px = session_->pixel();
+  if (!grid || !px || !session_->scene() || pixelInspector_->canvas()->hasBackdrop()) return;
+  const int w = session_->imageWidth(), h = session_->imageHeight();
+  if (px->sampling.x >= w || px->sampling.y >= h) return;
+  pixelInspector_->setBackdrop(pixelBackdrop(*grid, w, h, px->sampling.x, px->sampling.y));
 }
 
 void MainWindow::showPixelInspector() {
   if (pixelDock_->isVisible()) return;
   pixelDock_->show();
+  drawPixelBackdrop();
   resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
 }
 

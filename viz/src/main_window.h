@@ -138,6 +138,7 @@ class MainWindow : public QMainWindow {
   void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
   void buildMenus();
   void showSahCurve();  // records the selected node's curve off the GUI thread
+  void drawPixelBackdrop();  // the scene inside the traced pixel, for the inspector (when not drawn yet)
 
   Session* session_;
   StructurePanel* structure_;

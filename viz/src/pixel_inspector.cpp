@@ -427,6 +427,11 @@ PixelInspector::PixelInspector(Session* session, QWidget* parent) : QWidget(pare
   refresh();
 }
 
+void PixelInspector::setBackdrop(const QImage& image) {
+  canvas_->setBackdrop(image);
+  refresh();
+}
+
 void PixelInspector::refresh() {
   const TracePixel* px = session_->pixel();
   QSignalBlocker blockTable(table_);
@@ -622,6 +627,8 @@ QJsonObject PixelInspector::dumpState() const {
                                {"outcome", outcomeName(q)},
                                {"contrast", rgb(q.contrast)}});
   o["squares"] = squares;
+  o["backdrop"] = canvas_->hasBackdrop();
+  o["legend"] = legend_->text();
   o["square"] = session_->square();
   o["sample"] = session_->currentSample();
   o["title"] = title_->text();

@@ -70,6 +70,8 @@ class PixelInspector : public QWidget {
  public:
   explicit PixelInspector(Session* session, QWidget* parent = nullptr);
   PixelCanvas* canvas() const { return canvas_; }
+  // The scene inside the pixel beneath the samples (null: none); the legend says what it is.
+  void setBackdrop(const QImage& image);
   // What the inspector shows, for the scripted mode's --dump-state.
   QJsonObject dumpState() const;
 
