@@ -835,12 +835,17 @@ void MainWindow::drawPixelBackdrop() {
 void MainWindow::showPixelInspector() {
   if (pixelDock_->isVisible()) return;
   pixelDock_->show();
-  drawPixelBackdrop();
   resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
+  // Below 900 pixels the dock leaves the picture a strip: the structure panel gives up what it can spare (down
+  // to its minimum) while the inspector is open.
+  if (height() < 900) leftSplit_->setSizes({int(130 * scale_), 1000});
+  drawPixelBackdrop();
 }
 
 void MainWindow::hidePixelInspector() {
+  if (!pixelDock_->isVisible()) return;
   pixelDock_->hide();
+  leftSplit_->setSizes({200, 500});
 }
 
 bool MainWindow::pixelInspectorVisible() const {
