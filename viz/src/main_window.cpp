@@ -846,6 +846,7 @@ void MainWindow::hidePixelInspector() {
   if (!pixelDock_->isVisible()) return;
   pixelDock_->hide();
   leftSplit_->setSizes({200, 500});
+  pixelInspector_->setBackdrop(QImage());  // traced again when the inspector opens: as a fresh window has it
 }
 
 bool MainWindow::pixelInspectorVisible() const {

@@ -639,7 +639,7 @@ QJsonObject PixelInspector::dumpState() const {
     QTreeWidgetItem* cur = tree_->currentItem();
     o["tree_current"] = cur ? cur->data(0, Qt::UserRole).toInt() : -1;
   }
-  if (const int cur = session_->currentSample(); cur >= 0) {
+  if (const int cur = session_->currentSample(); cur >= 0 && isVisible()) {  // where it is drawn, when it is
     const QPointF at = canvas_->mapTo(window(), canvas_->samplePos(cur).toPoint());
     o["sample_on_window"] = QJsonArray{at.x(), at.y()};
   }
