@@ -38,7 +38,8 @@ struct AdaptiveSquare {
 struct PixelSampling {
   AntiAliasing aa;
   int x = 0, y = 0;
-  std::vector<PixelSample> samples;    // in the order the sampler cast them
+  std::vector<PixelSample> samples;    // in the order the sampler cast them (adaptive: each lattice point once,
+                                       // when a square first needs it)
   std::vector<AdaptiveSquare> squares; // adaptive only
   glm::vec3 value{0.f};                // the box-filtered pixel value, bit-identical to estimate_pixel's
 };
