@@ -838,14 +838,15 @@ void MainWindow::showPixelInspector() {
   resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
   // Below 900 pixels the dock leaves the picture a strip: the structure panel gives up what it can spare (down
   // to its minimum) while the inspector is open.
-  if (height() < 900) leftSplit_->setSizes({int(130 * scale_), 1000});
+  // (Presenter scales above 1 are compact already: the picture has the column.)
+  if (height() < 900 && scale_ == 1.0) leftSplit_->setSizes({130, 1000});
   drawPixelBackdrop();
 }
 
 void MainWindow::hidePixelInspector() {
   if (!pixelDock_->isVisible()) return;
   pixelDock_->hide();
-  leftSplit_->setSizes({200, 500});
+  if (scale_ == 1.0) leftSplit_->setSizes({200, 500});
   pixelInspector_->setBackdrop(QImage());  // traced again when the inspector opens: as a fresh window has it
 }
 
