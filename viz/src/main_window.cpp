@@ -757,7 +757,8 @@ void MainWindow::renderPicture() {
               .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
                    l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
                    l.toString(qulonglong(rays.total()))));
-      // The traced pixel follows the picture's anti-aliasing: the inspector shows the samples the picture used.
+      // The traced pixel follows the picture's anti-aliasing: the inspector shows the samples the picture
+      // used.
       if (const TracePixel* px = session_->pixel(); px && session_->scene() && session_->trace()) {
         AntiAliasing now;
         try {
@@ -819,7 +820,8 @@ void MainWindow::tracePixel(int x, int y) {
   if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
   // The scene inside the pixel, beneath the samples: 4096 more rays, cast only while the inspector is open (a
   // lesson step that does not show it stays as fast as before); before the trace, whose legend mentions it.
-  pixelInspector_->canvas()->setBackdrop(pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y) : QImage());
+  pixelInspector_->canvas()->setBackdrop(pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y)
+                                                                 : QImage());
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
 }
 
@@ -836,9 +838,9 @@ void MainWindow::showPixelInspector() {
   if (pixelDock_->isVisible()) return;
   pixelDock_->show();
   resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
-  // Below 900 pixels the dock leaves the picture a strip: the structure panel gives up what it can spare (down
-  // to its minimum) while the inspector is open.
-  // (Presenter scales above 1 are compact already: the picture has the column.)
+  // Below 900 pixels the dock leaves the picture a strip: the structure panel gives up what it can spare
+  // (down to its minimum) while the inspector is open. (Presenter scales above 1 are compact already: the
+  // picture has the column.)
   if (height() < 900 && scale_ == 1.0) leftSplit_->setSizes({130, 1000});
   drawPixelBackdrop();
 }

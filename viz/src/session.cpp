@@ -146,8 +146,8 @@ Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int 
     return record_trace(sd.scene.geometry, *s.accel, requests, sd.path, sd.hash);
   }
   // The same trace as `raystep trace --pixel X,Y --aa SPEC` records, with the exact value where there is one.
-  Trace trace = record_pixel_trace(sd.scene, *s.accel, width, height, px, py, aa, sd.scene.render.seed, secondary,
-                                   sd.path, sd.hash);
+  Trace trace = record_pixel_trace(sd.scene, *s.accel, width, height, px, py, aa, sd.scene.render.seed,
+                                   secondary, sd.path, sd.hash);
   if (trace.pixel) trace.pixel->exact = exact_pixel_value(sd.scene, width, height, px, py);
   return trace;
 }
