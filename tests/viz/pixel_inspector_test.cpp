@@ -188,6 +188,12 @@ TEST(PixelInspector, ErrorHeatMapIsOfferedOnlyWithAReference) {
   const json lit = inspect("'" + kCornell + "'", "pixel-inspector-no-error-heat");
   EXPECT_FALSE(lit["heat"]["error_available"].get<bool>());
   EXPECT_FALSE(lit["heat"]["error_why_not"].get<std::string>().empty());
+  // In the menu: greyed out, and its tooltip says why.
+  EXPECT_TRUE(flat["heat"]["error_item_enabled"].get<bool>());
+  EXPECT_FALSE(lit["heat"]["error_item_enabled"].get<bool>());
+  EXPECT_NE(lit["heat"]["error_item_tooltip"].get<std::string>().find(
+                lit["heat"]["error_why_not"].get<std::string>()),
+            std::string::npos);
 }
 
 TEST(PixelInspector, TraceOfAnAntiAliasedPixelOpensWithItsInspector) {

@@ -391,6 +391,17 @@ void ImageView::refreshErrorItem() {
                      Qt::ToolTipRole);
 }
 
+bool ImageView::errorItemEnabled() const {
+  auto* model = qobject_cast<QStandardItemModel*>(heat_->model());
+  const int i = heat_->findData("error");
+  return model && i >= 0 && model->item(i)->isEnabled();
+}
+
+QString ImageView::errorItemToolTip() const {
+  const int i = heat_->findData("error");
+  return i >= 0 ? heat_->itemData(i, Qt::ToolTipRole).toString() : QString();
+}
+
 bool ImageView::errorHeatAvailable() const {
   return errorHeatWhyNot().isEmpty();
 }

@@ -97,6 +97,9 @@ class ImageView : public QWidget {
   // Whether "error against the reference" can be chosen (the scene has an exact reference), and why not.
   bool errorHeatAvailable() const;
   QString errorHeatWhyNot() const;
+  // What the heat map menu shows for it: whether the item can be chosen, and its tooltip.
+  bool errorItemEnabled() const;
+  QString errorItemToolTip() const;
   void setStatus(const QString& text);
   // Compact (presenter scales): the zoom buttons join the first row, the heat map's names are short.
   void setCompact(bool on);

@@ -132,6 +132,8 @@ QJsonObject dumpState(MainWindow& w) {
   o["heat"] = QJsonObject{{"quantity", w.imageView()->heatQuantity()},
                           {"error_available", w.imageView()->errorHeatAvailable()},
                           {"error_why_not", w.imageView()->errorHeatWhyNot()},
+                          {"error_item_enabled", w.imageView()->errorItemEnabled()},
+                          {"error_item_tooltip", w.imageView()->errorItemToolTip()},
                           {"max", s->heat() ? double(s->heat()->max_value) : 0.0},
                           {"unit", s->heat() ? s->heat()->unit : 0.0}};
   if (const TracedRay* r = s->ray()) {
