@@ -10,6 +10,7 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QSlider>
 #include <QStandardItemModel>
 #include <QToolButton>
@@ -64,6 +65,8 @@ void ImageCanvas::setHeat(const HeatMap* heat, double opacity) {
   heatMax_ = heat->max_value;
   heatUnit_ = heat->unit;
   heatLabel_ = heat_quantity_label(heat->quantity);
+  // The bar's numbers are in the quantity's own unit (0.135, not 135 thousandths): the label says no unit.
+  if (heat->unit != 1.0) heatLabel_.remove(QRegularExpression("\\s*\\(thousandths\\)"));
   update();
 }
 
@@ -386,7 +389,7 @@ void ImageView::refreshErrorItem() {
   heat_->setItemData(i,
                      why.isEmpty()
                          ? tr("Per pixel, the largest channel's error against the exact pre-filtered "
-                              "picture (area coverage), in thousandths")
+                              "picture (area coverage), in the picture's units (0 to 1)")
                          : tr("No exact reference: %1").arg(why),
                      Qt::ToolTipRole);
 }
