@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 
+#include "raystep/render/antialiasing.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
 
@@ -211,8 +212,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"heat",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v == "none") return void(s.heat.clear());
-                     if (v != "cells" && v != "tests" && v != "mailbox" && v != "samples")
-                       bad(k, v, "cells, tests, mailbox, samples or none");
+                     if (v != "cells" && v != "tests" && v != "mailbox" && v != "samples" && v != "error")
+                       bad(k, v, "cells, tests, mailbox, samples, error or none");
                      s.heat = v;
                    }},
                   {"pixel",
@@ -220,6 +221,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                      // A new pixel is a new trace: the GUI shows its primary ray from its first event.
                      s.ray = 0;
                      s.event = EventSpec{};
+                     s.sample.reset();
+                     s.square.reset();
                      if (v == "none") return void(s.pixel.reset());
                      int p[2];
                      if (!parse_ints(v, 2, 0, 16383, p)) bad(k, v, "X,Y whole numbers >= 0, or none");
@@ -231,6 +234,19 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (!parse_int(v, 0, 1000000, &s.ray)) bad(k, v, "a whole number >= 0");
                      s.event = EventSpec{};  // another ray: from its first event
+                     s.sample.reset();       // the ray named by its index, not by its sample
+                   }},
+                  {"sample",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     // A sample's ray tree replaces the ray named before: its primary ray, from its first
+                     // event.
+                     s.ray = 0;
+                     s.event = EventSpec{};
+                     if (v == "none") return void(s.sample.reset());
+                     int n;
+                     if (!parse_int(v, 0, int(kMaxSamplesPerPixel) - 1, &n))
+                       bad(k, v, "a sample index, a whole number >= 0, or none");
+                     s.sample = n;
                    }},
                   {"step",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -283,6 +299,17 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                      n.path = v;
                      s.node = n;
                    }},
+                  {"inspect", [](LessonState& s, const std::string& k, const std::string& v,
+                                 const std::string&) { s.inspect = parse_on_off(k, v); }},
+                  {"square",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (v == "none") return void(s.square.reset());
+                     int n;
+                     if (!parse_int(v, 0, 1000000, &n))
+                       bad(k, v,
+                           "an adaptive square's index, a whole number >= 0 (0: the whole pixel), or none");
+                     s.square = n;
+                   }},
                   {"follow", [](LessonState& s, const std::string& k, const std::string& v,
                                 const std::string&) { s.follow = parse_on_off(k, v); }},
                   {"translucent", [](LessonState& s, const std::string& k, const std::string& v,
@@ -294,6 +321,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                        bad(k, v, "a number in [0, 64] (0: fit)");
                      s.zoom = z;
                    }},
+                  {"sample-overlay", [](LessonState& s, const std::string& k, const std::string& v,
+                                        const std::string&) { s.sample_overlay = parse_on_off(k, v); }},
                   {"show",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v != "window" && v != "3d" && v != "chart" && v != "picture")
@@ -355,6 +384,7 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (pixel) opt("pixel", std::to_string((*pixel)[0]) + "," + std::to_string((*pixel)[1]));
   if (secondary) a.push_back("--secondary");
   if (ray != 0) opt("ray", std::to_string(ray));
+  if (sample) opt("sample", std::to_string(*sample));
   if (event.by == EventSpec::By::index) opt("step", std::to_string(event.index));
   if (event.by == EventSpec::By::nth)
     opt("step-to", std::string(event.type == EventType::hit_accepted ? "hit" : event_type_name(event.type)) +
@@ -362,9 +392,12 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (!panel.empty()) opt("panel", panel);
   if (node.by == NodeSpec::By::id) opt("node", std::to_string(node.id));
   if (node.by == NodeSpec::By::path) opt("node-path", node.path);
+  if (inspect) a.push_back("--inspect");
+  if (square) opt("square", std::to_string(*square));
   if (follow) a.push_back("--follow");
   if (translucent) a.push_back("--translucent");
   if (zoom) opt("zoom", double_text(*zoom));
+  if (sample_overlay) a.push_back("--sample-overlay");
   return a;
 }
 

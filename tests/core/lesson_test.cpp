@@ -3,6 +3,7 @@
 // state.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -65,14 +66,14 @@ TEST(Lesson, EveryKeyCarriesOver) {
                                     "grid-insert: bbox\nti: 40\ntt: 2\nempty-bonus: 0.5\nmax-depth: 12\n"
                                     "leaf-size: 3\nmailbox: off\naa: adaptive:0.1:2\nsize: 64x48\n"
                                     "heat: tests\npixel: 10,20\nsecondary: on\nray: 1\nstep-to: leaf:2\n"
-                                    "panel: sah\nnode-path: LR\nfollow: on\ntranslucent: on\nzoom: 8\n"
-                                    "show: chart\n") +
+                                    "panel: sah\nnode-path: LR\ninspect: on\nsquare: 2\nfollow: on\n"
+                                    "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n") +
                             "\n## Two\n\nNothing changes.\n",
                         kLesson);
   ASSERT_EQ(l.steps.size(), 2u);
-  EXPECT_EQ(l.steps[0].changes.size(), 24u);
+  EXPECT_EQ(l.steps[0].changes.size(), 27u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 26u);  // + step and node, tested below
+  EXPECT_EQ(lesson_setting_keys().size(), 30u);  // + step, node and sample, tested below
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");
@@ -102,6 +103,30 @@ TEST(Lesson, EveryKeyCarriesOver) {
   EXPECT_TRUE(s.translucent);
   EXPECT_EQ(s.zoom, 8.0);
   EXPECT_EQ(s.show, "chart");
+  EXPECT_TRUE(s.inspect);
+  EXPECT_EQ(s.square, 2);
+  EXPECT_TRUE(s.sample_overlay);
+}
+
+// A sample names a ray of the pixel's trace: it and `ray` replace each other, and a new pixel clears both it
+// and the adaptive square.
+TEST(Lesson, SampleAndRayReplaceEachOther) {
+  Lesson l =
+      parse_lesson_text(lesson_with("pixel: 3,4\nray: 2\nsample: 5\nsquare: 3\n") +
+                            "## B\n```raystep\nray: 1\n```\n## C\n```raystep\nsample: 2\npixel: 1,1\n```\n",
+                        kLesson);
+  EXPECT_EQ(l.steps[0].state.ray, 0);
+  EXPECT_EQ(l.steps[0].state.sample, 5);
+  EXPECT_EQ(l.steps[0].state.square, 3);
+  EXPECT_EQ(l.steps[1].state.ray, 1);
+  EXPECT_FALSE(l.steps[1].state.sample);
+  EXPECT_FALSE(l.steps[2].state.sample);
+  EXPECT_FALSE(l.steps[2].state.square);
+  const std::vector<std::string> a = l.steps[0].state.scripted_args();
+  EXPECT_NE(std::find(a.begin(), a.end(), "--sample"), a.end());
+  EXPECT_NE(std::find(a.begin(), a.end(), "--square"), a.end());
+  EXPECT_THROW(parse_lesson_text(lesson_with("sample: -1\n"), kLesson), InputError);
+  EXPECT_THROW(parse_lesson_text(lesson_with("square: x\n"), kLesson), InputError);
 }
 
 TEST(Lesson, StepAndNodeAreOneSettingEach) {
@@ -207,7 +232,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("size: 0x10\n")),
             f + "7: size '0x10': expected WxH with 1 <= W, H <= 16384, or scene");
   EXPECT_EQ(error_of(lesson_with("heat: nodes\n")),
-            f + "7: heat 'nodes': expected cells, tests, mailbox, samples or none");
+            f + "7: heat 'nodes': expected cells, tests, mailbox, samples, error or none");
   EXPECT_EQ(error_of(lesson_with("ray: -1\n")), f + "7: ray '-1': expected a whole number >= 0");
   EXPECT_EQ(error_of(lesson_with("step: 1.5\n")),
             f + "7: step '1.5': expected an event index, a whole number >= 0");

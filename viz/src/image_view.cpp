@@ -10,13 +10,17 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QSlider>
+#include <QStandardItemModel>
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <QWheelEvent>
 
 #include "raystep/io/image_io.h"
 #include "raystep/render/image.h"
+#include "raystep/render/reference.h"
+#include "raystep/scene/antialiasing_spec.h"
 #include "session.h"
 
 namespace raystep::viz {
@@ -59,7 +63,15 @@ void ImageCanvas::setHeat(const HeatMap* heat, double opacity) {
     }
   }
   heatMax_ = heat->max_value;
+  heatUnit_ = heat->unit;
   heatLabel_ = heat_quantity_label(heat->quantity);
+  // The bar's numbers are in the quantity's own unit (0.135, not 135 thousandths): the label says no unit.
+  if (heat->unit != 1.0) heatLabel_.remove(QRegularExpression("\\s*\\(thousandths\\)"));
+  update();
+}
+
+void ImageCanvas::setSampleOverlay(bool on) {
+  sampleOverlay_ = on;
   update();
 }
 
@@ -149,6 +161,27 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
     for (int y = y0; y <= y1; ++y)
       p.drawLine(QPointF(r.left() + x0 * z, r.top() + y * z), QPointF(r.left() + x1 * z, r.top() + y * z));
   }
+  overlayPixels_ = 0;
+  if (z >= 8.0 && sampleOverlay_ && sampleSource_) {  // each visible pixel's sample positions
+    const int x0 = std::max(0, int(-r.left() / z)),
+              x1 = std::min(s.width() - 1, int((width() - r.left()) / z));
+    const int y0 = std::max(0, int(-r.top() / z)),
+              y1 = std::min(s.height() - 1, int((height() - r.top()) / z));
+    // Small dots in one colour that shows on black and on white (the picture stays readable beneath them).
+    const double radius = std::clamp(z / 20.0, 1.0, 2.5);
+    p.setRenderHint(QPainter::Antialiasing, true);
+    p.setPen(Qt::NoPen);
+    p.setBrush(QColor(255, 120, 0));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const PixelSampling* ps = sampleSource_(x, y);
+        if (!ps) continue;
+        ++overlayPixels_;
+        for (const PixelSample& smp : ps->samples)
+          p.drawEllipse(QPointF(r.left() + double(smp.px) * z, r.top() + double(smp.py) * z), radius, radius);
+      }
+    p.setRenderHint(QPainter::Antialiasing, false);
+  }
   if (selX_ >= 0) {  // the traced pixel: a box, and a cross-hair when it is small on screen
     QRectF px(r.left() + selX_ * z, r.top() + selY_ * z, z, z);
     p.setPen(QPen(QColor(0, 230, 255), 2));
@@ -169,7 +202,9 @@ void ImageCanvas::paintEvent(QPaintEvent*) {
                  rampColor(1.f - float(y) / float(b.height() - 1)));
     p.setPen(Qt::white);
     p.drawRect(b.adjusted(0, 0, -1, -1));
-    p.drawText(QPoint(b.right() + 4, b.top() + 10), QString::number(heatMax_));
+    // In the quantity's own unit (the error map counts thousandths: its top reads 0.135, not 135).
+    p.drawText(QPoint(b.right() + 4, b.top() + 10),
+               heatUnit_ == 1.0 ? QString::number(heatMax_) : QString::number(heatMax_ * heatUnit_, 'g', 3));
     p.drawText(QPoint(b.right() + 4, b.bottom()), "0");
     p.save();
     p.translate(b.left() - 4, b.center().y());
@@ -232,6 +267,11 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   auto* row1 = new QHBoxLayout;
   row1->addWidget(new QLabel(tr("<b>Image</b>")));
   row1->addStretch();
+  overlay_ = new QCheckBox(tr("samples"));
+  overlay_->setObjectName("sampleOverlay");
+  overlay_->setToolTip(
+      tr("Zoomed to 8x and more: each pixel's sample positions, as the renderer placed them"));
+  row1->addWidget(overlay_);
   row1->addWidget(new QLabel(tr("AA")));
   aa_ = new QComboBox;
   aa_->setObjectName("aaCombo");
@@ -252,6 +292,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   heat_->addItem(tr("primitive tests"), "tests");
   heat_->addItem(tr("mailbox hits"), "mailbox");
   heat_->addItem(tr("samples per pixel"), "samples");
+  heat_->addItem(tr("error against the reference"), "error");
   row2->addWidget(heat_);
   opacity_ = new QSlider(Qt::Horizontal);
   opacity_->setRange(0, 100);
@@ -287,7 +328,14 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   connect(heat_, QOverload<int>::of(&QComboBox::activated), this, &ImageView::heatRequested);
   connect(opacity_, &QSlider::valueChanged, this, &ImageView::refreshHeat);
   connect(canvas_, &ImageCanvas::pixelClicked, this, &ImageView::pixelClicked);
-  connect(session_, &Session::pictureChanged, this, [this] { canvas_->setImage(session_->picture()); });
+  connect(session_, &Session::pictureChanged, this, [this] {
+    canvas_->setImage(session_->picture());
+    refreshErrorItem();
+  });
+  connect(session_, &Session::structureChanged, this, &ImageView::refreshErrorItem);
+  connect(overlay_, &QCheckBox::toggled, canvas_, &ImageCanvas::setSampleOverlay);
+  canvas_->setSampleSource([this](int x, int y) { return overlaySampling(x, y); });
+  refreshErrorItem();
   connect(session_, &Session::heatChanged, this, &ImageView::refreshHeat);
   connect(session_, &Session::traceChanged, this, [this] {
     const Trace* t = session_->trace();
@@ -305,6 +353,75 @@ void ImageView::setCompact(bool on) {
   heat_->setItemText(1, on ? tr("cells/nodes") : tr("cells or nodes visited"));
   heat_->setItemText(2, on ? tr("tests") : tr("primitive tests"));
   heat_->setItemText(4, on ? tr("samples") : tr("samples per pixel"));
+  heat_->setItemText(5, on ? tr("error") : tr("error against the reference"));
+}
+
+const PixelSampling* ImageView::overlaySampling(int x, int y) {
+  const StructureData* s = session_->structure();
+  if (!s) return nullptr;
+  const int w = session_->imageWidth(), h = session_->imageHeight();
+  if (x >= w || y >= h) return nullptr;
+  AntiAliasing aa;
+  try {
+    aa = antiAliasingOf(s->scene->scene, antiAliasing().toStdString());
+  } catch (const std::exception&) {  // a spec being typed: nothing to show yet
+    return nullptr;
+  }
+  // What the cached samplings were made for: another structure, anti-aliasing or size starts afresh.
+  const std::string key = std::to_string(reinterpret_cast<uintptr_t>(s)) + " " + to_string(aa) + " " +
+                          std::to_string(w) + "x" + std::to_string(h);
+  if (key != overlayKey_ || overlayCache_.size() > 200000) {
+    overlayCache_.clear();
+    overlayKey_ = key;
+  }
+  const int64_t k = int64_t(y) * w + x;
+  auto it = overlayCache_.find(k);
+  if (it == overlayCache_.end()) it = overlayCache_.emplace(k, samplePixel(*s, aa, w, h, x, y, true)).first;
+  return &it->second;
+}
+
+void ImageView::refreshErrorItem() {
+  auto* model = qobject_cast<QStandardItemModel*>(heat_->model());
+  const int i = heat_->findData("error");
+  if (!model || i < 0) return;
+  const QString why = errorHeatWhyNot();
+  model->item(i)->setEnabled(why.isEmpty());
+  heat_->setItemData(i,
+                     why.isEmpty()
+                         ? tr("Per pixel, the largest channel's error against the exact pre-filtered "
+                              "picture (area coverage), in the picture's units (0 to 1)")
+                         : tr("No exact reference: %1").arg(why),
+                     Qt::ToolTipRole);
+}
+
+bool ImageView::errorItemEnabled() const {
+  auto* model = qobject_cast<QStandardItemModel*>(heat_->model());
+  const int i = heat_->findData("error");
+  return model && i >= 0 && model->item(i)->isEnabled();
+}
+
+QString ImageView::errorItemToolTip() const {
+  const int i = heat_->findData("error");
+  return i >= 0 ? heat_->itemData(i, Qt::ToolTipRole).toString() : QString();
+}
+
+bool ImageView::errorHeatAvailable() const {
+  return errorHeatWhyNot().isEmpty();
+}
+
+QString ImageView::errorHeatWhyNot() const {
+  const SceneData* scene = session_->scene();
+  if (!scene) return tr("open a scene");
+  const int w = session_->imageWidth() > 0 ? session_->imageWidth() : scene->scene.render.width;
+  const int h = session_->imageHeight() > 0 ? session_->imageHeight() : scene->scene.render.height;
+  return QString::fromStdString(exact_coverage_unavailable(scene->scene, w, h));
+}
+
+bool ImageView::sampleOverlay() const {
+  return overlay_->isChecked();
+}
+void ImageView::setSampleOverlay(bool on) {
+  overlay_->setChecked(on);
 }
 
 void ImageView::refreshHeat() {

@@ -3,8 +3,15 @@
 // hits per pixel) and its colour bar. A click on a pixel asks for its rays to be traced.
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <unordered_map>
+
 #include <QImage>
 #include <QWidget>
+
+#include "raystep/render/pixel_samples.h"
 
 #include "raystep/trace/heatmap.h"
 
@@ -34,6 +41,13 @@ class ImageCanvas : public QWidget {
   QPointF centre() const;
   // Where the centre of image pixel (x, y) is on the widget (for scripted clicks).
   QPoint widgetPosOf(int x, int y) const;
+  // The sample pattern over each visible pixel, at 8x zoom and more: source gives a pixel's sampling (null:
+  // none); only the visible pixels are asked for.
+  using SampleSource = std::function<const PixelSampling*(int x, int y)>;
+  void setSampleSource(SampleSource source) { sampleSource_ = std::move(source); }
+  void setSampleOverlay(bool on);
+  bool sampleOverlay() const { return sampleOverlay_; }
+  int overlayPixelsDrawn() const { return overlayPixels_; }  // in the last paint, for the dump
   QSize sizeHint() const override { return {360, 300}; }
 
  Q_SIGNALS:
@@ -52,6 +66,7 @@ class ImageCanvas : public QWidget {
   QRect barRect() const;
   QImage image_, heatImage_;
   uint32_t heatMax_ = 0;
+  double heatUnit_ = 1.0;
   QString heatLabel_;
   double heatOpacity_ = 0.7;
   int selX_ = -1, selY_ = -1;
@@ -60,6 +75,9 @@ class ImageCanvas : public QWidget {
   QPoint pressPos_;
   QPointF pressPan_;
   bool dragging_ = false, pressed_ = false;
+  SampleSource sampleSource_;
+  bool sampleOverlay_ = false;
+  int overlayPixels_ = 0;
 };
 
 // The panel: anti-aliasing mode, heat map quantity and opacity, zoom, secondary rays, and the canvas.
@@ -74,6 +92,14 @@ class ImageView : public QWidget {
   void setHeatQuantity(const QString& q);
   bool secondaryRays() const;
   void setSecondaryRays(bool on);
+  bool sampleOverlay() const;
+  void setSampleOverlay(bool on);
+  // Whether "error against the reference" can be chosen (the scene has an exact reference), and why not.
+  bool errorHeatAvailable() const;
+  QString errorHeatWhyNot() const;
+  // What the heat map menu shows for it: whether the item can be chosen, and its tooltip.
+  bool errorItemEnabled() const;
+  QString errorItemToolTip() const;
   void setStatus(const QString& text);
   // Compact (presenter scales): the zoom buttons join the first row, the heat map's names are short.
   void setCompact(bool on);
@@ -86,12 +112,18 @@ class ImageView : public QWidget {
 
  private:
   void refreshHeat();
+  void refreshErrorItem();
+  const PixelSampling* overlaySampling(int x, int y);
   Session* session_;
   ImageCanvas* canvas_;
   QComboBox* aa_;
   QComboBox* heat_;
   QSlider* opacity_;
   QCheckBox* secondary_;
+  QCheckBox* overlay_;
+  // The overlay's samplings, per pixel, for what they were made for (structure, anti-aliasing, size).
+  std::unordered_map<int64_t, PixelSampling> overlayCache_;
+  std::string overlayKey_;
   QLabel* status_;
   QWidget* zoomBox_;
 };

@@ -87,6 +87,17 @@ void enterState(MainWindow& w, const LessonState& st) {
       fail("--ray " + std::to_string(st.ray) + ": no such ray in the trace");
     s->setRay(st.ray);
   }
+  // An anti-aliased pixel's sample: its primary ray, as a click on it in the inspector chooses it.
+  if (st.sample) {
+    const std::string text = "--sample " + std::to_string(*st.sample);
+    const TracePixel* px = s->pixel();
+    if (!px) fail(text + ": no traced pixel (give --pixel)");
+    const int n = int(px->sampling.samples.size());
+    if (*st.sample >= n)
+      fail(text + ": the pixel has " + std::to_string(n) + " sample" + (n == 1 ? "" : "s") + " (0.." +
+           std::to_string(n - 1) + ")");
+    if (!s->selectSample(*st.sample)) fail(text + ": the trace holds no ray of that sample");
+  }
   switch (st.event.by) {
     case EventSpec::By::start:
       s->setStep(0);
@@ -104,6 +115,27 @@ void enterState(MainWindow& w, const LessonState& st) {
       break;
     }
   }
+
+  // The pixel inspector, at a square of adaptive sampling's subdivision (the whole pixel unless named).
+  if (st.square) {
+    const std::string text = "--square " + std::to_string(*st.square);
+    const TracePixel* px = s->pixel();
+    if (!px) fail(text + ": no traced pixel (give --pixel)");
+    if (px->sampling.aa.mode != AntiAliasing::Mode::adaptive)
+      fail(text + ": the pixel is not sampled adaptively (give --aa adaptive:T[:D])");
+    const int n = s->squareCount();
+    if (*st.square >= n)
+      fail(text + ": the pixel's subdivision has " + std::to_string(n) + " squares (0.." +
+           std::to_string(n - 1) + ")");
+    s->setSquare(*st.square);
+  } else if (s->squareCount() > 0) {
+    s->setSquare(0);
+  }
+  if (st.inspect || st.sample || st.square)
+    w.showPixelInspector();
+  else if (s->scene())  // a trace with a pixel section shows its inspector when opened
+    w.hidePixelInspector();
+  image->setSampleOverlay(st.sample_overlay);
 
   // The picture: fitted, or zoomed on the traced pixel.
   ImageCanvas* canvas = image->canvas();

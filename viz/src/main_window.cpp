@@ -30,6 +30,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_pane.h"
+#include "pixel_inspector.h"
 #include "presenter.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
@@ -109,6 +110,18 @@ MainWindow::MainWindow() : session_(new Session(this)) {
                        QDockWidget::DockWidgetFloatable);
   addDockWidget(Qt::BottomDockWidgetArea, kdDock_);
   kdDock_->hide();
+  // The traced pixel's samples, in a dock below (beside the kd dock when both are open).
+  pixelInspector_ = new PixelInspector(session_);
+  pixelDock_ = new QDockWidget(tr("Pixel inspector: the traced pixel's samples"), this);
+  pixelDock_->setObjectName("pixelDock");
+  pixelDock_->setWidget(pixelInspector_);
+  pixelDock_->setFeatures(QDockWidget::DockWidgetClosable | QDockWidget::DockWidgetMovable |
+                          QDockWidget::DockWidgetFloatable);
+  addDockWidget(Qt::BottomDockWidgetArea, pixelDock_);
+  pixelDock_->hide();
+  connect(pixelDock_, &QDockWidget::visibilityChanged, this, [this](bool visible) {
+    if (visible) drawPixelBackdrop();  // opened from the View menu too
+  });
   buildMenus();
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
@@ -118,6 +131,9 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
     try {
       tracePixel(x, y);
+      // An anti-aliased pixel opens its inspector (without anti-aliasing it stays as the user left it).
+      if (const TracePixel* px = session_->pixel(); px && px->sampling.aa.mode != AntiAliasing::Mode::none)
+        showPixelInspector();
     } catch (const std::exception& e) {
       showError(QString::fromStdString(e.what()));
     }
@@ -207,6 +223,9 @@ void MainWindow::buildMenus() {
   QAction* dock = kdDock_->toggleViewAction();
   dock->setText(tr("kd-tree and SAH &inspector"));
   view->addAction(dock);
+  QAction* pixel = pixelDock_->toggleViewAction();
+  pixel->setText(tr("&Pixel inspector (the traced pixel's samples)"));
+  view->addAction(pixel);
   view->addSeparator();
   QAction* full = view->addAction(tr("&Full screen"), this, [this] {
     if (isFullScreen())
@@ -369,14 +388,14 @@ QString MainWindow::pictureKeyNow() const {
 }
 
 QString MainWindow::heatKeyNow() const {
-  // The samples map depends on the anti-aliasing too; the traversal counts do not.
+  // The samples and error maps depend on the anti-aliasing too; the traversal counts do not.
   const QString q = imageView_->heatQuantity();
   return QString("%1 %2x%3 %4 %5")
       .arg(quintptr(session_->structure()))
       .arg(session_->imageWidth())
       .arg(session_->imageHeight())
       .arg(q)
-      .arg(q == "samples" ? imageView_->antiAliasing() : QString());
+      .arg(q == "samples" || q == "error" ? imageView_->antiAliasing() : QString());
 }
 
 void MainWindow::ensurePicture() {
@@ -506,7 +525,13 @@ void MainWindow::showTrace(std::shared_ptr<const Trace> trace, const QString& pa
   auto t0 = std::chrono::steady_clock::now();
   ++generation_["build"];  // a structure still being built for the previous scene is of no use now
   if (session_->scene()) session_->setScene(nullptr);
+  pixelInspector_->canvas()->setBackdrop(QImage());  // no scene: no view inside the pixel
   session_->setTrace(trace, path);
+  // A trace of an anti-aliased pixel shows its samples without the scene.
+  if (trace->pixel)
+    showPixelInspector();
+  else
+    hidePixelInspector();
   // The structure panel names the trace's kd-tree and its options (shown only: there is no scene to build
   // on).
   if (trace->structure.kind != "grid") {
@@ -770,7 +795,20 @@ void MainWindow::renderPicture() {
               .arg(l.toString(qulonglong(rays.primary)), l.toString(qulonglong(rays.shadow)),
                    l.toString(qulonglong(rays.reflected)), l.toString(qulonglong(rays.refracted)),
                    l.toString(qulonglong(rays.total()))));
-      if (imageView_->heatQuantity() == "samples") ensureHeat();  // the new anti-aliasing's samples
+      // The traced pixel follows the picture's anti-aliasing: the inspector shows the samples the picture
+      // used.
+      if (const TracePixel* px = session_->pixel(); px && session_->scene() && session_->trace()) {
+        AntiAliasing now;
+        try {
+          now = antiAliasingOf(grid->scene->scene, aa);
+        } catch (const std::exception&) {
+          now = px->sampling.aa;
+        }
+        if (to_string(now) != to_string(px->sampling.aa) && px->sampling.x < w && px->sampling.y < h)
+          tracePixel(px->sampling.x, px->sampling.y);
+      }
+      // The new anti-aliasing's samples or error.
+      if (imageView_->heatQuantity() == "samples" || imageView_->heatQuantity() == "error") ensureHeat();
       if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
     });
   });
@@ -811,8 +849,49 @@ void MainWindow::tracePixel(int x, int y) {
     throw InputError("", 0,
                      "--pixel " + std::to_string(x) + "," + std::to_string(y) + ": outside the " +
                          std::to_string(w) + "x" + std::to_string(h) + " image");
-  auto trace = std::make_shared<const Trace>(viz::tracePixel(*grid, w, h, x, y, imageView_->secondaryRays()));
-  session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y));
+  // Every sample's rays with anti-aliasing (the pixel's trace then holds its samples); the centre ray
+  // without.
+  const AntiAliasing aa = antiAliasingOf(grid->scene->scene, imageView_->antiAliasing().toStdString());
+  auto trace =
+      std::make_shared<const Trace>(viz::tracePixel(*grid, aa, w, h, x, y, imageView_->secondaryRays()));
+  std::shared_ptr<const TracePixel> centre;
+  if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
+  // The scene inside the pixel, beneath the samples: 4096 more rays, cast only while the inspector is open (a
+  // lesson step that does not show it stays as fast as before); before the trace, whose legend mentions it.
+  pixelInspector_->canvas()->setBackdrop(pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y)
+                                                                 : QImage());
+  session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
+}
+
+void MainWindow::drawPixelBackdrop() {
+  const StructureData* grid = session_->structure();
+  const TracePixel* px = session_->pixel();
+  if (!grid || !px || !session_->scene() || pixelInspector_->canvas()->hasBackdrop()) return;
+  const int w = session_->imageWidth(), h = session_->imageHeight();
+  if (px->sampling.x >= w || px->sampling.y >= h) return;
+  pixelInspector_->setBackdrop(pixelBackdrop(*grid, w, h, px->sampling.x, px->sampling.y));
+}
+
+void MainWindow::showPixelInspector() {
+  if (pixelDock_->isVisible()) return;
+  pixelDock_->show();
+  resizeDocks({pixelDock_}, {int(280 * scale_)}, Qt::Vertical);
+  // Below 900 pixels the dock leaves the picture a strip: the structure panel gives up what it can spare
+  // (down to its minimum) while the inspector is open. (Presenter scales above 1 are compact already: the
+  // picture has the column.)
+  if (height() < 900 && scale_ == 1.0) leftSplit_->setSizes({130, 1000});
+  drawPixelBackdrop();
+}
+
+void MainWindow::hidePixelInspector() {
+  if (!pixelDock_->isVisible()) return;
+  pixelDock_->hide();
+  if (scale_ == 1.0) leftSplit_->setSizes({200, 500});
+  pixelInspector_->setBackdrop(QImage());  // traced again when the inspector opens: as a fresh window has it
+}
+
+bool MainWindow::pixelInspectorVisible() const {
+  return pixelDock_->isVisible();
 }
 
 void MainWindow::exportTrace(const QString& path) {

@@ -42,6 +42,7 @@ class LessonPane;
 class Presenter;
 class AaReportView;
 class GridSweepView;
+class PixelInspector;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -85,6 +86,11 @@ class MainWindow : public QMainWindow {
   void showKdPanel();
   void hideKdPanel();
   bool kdPanelVisible() const;
+  // The pixel inspector: the dock below with the traced pixel's samples (opened by a click on a pixel when
+  // the picture is anti-aliased, and by a trace with a pixel section).
+  void showPixelInspector();
+  void hidePixelInspector();
+  bool pixelInspectorVisible() const;
   // The picture and the heat map for the current structure, size, anti-aliasing and heat quantity: made again
   // only when one of these differs from what they were made for (entering a lesson step changes the pixel far
   // more often than the picture).
@@ -124,6 +130,7 @@ class MainWindow : public QMainWindow {
   StructurePanel* structurePanel() const { return structure_; }
   TreeView* treeView() const { return treeView_; }
   SahChart* sahChart() const { return sahChart_; }
+  PixelInspector* pixelInspector() const { return pixelInspector_; }
   QString lastError() const { return lastError_; }
 
  private:
@@ -138,6 +145,7 @@ class MainWindow : public QMainWindow {
   void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
   void buildMenus();
   void showSahCurve();  // records the selected node's curve off the GUI thread
+  void drawPixelBackdrop();  // the scene inside the traced pixel, for the inspector (when not drawn yet)
 
   Session* session_;
   StructurePanel* structure_;
@@ -151,6 +159,8 @@ class MainWindow : public QMainWindow {
   AaReportView* aaReport_ = nullptr;
   GridSweepView* gridSweep_ = nullptr;
   QDockWidget* kdDock_;
+  PixelInspector* pixelInspector_;
+  QDockWidget* pixelDock_;
   QSplitter* rightSplit_ = nullptr;
   QSplitter* leftSplit_ =
       nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list

@@ -27,6 +27,7 @@
 #include "kd_tree_model.h"
 #include "lesson_enter.h"
 #include "main_window.h"
+#include "pixel_inspector.h"
 #include "presenter.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
@@ -124,6 +125,26 @@ QJsonObject dumpState(MainWindow& w) {
   o["full_screen"] = w.isFullScreen();
   o["scale"] = w.presenterScale();
   o["kd_panel"] = w.kdPanelVisible();
+  QJsonObject inspector = w.pixelInspector()->dumpState();
+  inspector["visible"] = w.pixelInspectorVisible();
+  o["inspector"] = inspector;
+  o["sample_overlay"] =
+      QJsonObject{{"on", w.imageView()->sampleOverlay()}, {"pixels_drawn", canvas->overlayPixelsDrawn()}};
+  o["heat"] = QJsonObject{{"quantity", w.imageView()->heatQuantity()},
+                          {"error_available", w.imageView()->errorHeatAvailable()},
+                          {"error_why_not", w.imageView()->errorHeatWhyNot()},
+                          {"error_item_enabled", w.imageView()->errorItemEnabled()},
+                          {"error_item_tooltip", w.imageView()->errorItemToolTip()},
+                          {"max", s->heat() ? double(s->heat()->max_value) : 0.0},
+                          {"unit", s->heat() ? s->heat()->unit : 0.0}};
+  if (const TracedRay* r = s->ray()) {
+    o["ray_origin"] = QJsonArray{double(r->ray.origin.x), double(r->ray.origin.y), double(r->ray.origin.z)};
+    o["ray_dir"] =
+        QJsonArray{double(r->ray.direction.x), double(r->ray.direction.y), double(r->ray.direction.z)};
+    o["ray_sample"] = r->sample;
+    o["ray_kind"] = ray_kind_name(r->kind);
+  }
+  if (const Trace* t = s->trace()) o["trace_rays"] = int(t->rays.size());
   o["last_error"] = w.lastError();
   if (w.presenter()) o["lesson"] = w.presenter()->dumpState();
   addReportState(w, o);
@@ -148,12 +169,21 @@ void defineOptions(QCommandLineParser& p) {
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
   opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
-  opt("heat", "Heat map overlay: cells, tests, mailbox, or samples (the anti-aliasing's rays per pixel).",
+  opt("heat",
+      "Heat map overlay: cells, tests, mailbox, samples (the anti-aliasing's rays per pixel) or error "
+      "(against "
+      "the exact reference, where the scene has one).",
       "Q");
   opt("size", "Picture size (default: the scene's); --pixel refers to it.", "WxH");
   opt("pixel", "Trace this pixel's rays.", "X,Y");
   opt("secondary", "Trace the pixel's secondary rays too.");
   opt("ray", "Show this ray of the trace (0: the primary).", "I");
+  opt("sample", "An anti-aliased pixel: replay sample N's ray (its primary ray; 0-based).", "N");
+  opt("inspect", "Open the pixel inspector (the traced pixel's samples, average, exact value and error).");
+  opt("square", "Adaptive sampling: step the pixel inspector to square N of the subdivision (0: the pixel).",
+      "N");
+  opt("sample-overlay", "Draw each visible pixel's sample positions on the picture (at zoom 8 and more).");
+  opt("click-sample", "Then click sample N on the pixel inspector's canvas, as a user would.", "N");
   opt("step", "Go to event N.", "N");
   opt("step-to",
       "Go to the K-th event of a kind (cell, prim_test, mailbox_hit, hit_deferred, hit_accepted or hit, "
@@ -163,8 +193,10 @@ void defineOptions(QCommandLineParser& p) {
   opt("back", "Then step back N times.", "N");
   opt("keys",
       "Then press these keys, comma-separated: Right, Left, Space, Home, End, PageDown, PageUp, F5, "
-      "Shift+Right, Shift+Left, Period, Comma (in a lesson Right/Left/PageDown/PageUp/Home/End move between "
-      "steps and Shift+Right/Left or . and , step the events).",
+      "Shift+Right, Shift+Left, Period, Comma, Ctrl+Right, Ctrl+Left, Ctrl+Home, Ctrl+End (in a lesson "
+      "Right/Left/PageDown/PageUp/Home/End move between steps and Shift+Right/Left or . and , step the "
+      "events; "
+      "Ctrl with the arrows, Home and End steps adaptive sampling's squares in the pixel inspector).",
       "LIST");
   opt("zoom", "Image zoom: screen pixels per picture pixel, centred on the traced pixel (0: fit, the whole picture).", "Z");
   opt("translucent", "Draw the scene translucent.");
@@ -232,7 +264,7 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   if (!files.isEmpty()) st.scene = files[0].toStdString();
   if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
   if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
-  static const QStringList flags = {"secondary", "follow", "translucent"};
+  static const QStringList flags = {"secondary", "follow", "translucent", "inspect", "sample-overlay"};
   for (const std::string& key : lesson_setting_keys()) {
     const QString name = QString::fromStdString(key);
     if (key == "scene" || key == "show" || !p.isSet(name)) continue;
@@ -268,7 +300,11 @@ const std::map<QString, std::pair<Qt::Key, Qt::KeyboardModifiers>>& namedKeys() 
       {"Shift+Right", {Qt::Key_Right, Qt::ShiftModifier}},
       {"Shift+Left", {Qt::Key_Left, Qt::ShiftModifier}},
       {"Period", {Qt::Key_Period, Qt::NoModifier}},
-      {"Comma", {Qt::Key_Comma, Qt::NoModifier}}};
+      {"Comma", {Qt::Key_Comma, Qt::NoModifier}},
+      {"Ctrl+Right", {Qt::Key_Right, Qt::ControlModifier}},
+      {"Ctrl+Left", {Qt::Key_Left, Qt::ControlModifier}},
+      {"Ctrl+Home", {Qt::Key_Home, Qt::ControlModifier}},
+      {"Ctrl+End", {Qt::Key_End, Qt::ControlModifier}}};
   return keys;
 }
 
@@ -362,6 +398,20 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
       QApplication::processEvents();
       QThread::msleep(5);
     }
+    QApplication::processEvents();
+  }
+  if (p.isSet("click-sample")) {  // a click on the inspector's canvas, where the sample is drawn
+    bool ok = false;
+    const int n = p.value("click-sample").toInt(&ok);
+    const TracePixel* px = s->pixel();
+    if (!px) fail("--click-sample: no traced pixel (give --pixel)");
+    if (!ok || n < 0 || n >= int(px->sampling.samples.size()))
+      fail("--click-sample '" + p.value("click-sample").toStdString() + "': the pixel has " +
+           std::to_string(px->sampling.samples.size()) + " samples");
+    window.showPixelInspector();
+    settle(window);
+    PixelCanvas* canvas = window.pixelInspector()->canvas();
+    QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->samplePos(n).toPoint());
     QApplication::processEvents();
   }
   if (p.isSet("open-bad")) window.openFileReportingErrors(p.value("open-bad"));
@@ -486,10 +536,11 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
   }
   const bool quit = p.isSet("quit");
   const QStringList scripted = {
-      "pixel",         "step",           "step-to",         "forward",        "back",        "screenshot",
-      "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",       "node",
-      "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",     "lesson-step",
-      "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next"};
+      "pixel",         "step",           "step-to",         "forward",        "back",         "screenshot",
+      "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",        "node",
+      "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
+      "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
+      "sample",        "square",         "sample-overlay",  "click-sample"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);

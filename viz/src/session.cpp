@@ -3,6 +3,10 @@
 #include <chrono>
 
 #include "raystep/io/image_io.h"
+#include "raystep/render/camera.h"
+#include "raystep/render/pixel_samples.h"
+#include "raystep/render/reference.h"
+#include "raystep/render/whitted.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
@@ -73,22 +77,86 @@ QImage renderPicture(const StructureData& s, const std::string& aaSpec, int widt
 HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& aaSpec, int width, int height,
                     double* ms) {
   auto t0 = std::chrono::steady_clock::now();
-  HeatMap h = q == HeatQuantity::samples
-                  ? samples_heatmap(renderWith(s, aaSpec, width, height).samples, width, height)
-                  : compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
+  HeatMap h;
+  if (q == HeatQuantity::samples) {
+    h = samples_heatmap(renderWith(s, aaSpec, width, height).samples, width, height);
+  } else if (q == HeatQuantity::error) {
+    // Against the exact pre-filtered picture (render_exact_coverage throws, with the reason, without one).
+    const Image reference = render_exact_coverage(s.scene->scene, width, height);
+    h = error_heatmap(pixel_errors(renderWith(s, aaSpec, width, height).image, reference), width, height);
+  } else {
+    h = compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
+  }
   if (ms) *ms = msSince(t0);
   return h;
 }
 
-Trace tracePixel(const StructureData& s, int width, int height, int px, int py, bool secondary) {
+AntiAliasing antiAliasingOf(const Scene& scene, const std::string& aaSpec) {
+  return aaSpec.empty() || aaSpec == "scene" ? scene.render.aa : parse_antialiasing(aaSpec);
+}
+
+PixelSampling samplePixel(const StructureData& s, const AntiAliasing& aa, int width, int height, int px,
+                          int py, bool positionsOnly) {
+  const Scene& scene = s.scene->scene;
+  Pcg32 rng = pixel_rng(scene.render.seed, px, py, width);
+  if (positionsOnly && aa.mode != AntiAliasing::Mode::adaptive)
+    return sample_pixel(aa, px, py, rng, [](float, float) { return glm::vec3(0.f); });
+  const ProjectiveCamera camera(scene.camera, width, height);
+  const WhittedTracer tracer(scene, *s.accel);
+  RayCounts counts;
+  return sample_pixel(aa, px, py, rng,
+                      [&](float x, float y) { return tracer.trace_primary(camera.generate(x, y), &counts); });
+}
+
+QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n) {
+  const Scene& scene = s.scene->scene;
+  const ProjectiveCamera camera(scene.camera, width, height);
+  const WhittedTracer tracer(scene, *s.accel);
+  RayCounts counts;
+  QImage img(n, n, QImage::Format_RGB888);
+  for (int j = 0; j < n; ++j) {
+    uchar* row = img.scanLine(j);
+    for (int i = 0; i < n; ++i) {
+      const glm::vec3 c = tracer.trace_primary(
+          camera.generate(float(px) + (float(i) + 0.5f) / float(n), float(py) + (float(j) + 0.5f) / float(n)),
+          &counts);
+      row[3 * i] = srgb_encode8(c.r);
+      row[3 * i + 1] = srgb_encode8(c.g);
+      row[3 * i + 2] = srgb_encode8(c.b);
+    }
+  }
+  return img;
+}
+
+TracePixel centrePixel(const StructureData& s, int width, int height, int px, int py) {
+  TracePixel p;
+  p.sampling = samplePixel(s, AntiAliasing{}, width, height, px, py);
+  p.width = width;
+  p.height = height;
+  p.seed = s.scene->scene.render.seed;
+  p.exact = exact_pixel_value(s.scene->scene, width, height, px, py);
+  return p;
+}
+
+Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int height, int px, int py,
+                 bool secondary) {
   const SceneData& sd = *s.scene;
-  std::vector<RayRequest> requests = pixel_rays(sd.scene, *s.accel, width, height, px, py, secondary);
-  return record_trace(sd.scene.geometry, *s.accel, requests, sd.path, sd.hash);
+  if (aa.mode == AntiAliasing::Mode::none) {  // the centre ray, as the command line traces a pixel
+    std::vector<RayRequest> requests = pixel_rays(sd.scene, *s.accel, width, height, px, py, secondary);
+    return record_trace(sd.scene.geometry, *s.accel, requests, sd.path, sd.hash);
+  }
+  // The same trace as `raystep trace --pixel X,Y --aa SPEC` records, with the exact value where there is one.
+  Trace trace = record_pixel_trace(sd.scene, *s.accel, width, height, px, py, aa, sd.scene.render.seed,
+                                   secondary, sd.path, sd.hash);
+  if (trace.pixel) trace.pixel->exact = exact_pixel_value(sd.scene, width, height, px, py);
+  return trace;
 }
 
 void Session::setScene(std::shared_ptr<const SceneData> scene) {
   scene_ = std::move(scene);
   structure_.reset();
+  pixel_.reset();
+  square_ = -1;
   selectedNode_ = -1;
   picture_ = QImage();
   heat_.reset();
@@ -111,6 +179,8 @@ void Session::setStructure(std::shared_ptr<const StructureData> structure) {
   ray_ = step_ = 0;
   state_ = ReplayState{};
   selectedNode_ = -1;
+  pixel_.reset();
+  square_ = -1;
   Q_EMIT structureChanged();
   if (hadTrace) {
     Q_EMIT traceChanged();
@@ -133,9 +203,14 @@ void Session::setImageSize(int width, int height) {
   imageHeight_ = height;
 }
 
-void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source) {
+void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source,
+                       std::shared_ptr<const TracePixel> pixel) {
   trace_ = std::move(trace);
   traceSource_ = source;
+  // The trace's own pixel section shares the trace's lifetime.
+  if (!pixel && trace_ && trace_->pixel) pixel = std::shared_ptr<const TracePixel>(trace_, &*trace_->pixel);
+  pixel_ = std::move(pixel);
+  square_ = squareCount() > 0 ? 0 : -1;
   ray_ = 0;
   step_ = 0;
   state_ = ray() ? replayAt(*ray(), 0) : ReplayState{};
@@ -179,6 +254,42 @@ bool Session::jumpTo(EventType type, bool forward) {
   if (i < 0) return false;
   setStep(i);
   return true;
+}
+
+int Session::currentSample() const {
+  const TracedRay* r = ray();
+  if (!r || !pixel_) return -1;
+  if (r->sample >= 0) return r->sample;
+  // Without anti-aliasing the trace is the centre ray's: the one sample.
+  return pixel_->sampling.samples.size() == 1 ? 0 : -1;
+}
+
+int Session::rayOfSample(int sample) const {
+  if (!trace_ || !pixel_ || sample < 0 || sample >= int(pixel_->sampling.samples.size())) return -1;
+  for (size_t i = 0; i < trace_->rays.size(); ++i)
+    if (trace_->rays[i].sample == sample) return int(i);
+  if (pixel_->sampling.samples.size() == 1 && !trace_->rays.empty()) return 0;
+  return -1;
+}
+
+bool Session::selectSample(int sample) {
+  const int r = rayOfSample(sample);
+  if (r < 0) return false;
+  if (r == ray_) {  // the same ray: back to its first event, as choosing it anew would
+    setStep(0);
+    return true;
+  }
+  setRay(r);
+  return true;
+}
+
+void Session::setSquare(int index) {
+  const int n = squareCount();
+  if (n == 0) return;
+  index = std::clamp(index, 0, n - 1);
+  if (index == square_) return;
+  square_ = index;
+  Q_EMIT squareChanged();
 }
 
 void Session::setSelectedNode(int node) {

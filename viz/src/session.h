@@ -49,8 +49,26 @@ QImage renderPicture(const StructureData& s, const std::string& aaSpec, int widt
 // samples per pixel.
 HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& aaSpec, int width, int height,
                     double* ms);
-// The rays of pixel (px, py) of a width x height picture, recorded through the structure.
-Trace tracePixel(const StructureData& s, int width, int height, int px, int py, bool secondary);
+// The anti-aliasing a picture's spec names: "" or "scene" is the scene file's own.
+AntiAliasing antiAliasingOf(const Scene& scene, const std::string& aaSpec);
+// Pixel (px, py) of a width x height picture sampled exactly as the renderer samples it (the scene's seed,
+// the pixel's own random stream), with every sample's colour. positionsOnly: where the positions do not
+// depend on what the samples see (every mode but adaptive), no ray is cast and the colours are black (the
+// image view's sample overlay).
+PixelSampling samplePixel(const StructureData& s, const AntiAliasing& aa, int width, int height, int px,
+                          int py, bool positionsOnly = false);
+// The rays of pixel (px, py) of a width x height picture, recorded through the structure. Without
+// anti-aliasing the ray through the pixel's centre (and its secondaries), as `raystep trace --pixel` records
+// it; with anti-aliasing every sample's ray tree (TracedRay::sample) and the pixel section (Trace::pixel: the
+// samples, the adaptive squares, the value and the exact value where the scene has one).
+Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int height, int px, int py,
+                 bool secondary);
+// What the scene shows inside pixel (px, py): n x n rays through the centres of an n x n lattice, as an sRGB
+// image (the pixel inspector's faint background, so that a student sees the edge the samples straddle).
+QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n = 64);
+// The pixel section for a picture without anti-aliasing: one sample at the centre (the inspector shows it;
+// the trace keeps version 1).
+TracePixel centrePixel(const StructureData& s, int width, int height, int px, int py);
 
 class Session : public QObject {
   Q_OBJECT
@@ -61,7 +79,9 @@ class Session : public QObject {
   void setStructure(std::shared_ptr<const StructureData> structure);  // clears the trace (of the old one)
   void setPicture(const QImage& image);
   void setHeat(std::shared_ptr<const HeatMap> heat);  // null: no overlay
-  void setTrace(std::shared_ptr<const Trace> trace, const QString& source);
+  // pixel: the traced pixel's samples (null: the trace's own pixel section, if any).
+  void setTrace(std::shared_ptr<const Trace> trace, const QString& source,
+                std::shared_ptr<const TracePixel> pixel = nullptr);
   void setImageSize(int width, int height);
 
   const SceneData* scene() const { return scene_.get(); }
@@ -88,6 +108,20 @@ class Session : public QObject {
   // Jump to the next (or previous) event of a type; false (and no change) when there is none.
   bool jumpTo(EventType type, bool forward);
 
+  // The traced pixel's samples (null: none), the sample the current ray descends from (-1: none), and the
+  // first ray of a sample's ray tree (its primary ray; -1: not in the trace). Without anti-aliasing the one
+  // sample is the centre ray's, ray 0.
+  const TracePixel* pixel() const { return pixel_.get(); }
+  int currentSample() const;
+  int rayOfSample(int sample) const;
+  bool selectSample(int sample);  // replays the sample's primary ray; false when it has none
+  // Adaptive sampling: the square being stepped through (index into the pixel's squares, depth first; -1:
+  // none).
+  int square() const { return square_; }
+  int squareCount() const { return pixel_ ? int(pixel_->sampling.squares.size()) : 0; }
+  void setSquare(int index);  // clamped to the squares
+  void stepSquare(int delta) { setSquare(square_ + delta); }
+
   // The kd-tree node that the tree view, the SAH inspector and the 3D view show (-1: none). A new structure
   // clears it (the main window selects the same path again in the new tree).
   int selectedNode() const { return selectedNode_; }
@@ -101,6 +135,7 @@ class Session : public QObject {
   void traceChanged();  // a new trace, or another ray of it
   void stepChanged();
   void selectedNodeChanged();
+  void squareChanged();
 
  private:
   std::shared_ptr<const SceneData> scene_;
@@ -113,6 +148,8 @@ class Session : public QObject {
   int ray_ = 0, step_ = 0;
   ReplayState state_;
   int selectedNode_ = -1;
+  std::shared_ptr<const TracePixel> pixel_;
+  int square_ = -1;
 };
 
 }  // namespace raystep::viz

@@ -167,6 +167,20 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   refresh();
 }
 
+namespace {
+
+// An anti-aliased pixel's ray names the sample it descends from and where that sample lies in the pixel.
+QString sampleText(const TracePixel* px, const TracedRay& r) {
+  if (!px || r.sample < 0 || r.sample >= int(px->sampling.samples.size())) return QString();
+  const PixelSample& ps = px->sampling.samples[size_t(r.sample)];
+  return QObject::tr(", sample %1 at (%2, %3) in the pixel")
+      .arg(r.sample)
+      .arg(double(ps.px) - px->sampling.x, 0, 'f', 3)
+      .arg(double(ps.py) - px->sampling.y, 0, 'f', 3);
+}
+
+}  // namespace
+
 void StatePanel::refresh() {
   const TracedRay* r = session_->ray();
   const ReplayState& s = session_->state();
@@ -185,12 +199,14 @@ void StatePanel::refresh() {
   treeBox_->setVisible(tree);
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
   if (tree) refreshTree(*r, s);
-  ray_->setText(tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
-                    .arg(ray_kind_name(r->kind))
-                    .arg(r->depth)
-                    .arg(r->has_pixel ? tr(", pixel (%1, %2)").arg(r->pixel[0]).arg(r->pixel[1]) : QString())
-                    .arg(num(r->ray.origin.x), num(r->ray.origin.y), num(r->ray.origin.z))
-                    .arg(num(r->ray.direction.x), num(r->ray.direction.y), num(r->ray.direction.z)));
+  ray_->setText(
+      tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
+          .arg(ray_kind_name(r->kind))
+          .arg(r->depth)
+          .arg((r->has_pixel ? tr(", pixel (%1, %2)").arg(r->pixel[0]).arg(r->pixel[1]) : QString()) +
+               sampleText(session_->pixel(), *r))
+          .arg(num(r->ray.origin.x), num(r->ray.origin.y), num(r->ray.origin.z))
+          .arg(num(r->ray.direction.x), num(r->ray.direction.y), num(r->ray.direction.z)));
   QString line = QString::fromStdString(describeEvent(*s.event));
   if (conceal_) line.remove(QRegularExpression("\\s+next \\w+$"));  // a cell's line names the next axis
   event_->setText(tr("<b>Event</b> %1").arg(line.toHtmlEscaped()));

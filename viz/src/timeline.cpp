@@ -134,11 +134,26 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   connect(session_, &Session::traceChanged, this, [this] {
     setPlaying(false);
     ray_->clear();
-    if (const Trace* t = session_->trace())
+    if (const Trace* t = session_->trace()) {
+      const TracePixel* px = session_->pixel();
       for (size_t i = 0; i < t->rays.size(); ++i) {
         const TracedRay& r = t->rays[i];
-        ray_->addItem(QString("%1: %2 (depth %3)").arg(i).arg(ray_kind_name(r.kind)).arg(r.depth));
+        // An anti-aliased pixel's rays name their sample and where it lies in the pixel.
+        QString sample;
+        if (px && r.sample >= 0 && r.sample < int(px->sampling.samples.size())) {
+          const PixelSample& ps = px->sampling.samples[size_t(r.sample)];
+          sample = QString("sample %1 (%2, %3) ")
+                       .arg(r.sample)
+                       .arg(double(ps.px) - px->sampling.x, 0, 'f', 2)
+                       .arg(double(ps.py) - px->sampling.y, 0, 'f', 2);
+        }
+        ray_->addItem(
+            QString("%1: %2%3 (depth %4)").arg(i).arg(sample).arg(ray_kind_name(r.kind)).arg(r.depth));
       }
+    }
+    // Room for "12: sample 3 (0.62, 0.18) primary" when the rays name their samples.
+    ray_->setMinimumContentsLength(session_->pixel() && session_->trace() && session_->trace()->pixel ? 34
+                                                                                                      : 14);
     ray_->setCurrentIndex(session_->rayIndex());
     if (const TracedRay* r = session_->ray()) offerUnit(isTreeRay(*r));
     refresh();

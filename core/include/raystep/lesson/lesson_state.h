@@ -35,7 +35,7 @@ struct LessonState {
   StructureOptions structure;  // grid and kd-tree options, as the command line sets them
   std::string aa;              // "" : the scene's anti-aliasing
   std::optional<std::array<int, 2>> size;   // none: the scene's
-  std::string heat;                         // "": no overlay; else cells | tests | mailbox
+  std::string heat;                         // "": no overlay; else cells | tests | mailbox | samples | error
   std::optional<std::array<int, 2>> pixel;  // none: no traced pixel
   bool secondary = false;
   int ray = 0;
@@ -45,6 +45,13 @@ struct LessonState {
   bool follow = false, translucent = false;
   std::optional<double> zoom;   // none: the window's default; 0: fit
   std::string show = "window";  // the handout's figure: window | 3d | chart | picture
+  // The pixel inspector (an anti-aliased pixel's samples): open or not, the sample whose ray is replayed
+  // (none: the ray named by `ray`), the adaptive square stepped to (none: the whole pixel), and the image
+  // view's sample pattern over each pixel at 8x zoom and more.
+  bool inspect = false;
+  std::optional<int> sample;
+  std::optional<int> square;
+  bool sample_overlay = false;
 
   // The equivalent raystep-gui command line (scene first, then options in a fixed order), without --quit or
   // outputs: `raystep-gui ARGS --dump-state s.json --quit` shows what entering the step shows.
