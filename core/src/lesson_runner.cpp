@@ -9,6 +9,7 @@
 
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
@@ -129,16 +130,66 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
     if (px >= w.width || py >= w.height)
       fail({"pixel", "size"}, "pixel " + std::to_string(px) + "," + std::to_string(py) + ": outside the " +
                                   std::to_string(w.width) + "x" + std::to_string(w.height) + " picture");
+    // Anti-aliased, the debugger traces every sample's rays (tracePixel): the same pixel trace as
+    // `raystep trace --pixel X,Y --aa SPEC`; without anti-aliasing the centre ray.
+    AntiAliasing aa = cache.scene->render.aa;
+    if (!state.aa.empty() && state.aa != "scene") {
+      try {
+        aa = parse_antialiasing(state.aa);
+      } catch (const InputError& e) {
+        fail({"aa"}, std::string("aa: ") + e.detail());
+      }
+    }
+    const bool sampled = aa.mode != AntiAliasing::Mode::none;
     const std::string tkey = std::to_string(w.width) + "x" + std::to_string(w.height) + "@" +
-                             std::to_string(px) + "," + std::to_string(py) + (state.secondary ? "+" : "");
+                             std::to_string(px) + "," + std::to_string(py) + (state.secondary ? "+" : "") +
+                             (sampled ? " " + to_string(aa) : "");
     if (!cache.trace || cache.trace_key != tkey) {
-      std::vector<RayRequest> requests =
-          pixel_rays(*cache.scene, *cache.accel, w.width, w.height, px, py, state.secondary);
-      cache.trace = std::make_shared<Trace>(
-          record_trace(cache.scene->geometry, *cache.accel, requests, cache.scene_path, cache.scene_hash));
+      if (sampled) {
+        try {
+          cache.trace = std::make_shared<Trace>(record_pixel_trace(*cache.scene, *cache.accel, w.width, w.height,
+                                                                   px, py, aa, cache.scene->render.seed,
+                                                                   state.secondary, cache.scene_path,
+                                                                   cache.scene_hash));
+        } catch (const InputError& e) {
+          fail({"aa", "pixel"}, std::string("tracing the pixel's samples: ") + e.detail());
+        }
+      } else {
+        std::vector<RayRequest> requests =
+            pixel_rays(*cache.scene, *cache.accel, w.width, w.height, px, py, state.secondary);
+        cache.trace = std::make_shared<Trace>(
+            record_trace(cache.scene->geometry, *cache.accel, requests, cache.scene_path, cache.scene_hash));
+      }
       cache.trace_key = tkey;
     }
     w.trace = cache.trace;
+  }
+
+  // The inspector's sample and square, with the scripted mode's messages (viz/src/lesson_enter.cpp).
+  int ray = state.ray;
+  if (state.sample || state.square) {
+    const Trace* t = w.trace.get();
+    if (state.sample) {
+      const std::string text = "sample " + std::to_string(*state.sample);
+      if (!t) fail({"sample"}, text + ": no traced pixel (pixel: X,Y)");
+      const int n = t->pixel ? int(t->pixel->sampling.samples.size()) : 1;  // the centre ray: one sample
+      if (*state.sample >= n)
+        fail({"sample", "aa"}, text + ": the pixel has " + std::to_string(n) + " sample" + (n == 1 ? "" : "s") +
+                                   " (0.." + std::to_string(n - 1) + ")");
+      ray = -1;
+      for (size_t i = 0; i < t->rays.size() && ray < 0; ++i)
+        if (t->pixel ? t->rays[i].sample == *state.sample : i == 0) ray = int(i);
+      if (ray < 0) fail({"sample"}, text + ": the trace holds no ray of that sample");
+    }
+    if (state.square) {
+      const std::string text = "square " + std::to_string(*state.square);
+      if (!t || !t->pixel || t->pixel->sampling.aa.mode != AntiAliasing::Mode::adaptive)
+        fail({"square", "aa"}, text + ": the pixel is not sampled adaptively (aa: adaptive:T[:D])");
+      const int n = int(t->pixel->sampling.squares.size());
+      if (*state.square >= n)
+        fail({"square"}, text + ": the pixel's subdivision has " + std::to_string(n) + " squares (0.." +
+                             std::to_string(n - 1) + ")");
+    }
   }
 
   // The ray and the event, with the scripted mode's messages.
@@ -149,11 +200,11 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
                                     state.event.text + ": no traced pixel (pixel: X,Y)");
   } else {
     const int rays = int(w.trace->rays.size());
-    if (state.ray >= rays)
+    if (ray >= rays)
       fail({"ray", "secondary", "pixel"},
-           "ray " + std::to_string(state.ray) + ": the pixel's trace has " + std::to_string(rays) +
+           "ray " + std::to_string(ray) + ": the pixel's trace has " + std::to_string(rays) +
                (rays == 1 ? " ray (0)" : " rays (0.." + std::to_string(rays - 1) + ")"));
-    w.ray = state.ray;
+    w.ray = ray;
     const TracedRay& r = w.trace->rays[size_t(w.ray)];
     const int n = int(r.events.size());
     if (state.event.by == EventSpec::By::index) {

@@ -404,6 +404,49 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
             f + "12: step 'B': next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
 }
 
+// An anti-aliased pixel is traced as the debugger traces it: every sample's rays, the pixel section with them
+// (the same trace as `raystep trace --pixel --aa`); `sample: N` replays sample N's primary ray, `square: N`
+// must name a square of an adaptive subdivision.
+TEST(LessonRunner, AnAntiAliasedPixelIsTracedSampleBySample) {
+  LessonRunner runner;
+  Lesson l = parse_lesson_text(
+      "# T\n## A\n```raystep\nscene: ../scenes/aliasing.json\naa: regular:4\npixel: 32,38\nsample: 6\n"
+      "step-to: hit:1\n```\n## B\n```raystep\naa: adaptive:0.1\nsample: none\nsquare: 7\n```\n"
+      "## C\n```raystep\naa: none\nsquare: none\n```\n",
+      kSource + "/lessons/t.md");
+  EXPECT_EQ(check_lesson(l), 0);
+  StepWorld a = runner.enter(l.steps[0].state);
+  ASSERT_TRUE(a.trace && a.trace->pixel);
+  EXPECT_EQ(a.trace->pixel->sampling.samples.size(), 16u);
+  EXPECT_EQ(a.trace->rays.size(), 16u);
+  EXPECT_EQ(a.trace->rays[size_t(a.ray)].sample, 6);
+  const PixelSample& six = a.trace->pixel->sampling.samples[6];
+  const Ray expected = ProjectiveCamera(a.scene->camera, 64, 48).generate(six.px, six.py);
+  EXPECT_EQ(a.trace->rays[size_t(a.ray)].ray.origin, expected.origin);
+  EXPECT_EQ(a.trace->rays[size_t(a.ray)].ray.direction, expected.direction);
+  EXPECT_EQ(a.trace->rays[size_t(a.ray)].events[size_t(a.step)].type, EventType::hit_accepted);
+
+  StepWorld b = runner.enter(l.steps[1].state);
+  ASSERT_TRUE(b.trace && b.trace->pixel);
+  EXPECT_EQ(b.trace->pixel->sampling.aa.mode, AntiAliasing::Mode::adaptive);
+  EXPECT_GT(b.trace->pixel->sampling.squares.size(), 7u);
+  EXPECT_EQ(b.ray, 0);
+
+  StepWorld c = runner.enter(l.steps[2].state);  // without anti-aliasing: the centre ray, no pixel section
+  ASSERT_TRUE(c.trace);
+  EXPECT_FALSE(c.trace->pixel.has_value());
+  EXPECT_EQ(c.trace->rays.size(), 1u);
+
+  const std::string f = kSource + "/lessons/t.md:";
+  const std::string head = "# T\n## S\n```raystep\nscene: ../scenes/aliasing.json\npixel: 32,38\n";
+  EXPECT_EQ(check_error(head + "aa: jitter:2\nsample: 4\n```\n"),
+            f + "7: step 'S': sample 4: the pixel has 4 samples (0..3)");
+  EXPECT_EQ(check_error(head + "aa: jitter:2\nsquare: 0\n```\n"),
+            f + "7: step 'S': square 0: the pixel is not sampled adaptively (aa: adaptive:T[:D])");
+  EXPECT_EQ(check_error(head + "aa: adaptive:0.1:1\nsquare: 99\n```\n"),
+            f + "7: step 'S': square 99: the pixel's subdivision has 5 squares (0..4)");
+}
+
 TEST(LessonRunner, AnswersEveryKindOnTheCornellBox) {
   LessonRunner runner;
   Lesson l = parse_lesson_text(
