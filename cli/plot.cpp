@@ -62,9 +62,11 @@ std::string first_line(const std::string& path) {
 }  // namespace
 
 bool gnuplot_available() {
-  const std::string err = (fs::temp_directory_path() / ("raystep-gnuplot-" + std::to_string(::getpid()))).string();
+  const std::string err =
+      (fs::temp_directory_path() / ("raystep-gnuplot-" + std::to_string(::getpid()))).string();
   std::error_code ec;
-  const fs::path script = fs::temp_directory_path() / ("raystep-gnuplot-" + std::to_string(::getpid()) + ".gp");
+  const fs::path script =
+      fs::temp_directory_path() / ("raystep-gnuplot-" + std::to_string(::getpid()) + ".gp");
   { std::ofstream(script) << "exit\n"; }
   const bool ok = run_gnuplot(fs::temp_directory_path().string(), script.string(), err) == 0;
   fs::remove(script, ec);
@@ -95,8 +97,10 @@ PlotResult plot_png(const std::string& dir, const std::string& name, const std::
     result.message = "gnuplot failed on " + name + ".gp: " + first_line(err.string());
   } else {
     fs::rename(fs::path(dir) / temp_png, fs::path(dir) / (name + ".png"), ec);
-    if (ec) result.message = "cannot rename the plot to " + name + ".png: " + ec.message();
-    else result.drawn = true;
+    if (ec)
+      result.message = "cannot rename the plot to " + name + ".png: " + ec.message();
+    else
+      result.drawn = true;
   }
   fs::remove(temp_script, ec);
   fs::remove(err, ec);

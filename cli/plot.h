@@ -1,7 +1,7 @@
 // Plots as PNG, drawn by gnuplot (Debian's gnuplot-nox: a well-kept plotting program that needs no display).
-// Each plot is a gnuplot script kept beside its PNG and reading the report's own CSV, so a student can restyle
-// a plot and run `gnuplot NAME.gp` again in the report's folder. Without gnuplot the scripts and data are
-// still written and the report says, in one line, how to draw them.
+// Each plot is a gnuplot script kept beside its PNG and reading the report's own CSV, so a student can
+// restyle a plot and run `gnuplot NAME.gp` again in the report's folder. Without gnuplot the scripts and data
+// are still written and the report says, in one line, how to draw them.
 #pragma once
 
 #include <string>

@@ -147,10 +147,9 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
     if (!cache.trace || cache.trace_key != tkey) {
       if (sampled) {
         try {
-          cache.trace = std::make_shared<Trace>(record_pixel_trace(*cache.scene, *cache.accel, w.width, w.height,
-                                                                   px, py, aa, cache.scene->render.seed,
-                                                                   state.secondary, cache.scene_path,
-                                                                   cache.scene_hash));
+          cache.trace = std::make_shared<Trace>(record_pixel_trace(
+              *cache.scene, *cache.accel, w.width, w.height, px, py, aa, cache.scene->render.seed,
+              state.secondary, cache.scene_path, cache.scene_hash));
         } catch (const InputError& e) {
           fail({"aa", "pixel"}, std::string("tracing the pixel's samples: ") + e.detail());
         }
@@ -174,8 +173,8 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
       if (!t) fail({"sample"}, text + ": no traced pixel (pixel: X,Y)");
       const int n = t->pixel ? int(t->pixel->sampling.samples.size()) : 1;  // the centre ray: one sample
       if (*state.sample >= n)
-        fail({"sample", "aa"}, text + ": the pixel has " + std::to_string(n) + " sample" + (n == 1 ? "" : "s") +
-                                   " (0.." + std::to_string(n - 1) + ")");
+        fail({"sample", "aa"}, text + ": the pixel has " + std::to_string(n) + " sample" +
+                                   (n == 1 ? "" : "s") + " (0.." + std::to_string(n - 1) + ")");
       ray = -1;
       for (size_t i = 0; i < t->rays.size() && ray < 0; ++i)
         if (t->pixel ? t->rays[i].sample == *state.sample : i == 0) ray = int(i);
