@@ -10,6 +10,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
+#include "report_timing.h"
 
 namespace raystep {
 
@@ -22,20 +23,10 @@ HitAgreement compare_hits(const Hit& brute, const Hit& other) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-bool cancelled(const std::atomic<bool>* cancel) {
-  return cancel && cancel->load(std::memory_order_relaxed);
-}
+using report_timing::cancelled;
+using report_timing::Clock;
+using report_timing::median;
+using report_timing::seconds_since;
 
 // Thrown inside to leave a half-measured structure; never escapes compare_structures.
 struct Cancelled {};
