@@ -4,20 +4,28 @@
 #include "raystep/render/whitted.h"
 
 namespace raystep {
+namespace {
 
-std::vector<RayRequest> pixel_rays(const Scene& scene, const Accelerator& accel, int width, int height, int px,
-                                   int py, bool secondary) {
+// A ray the tracer cast for pixel (px, py), as the trace file asks for it.
+RayRequest pixel_request(const Ray& ray, RayKind kind, int depth, int px, int py) {
+  RayRequest r;
+  r.ray = ray;
+  r.kind = kind;
+  r.depth = depth;
+  r.has_pixel = true;
+  r.pixel[0] = px;
+  r.pixel[1] = py;
+  return r;
+}
+
+}  // namespace
+
+std::vector<RayRequest> pixel_rays(const Scene& scene, const Accelerator& accel, int width, int height,
+                                   int px, int py, bool secondary) {
   Ray primary = ProjectiveCamera(scene.camera, width, height).generate(float(px) + 0.5f, float(py) + 0.5f);
   std::vector<RayRequest> out;
   auto request = [&](const Ray& ray, RayKind kind, int depth) {
-    RayRequest r;
-    r.ray = ray;
-    r.kind = kind;
-    r.depth = depth;
-    r.has_pixel = true;
-    r.pixel[0] = px;
-    r.pixel[1] = py;
-    out.push_back(r);
+    out.push_back(pixel_request(ray, kind, depth, px, py));
   };
   if (!secondary) {
     request(primary, RayKind::primary, 0);
@@ -44,13 +52,7 @@ PixelSampleRays pixel_sample_rays(const Scene& scene, const Accelerator& accel, 
       ++sample;
     else if (!secondary)
       return;
-    RayRequest r;
-    r.ray = ray;
-    r.kind = kind;
-    r.depth = depth;
-    r.has_pixel = true;
-    r.pixel[0] = px;
-    r.pixel[1] = py;
+    RayRequest r = pixel_request(ray, kind, depth, px, py);
     r.sample = sample;
     out.rays.push_back(r);
   };
