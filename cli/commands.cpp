@@ -44,21 +44,6 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-// "WxH" with 1 <= W, H <= 16384.
-void parse_size(const std::string& spec, int* w, int* h) {
-  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
-  std::smatch m;
-  if (std::regex_match(spec, m, re)) {
-    int ww = std::stoi(m[1]), hh = std::stoi(m[2]);
-    if (ww >= 1 && hh >= 1 && ww <= 16384 && hh <= 16384) {
-      *w = ww;
-      *h = hh;
-      return;
-    }
-  }
-  throw InputError("", 0, "--size '" + spec + "': expected WxH with 1 <= W, H <= 16384");
-}
-
 std::string extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
@@ -129,6 +114,21 @@ void check_threads(int threads) {
 }
 
 }  // namespace
+
+// "WxH" with 1 <= W, H <= 16384.
+void parse_size(const std::string& spec, int* w, int* h) {
+  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
+  std::smatch m;
+  if (std::regex_match(spec, m, re)) {
+    int ww = std::stoi(m[1]), hh = std::stoi(m[2]);
+    if (ww >= 1 && hh >= 1 && ww <= 16384 && hh <= 16384) {
+      *w = ww;
+      *h = hh;
+      return;
+    }
+  }
+  throw InputError("", 0, "--size '" + spec + "': expected WxH with 1 <= W, H <= 16384");
+}
 
 int run_render(const RenderArgs& a) {
   std::string ext = extension(a.output);

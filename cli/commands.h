@@ -9,6 +9,9 @@
 
 namespace raystep::cli {
 
+// "WxH" (--size) into *w and *h, with 1 <= W, H <= 16384; anything else throws InputError.
+void parse_size(const std::string& spec, int* w, int* h);
+
 // The acceleration structure and its build options (render, cast, trace).
 struct StructureArgs {
   std::string accel = "bvol";

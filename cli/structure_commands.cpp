@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
-#include <regex>
 #include <sstream>
 
 #include "commands.h"
@@ -28,21 +27,6 @@ namespace raystep::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// "WxH" with 1 <= W, H <= 16384.
-void parse_size_spec(const std::string& spec, int* w, int* h) {
-  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
-  std::smatch m;
-  if (std::regex_match(spec, m, re)) {
-    int ww = std::stoi(m[1]), hh = std::stoi(m[2]);
-    if (ww >= 1 && hh >= 1 && ww <= 16384 && hh <= 16384) {
-      *w = ww;
-      *h = hh;
-      return;
-    }
-  }
-  throw InputError("", 0, "--size '" + spec + "': expected WxH with 1 <= W, H <= 16384");
-}
 
 // "a,b,c": non-empty names.
 std::vector<std::string> parse_names(const std::string& option, const std::string& spec) {
@@ -168,7 +152,7 @@ int run_compare(const CompareArgs& a) {
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
   options.reps = a.reps;
-  if (a.size) parse_size_spec(*a.size, &options.camera_width, &options.camera_height);
+  if (a.size) parse_size(*a.size, &options.camera_width, &options.camera_height);
   for (const std::string& name : options.structures) {
     try {
       make_accelerator(name, options.build);
@@ -288,7 +272,7 @@ int run_grid_sweep_command(const GridSweepArgs& a) {
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
   options.reps = a.reps;
-  if (a.size) parse_size_spec(*a.size, &options.camera_width, &options.camera_height);
+  if (a.size) parse_size(*a.size, &options.camera_width, &options.camera_height);
   Scene scene = load_scene(a.scene);
 
   GridSweep sweep;
@@ -403,7 +387,7 @@ int run_cost(const CostArgs& a) {
   std::optional<ReportFolder> folder;
   if (!a.output.empty()) folder.emplace(a.output);
   CostReportOptions options;
-  if (a.size) parse_size_spec(*a.size, &options.width, &options.height);
+  if (a.size) parse_size(*a.size, &options.width, &options.height);
   if (a.aa) options.aa = parse_antialiasing(*a.aa);
   if (a.accel) {
     options.structures = parse_names("--accel", *a.accel);
