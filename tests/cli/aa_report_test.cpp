@@ -2,8 +2,6 @@
 // and bad method lists, scenes, references and sizes exit 2 with one line and leave nothing behind.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -16,88 +14,27 @@
 #include "raystep/io/image_io.h"
 #include "raystep/render/reference.h"
 
+#include "cli_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
+using namespace raystep::clitest;
 
-class AaReportCli : public ::testing::Test {
+class AaReportCli : public CliTest {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::path(::testing::TempDir()) /
-        ("raystep_aa_report_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  AaReportCli() : CliTest("raystep_aa_report_") {}
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  static std::string scene(const std::string& name) {
-    return std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name;
-  }
-
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-
-  Outcome run(const std::string& args) const {
-    const std::string out = path("stdout.txt"), err = path("stderr.txt");
-    const std::string cmd =
-        std::string(RAYSTEP_EXE) + " aa-report " + args + " >" + out + " 2>" + err + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
-  void expect_error(const Outcome& r, const std::string& prefix) const {
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("error: " + prefix, 0), 0u) << "stderr: " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
-  }
+  // `raystep aa-report ARGS`.
+  Outcome run(const std::string& args) const { return CliTest::run("aa-report " + args); }
 
   // Nothing in the test folder but what the test put there: no report, no temporary folder.
   void expect_no_report() const {
     for (const auto& entry : fs::directory_iterator(dir_))
       EXPECT_EQ(entry.path().filename().string().find("report"), std::string::npos) << entry.path();
   }
-
-  fs::path dir_;
 };
-
-// report.csv as rows of column name -> text.
-std::vector<std::map<std::string, std::string>> read_csv(const std::string& file) {
-  std::ifstream in(file);
-  std::string line;
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-  auto split = [](const std::string& s, char sep) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, sep)) out.push_back(item);
-    if (!s.empty() && s.back() == sep) out.push_back("");
-    return out;
-  };
-  if (std::getline(in, line)) header = split(line, ',');
-  while (std::getline(in, line)) {
-    const std::vector<std::string> cells = split(line, ',');
-    EXPECT_EQ(cells.size(), header.size()) << line;
-    std::map<std::string, std::string> row;
-    for (size_t i = 0; i < std::min(cells.size(), header.size()); ++i) row[header[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
 
 std::vector<std::string> split_images(const std::string& s) {
   std::vector<std::string> out;

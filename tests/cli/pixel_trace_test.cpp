@@ -2,7 +2,6 @@
 // in a version 2 trace, `trace-info` summarising the pixel section, and bad options refused with one line,
 // exit 2.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,56 +12,17 @@
 
 #include "raystep/trace/trace_file.h"
 
+#include "cli_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
+using namespace raystep::clitest;
 
-class PixelTraceCli : public ::testing::Test {
+class PixelTraceCli : public CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("raystep_pixel_trace_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-
-  Outcome run(const std::string& args) const {
-    std::string out = path("stdout.txt"), err = path("stderr.txt");
-    std::string cmd = std::string(RAYSTEP_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    int status = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
-  // Exit code 2, a single line "error: <prefix>..." on stderr, and no output file.
-  void expect_error(const Outcome& r, const std::string& prefix, const std::string& output) const {
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("error: " + prefix, 0), 0u) << "stderr: " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
-    EXPECT_FALSE(fs::exists(output)) << output;
-  }
-
-  static std::string scene(const char* name) { return std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name; }
-
-  fs::path dir_;
+  PixelTraceCli() : CliTest("raystep_pixel_trace_") {}
 };
 
 size_t count(const std::string& text, const std::string& part) {

@@ -2,8 +2,6 @@
 // force on every shipped scene and mesh, the cost formula's bound holds (exactly where it is exact), the
 // sweep's rows move the way they must, and bad input exits 2 with one line.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -14,47 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "cli_test_util.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
-
-// A CSV file as rows of named fields (quoted fields may hold commas).
-using CsvRow = std::map<std::string, std::string>;
-
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (char c : line) {
-    if (c == '"')
-      quoted = !quoted;
-    else if (c == ',' && !quoted)
-      fields.emplace_back();
-    else
-      fields.back() += c;
-  }
-  return fields;
-}
-
-std::vector<CsvRow> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::vector<CsvRow> rows;
-  if (!std::getline(in, line)) return rows;
-  std::vector<std::string> header = split_csv_line(line);
-  while (std::getline(in, line)) {
-    std::vector<std::string> f = split_csv_line(line);
-    EXPECT_EQ(f.size(), header.size()) << line;
-    CsvRow row;
-    for (size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
+using namespace raystep::clitest;
 
 double num(const CsvRow& row, const std::string& key) {
   auto it = row.find(key);
@@ -62,42 +26,9 @@ double num(const CsvRow& row, const std::string& key) {
   return it == row.end() ? -1.0 : std::stod(it->second);
 }
 
-class StructureReports : public ::testing::Test {
+class StructureReports : public CliTest {
  protected:
-  void SetUp() override {
-    dir_ =
-        fs::path(::testing::TempDir()) /
-        ("raystep_reports_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-         std::to_string(::getpid()));  // the pid: two checkouts' test runs at once never share a folder
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-
-  Outcome run(const std::string& args) const {
-    std::string out = path("stdout.txt"), err = path("stderr.txt");
-    std::string cmd = std::string(RAYSTEP_EXE) + " " + args + " >" + out + " 2>" + err + " </dev/null";
-    int status = std::system(cmd.c_str());
-    Outcome r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
-  void expect_error(const Outcome& r, const std::string& prefix) const {
-    EXPECT_EQ(r.code, 2) << r.err;
-    EXPECT_EQ(r.err.rfind("error: " + prefix, 0), 0u) << "stderr: " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "stderr: " << r.err;
-  }
+  StructureReports() : CliTest("raystep_reports_") {}
 
   // Nothing but the named entries in the test folder: no DIR.tmp.PID left behind.
   void expect_only(const std::vector<std::string>& names) const {
@@ -108,8 +39,6 @@ class StructureReports : public ::testing::Test {
     std::sort(want.begin(), want.end());
     EXPECT_EQ(found, want);
   }
-
-  fs::path dir_;
 };
 
 std::vector<std::string> shipped_inputs() {
