@@ -13,20 +13,14 @@
 #include "raystep/render/coverage.h"
 #include "raystep/render/render.h"
 #include "raystep/util/error.h"
+#include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
 using Mode = AntiAliasing::Mode;
 
-AntiAliasing make_aa(Mode mode, int k = 1, float threshold = 0.1f, int max_depth = 3) {
-  AntiAliasing aa;
-  aa.mode = mode;
-  aa.k = k;
-  aa.threshold = threshold;
-  aa.max_depth = max_depth;
-  return aa;
-}
+using test::make_aa;
 
 // ---- The patterns on analytic radiance functions ----
 

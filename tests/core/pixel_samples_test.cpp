@@ -18,20 +18,14 @@
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/util/error.h"
+#include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
 using Mode = AntiAliasing::Mode;
 
-AntiAliasing make_aa(Mode mode, int k = 1, float threshold = 0.1f, int max_depth = 3) {
-  AntiAliasing aa;
-  aa.mode = mode;
-  aa.k = k;
-  aa.threshold = threshold;
-  aa.max_depth = max_depth;
-  return aa;
-}
+using test::make_aa;
 
 bool same_bits(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
@@ -232,15 +226,7 @@ TEST(PixelSamples, PixelRngIsTheRenderersStream) {
 
 // ---- (b) The adaptive tree is the sampler's on whole renders of real scenes ----
 
-struct LoadedScene {
-  Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  explicit LoadedScene(const std::string& name, const char* structure = "grid")
-      : scene(load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name)),
-        accel(make_accelerator(structure)) {
-    accel->build(scene.geometry);
-  }
-};
+using test::LoadedScene;
 
 void expect_render_recorded(const LoadedScene& s, const AntiAliasing& aa, int width, int height,
                             uint64_t seed) {

@@ -18,18 +18,14 @@
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
+#include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
-struct LoadedScene {
-  Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  explicit LoadedScene(const std::string& name, const char* structure = "grid")
-      : scene(load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name)),
-        accel(make_accelerator(structure)) {
-    accel->build(scene.geometry);
-  }
+// A shipped scene whose pixels are traced into a trace file.
+struct TracedScene : test::LoadedScene {
+  using test::LoadedScene::LoadedScene;
   Trace trace(const std::string& spec, int x, int y, bool secondary, uint64_t seed = 3) const {
     return record_pixel_trace(scene, *accel, scene.render.width, scene.render.height, x, y,
                               parse_antialiasing(spec), seed, secondary, "scene.json", "fnv1a64:0");
@@ -76,7 +72,7 @@ void expect_refused(const std::string& text, const std::string& key, const std::
 constexpr int kEdgeX = 30, kEdgeY = 38;
 
 TEST(PixelTrace, RecordsThePixelAsTheRendererSamplesIt) {
-  const LoadedScene s("aliasing.json");
+  const TracedScene s("aliasing.json");
   for (const char* spec :
        {"none", "regular:3", "jitter:4", "random:7", "adaptive:0.1:2", "adaptive:0.05:4"}) {
     SCOPED_TRACE(spec);
@@ -110,8 +106,8 @@ TEST(PixelTrace, RecordsThePixelAsTheRendererSamplesIt) {
 }
 
 TEST(PixelTrace, JsonRoundTripIsIdenticalForEveryPattern) {
-  const LoadedScene aliasing("aliasing.json");
-  const LoadedScene spheres("spheres.json", "kd");
+  const TracedScene aliasing("aliasing.json");
+  const TracedScene spheres("spheres.json", "kd");
   for (const char* spec : {"none", "regular:2", "jitter:3", "random:5", "adaptive:0.1:3"}) {
     SCOPED_TRACE(spec);
     for (Trace t : {aliasing.trace(spec, kEdgeX, kEdgeY, false), spheres.trace(spec, 170, 120, true)}) {
@@ -218,7 +214,7 @@ TEST(PixelTrace, Version1DocumentsStillRead) {
 }
 
 TEST(PixelTrace, DamagedPixelSectionsAreRefusedWithLineAndPath) {
-  const LoadedScene s("aliasing.json");
+  const TracedScene s("aliasing.json");
   const std::string adaptive = trace_to_json(s.trace("adaptive:0.1:2", kEdgeX, kEdgeY, false));
   const std::string jitter = trace_to_json(s.trace("jitter:2", kEdgeX, kEdgeY, false));
   ASSERT_NE(adaptive.find("\"outcome\":\"subdivided\""), std::string::npos);
@@ -285,7 +281,7 @@ TEST(PixelTrace, DamagedPixelSectionsAreRefusedWithLineAndPath) {
 // Random damage to a pixel trace's pixel section: the reader reads something that reads back the same, or
 // refuses it with the file named; never another exception.
 TEST(PixelTrace, DamagedPixelSectionsNeverCrashTheReader) {
-  const LoadedScene s("aliasing.json");
+  const TracedScene s("aliasing.json");
   const std::string text = trace_to_json(s.trace("adaptive:0.1:2", kEdgeX, kEdgeY, false));
   const size_t begin = text.find(" \"pixel\""), end = text.find(" \"rays\"");
   const char* values[] = {"0",
@@ -345,7 +341,7 @@ TEST(PixelTrace, DamagedPixelSectionsNeverCrashTheReader) {
 }
 
 TEST(PixelTrace, CsvAppendsTheSampleColumn) {
-  const LoadedScene s("aliasing.json");
+  const TracedScene s("aliasing.json");
   const Trace t = s.trace("regular:2", kEdgeX, kEdgeY, false);
   const std::string path = ::testing::TempDir() + "/pixel_trace.csv";
   write_trace_csv(path, t);
@@ -369,7 +365,7 @@ TEST(PixelTrace, CsvAppendsTheSampleColumn) {
 }
 
 TEST(PixelTrace, BadRequestsThrow) {
-  const LoadedScene s("aliasing.json");
+  const TracedScene s("aliasing.json");
   EXPECT_THROW(s.trace("jitter:2", 64, 0, false), InputError);
   EXPECT_THROW(s.trace("jitter:2", 0, -1, false), InputError);
   AntiAliasing zero = parse_antialiasing("adaptive:0.1:2");

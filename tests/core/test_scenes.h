@@ -1,13 +1,18 @@
-// Small generated scenes and the brute-force comparison shared by the structure tests (grid, kd-tree, traces).
+// Scenes for the core tests: small generated ones and the brute-force comparison shared by the structure
+// tests (grid, kd-tree, traces), a shipped scene loaded with its structure built, and anti-aliasing settings.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <random>
-
+#include <string>
 #include <vector>
 
+#include "raystep/accel/accelerator.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/scene/geometry.h"
+#include "raystep/scene/scene.h"
+#include "raystep/scene/scene_loader.h"
 
 namespace raystep::test {
 
@@ -26,8 +31,10 @@ inline Geometry make_soup(uint32_t seed, int triangles, int spheres) {
 }
 
 // Rays on which a structure's answer differs from brute force's: another primitive, another t, or another
-// occlusion. Ties (coincident faces, a shared edge) go to the lower primitive id everywhere, so they count too.
-inline int count_disagreements(const Accelerator& acc, const BruteForce& brute, const std::vector<Ray>& rays) {
+// occlusion. Ties (coincident faces, a shared edge) go to the lower primitive id everywhere, so they count
+// too.
+inline int count_disagreements(const Accelerator& acc, const BruteForce& brute,
+                               const std::vector<Ray>& rays) {
   int bad = 0;
   for (const Ray& r : rays) {
     Hit a, b;
@@ -35,6 +42,26 @@ inline int count_disagreements(const Accelerator& acc, const BruteForce& brute, 
     if (ha != hb || a.prim != b.prim || a.t != b.t || brute.occluded(r) != acc.occluded(r)) ++bad;
   }
   return bad;
+}
+
+// A shipped scene (scenes/NAME) with the named structure built over it.
+struct LoadedScene {
+  Scene scene;
+  std::unique_ptr<Accelerator> accel;
+  explicit LoadedScene(const std::string& name, const char* structure = "grid")
+      : scene(load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name)),
+        accel(make_accelerator(structure)) {
+    accel->build(scene.geometry);
+  }
+};
+
+inline AntiAliasing make_aa(AntiAliasing::Mode mode, int k = 1, float threshold = 0.1f, int max_depth = 3) {
+  AntiAliasing aa;
+  aa.mode = mode;
+  aa.k = k;
+  aa.threshold = threshold;
+  aa.max_depth = max_depth;
+  return aa;
 }
 
 }  // namespace raystep::test
