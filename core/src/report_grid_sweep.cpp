@@ -9,6 +9,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
+#include "report_camera_size.h"
 #include "report_timing.h"
 
 namespace raystep {
@@ -23,14 +24,7 @@ using report_timing::seconds_since;
 // The sweep's rays: one through each pixel centre of the (capped) camera image, then the random rays.
 std::vector<Ray> sweep_rays(const Scene& scene, const GridSweepOptions& options) {
   int w = options.camera_width, h = options.camera_height;
-  if (w <= 0 || h <= 0) {
-    // The scene's size, scaled down (aspect kept) so that neither side exceeds 256.
-    w = scene.render.width;
-    h = scene.render.height;
-    double scale = std::min(1.0, 256.0 / double(std::max(w, h)));
-    w = std::max(1, int(std::lround(w * scale)));
-    h = std::max(1, int(std::lround(h * scale)));
-  }
+  report_camera_size(scene, 256, &w, &h);
   std::vector<Ray> rays = camera_rays(scene.camera, w, h);
   if (options.random_rays > 0) {
     std::vector<Ray> random = random_rays(scene.geometry.bounds(), options.random_rays, options.seed);

@@ -10,6 +10,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
+#include "report_camera_size.h"
 #include "report_timing.h"
 
 namespace raystep {
@@ -102,13 +103,7 @@ StructureComparison compare_structures(const Scene& scene, const StructureCompar
   result.scene_path = scene.path;
   result.primitives = scene.geometry.size();
   int w = options.camera_width, h = options.camera_height;
-  if (w <= 0 || h <= 0) {
-    w = scene.render.width;
-    h = scene.render.height;
-    double scale = std::min(1.0, 512.0 / double(std::max(w, h)));
-    w = std::max(1, int(std::lround(w * scale)));
-    h = std::max(1, int(std::lround(h * scale)));
-  }
+  report_camera_size(scene, 512, &w, &h);
   result.camera_width = w;
   result.camera_height = h;
   RaySet sets[2];
