@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "loaded_scene.h"
 #include "raystep/accel/accelerator.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"

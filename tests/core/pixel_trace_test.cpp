@@ -11,6 +11,7 @@
 #include <random>
 #include <string>
 
+#include "loaded_scene.h"
 #include "raystep/accel/accelerator.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -18,7 +19,6 @@
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
-#include "test_scenes.h"
 
 namespace raystep {
 namespace {

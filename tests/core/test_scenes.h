@@ -1,18 +1,14 @@
 // Scenes for the core tests: small generated ones and the brute-force comparison shared by the structure
-// tests (grid, kd-tree, traces), a shipped scene loaded with its structure built, and anti-aliasing settings.
+// tests (grid, kd-tree, traces), and anti-aliasing settings.
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <random>
-#include <string>
 #include <vector>
 
-#include "raystep/accel/accelerator.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/scene/geometry.h"
 #include "raystep/scene/scene.h"
-#include "raystep/scene/scene_loader.h"
 
 namespace raystep::test {
 
@@ -44,17 +40,7 @@ inline int count_disagreements(const Accelerator& acc, const BruteForce& brute,
   return bad;
 }
 
-// A shipped scene (scenes/NAME) with the named structure built over it.
-struct LoadedScene {
-  Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  explicit LoadedScene(const std::string& name, const char* structure = "grid")
-      : scene(load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name)),
-        accel(make_accelerator(structure)) {
-    accel->build(scene.geometry);
-  }
-};
-
+// An anti-aliasing setting, the fields the tests vary.
 inline AntiAliasing make_aa(AntiAliasing::Mode mode, int k = 1, float threshold = 0.1f, int max_depth = 3) {
   AntiAliasing aa;
   aa.mode = mode;
