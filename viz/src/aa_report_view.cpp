@@ -103,11 +103,7 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   resize(1040, 760);
   auto* layout = new QVBoxLayout(this);
 
-  header_ = new QLabel;
-  header_->setObjectName("aaReportHeader");
-  header_->setWordWrap(true);
-  header_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(header_);
+  addHeader(layout, "aaReport");
 
   // The options of a run, as `raystep aa-report` takes them.
   auto* options = new QHBoxLayout;
@@ -141,20 +137,9 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   seeds_->setValue(5);
   seeds_->setToolTip(tr("Runs of each random method (jitter, random): the table shows their spread"));
   options->addWidget(seeds_);
-  run_ = new QPushButton(tr("Run"));
-  run_->setObjectName("aaReportRun");
-  cancelButton_ = new QPushButton(tr("Cancel"));
-  cancelButton_->setObjectName("aaReportCancel");
-  cancelButton_->setEnabled(false);
-  options->addWidget(run_);
-  options->addWidget(cancelButton_);
+  addRunCancel(options, "aaReport");
   layout->addLayout(options);
-  progress_ = new QProgressBar;
-  progress_->setObjectName("aaReportProgress");
-  progress_->setRange(0, 1000);
-  progress_->setValue(0);
-  progress_->setFormat(tr("%p%"));
-  layout->addWidget(progress_);
+  addProgress(layout, "aaReport");
 
   axisTabs_ = new QTabBar;
   axisTabs_->setObjectName("aaReportAxis");
@@ -206,14 +191,8 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   split->setSizes({420, 230});
   layout->addWidget(split, 1);
 
-  status_ = new QLabel;
-  status_->setObjectName("aaReportStatus");
-  status_->setWordWrap(true);
-  status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(status_);
+  addStatus(layout, "aaReport");
 
-  connect(run_, &QPushButton::clicked, this, [this] { start(); });
-  connect(cancelButton_, &QPushButton::clicked, this, &AaReportView::cancel);
   connect(axisTabs_, &QTabBar::currentChanged, this, [this] { redraw(); });
   connect(session_, &Session::sceneChanged, this, [this] {
     if (running()) cancel();

@@ -15,7 +15,6 @@
 
 class QLabel;
 class QLineEdit;
-class QProgressBar;
 class QSpinBox;
 class QComboBox;
 class QTabBar;
@@ -39,7 +38,7 @@ class AaReportView : public ReportWindow {
   void setSeeds(int seeds);
   // Runs the report on the session's scene and structure (any running one is cancelled first). Bad options:
   // the error is shown in the view and returned (empty: started). Cancel, the state: ReportWindow.
-  QString start();
+  QString start() override;
   // "rays" (RMSE against rays per pixel) or "time" (against seconds per render).
   void setXAxis(const QString& axis);
   QString xAxis() const;
@@ -64,12 +63,10 @@ class AaReportView : public ReportWindow {
   QString sceneName_, structureName_;
   QString reducedFrom_;  // the scene's size, when the report renders it smaller (no Size given)
 
-  QLabel* header_;
   QLineEdit* methods_;
   QComboBox* reference_;
   QLineEdit* size_;
   QSpinBox* seeds_;
-  QProgressBar* progress_;
   QTabBar* axisTabs_;
   QTableWidget* table_;
 };

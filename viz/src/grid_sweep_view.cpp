@@ -122,11 +122,7 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   setWindowTitle(tr("raystep - grid sweep: how fine should the grid be?"));
   resize(1040, 760);
   auto* layout = new QVBoxLayout(this);
-  header_ = new QLabel;
-  header_->setObjectName("gridSweepHeader");
-  header_->setWordWrap(true);
-  header_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(header_);
+  addHeader(layout, "gridSweep");
 
   auto* options = new QHBoxLayout;
   options->addWidget(new QLabel(tr("Densities d:")));
@@ -134,19 +130,9 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   densities_->setObjectName("gridSweepDensities");
   densities_->setPlaceholderText(tr("default: 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8"));
   options->addWidget(densities_, 1);
-  run_ = new QPushButton(tr("Run"));
-  run_->setObjectName("gridSweepRun");
-  cancelButton_ = new QPushButton(tr("Cancel"));
-  cancelButton_->setObjectName("gridSweepCancel");
-  cancelButton_->setEnabled(false);
-  options->addWidget(run_);
-  options->addWidget(cancelButton_);
+  addRunCancel(options, "gridSweep");
   layout->addLayout(options);
-  progress_ = new QProgressBar;
-  progress_->setObjectName("gridSweepProgress");
-  progress_->setRange(0, 1000);
-  progress_->setValue(0);
-  layout->addWidget(progress_);
+  addProgress(layout, "gridSweep");
 
   Impl& d = *d_;
   auto* split = new QSplitter(Qt::Vertical);
@@ -217,10 +203,7 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   split->setStretchFactor(1, 1);
   split->setSizes({440, 230});
   layout->addWidget(split, 1);
-  status_ = new QLabel;
-  status_->setObjectName("gridSweepStatus");
-  status_->setWordWrap(true);
-  layout->addWidget(status_);
+  addStatus(layout, "gridSweep");
 
   rebuildTimer_ = new QTimer(this);
   rebuildTimer_->setSingleShot(true);
@@ -231,8 +214,6 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
     rebuildTimer_->stop();
     Q_EMIT densityChosen(chosen_);
   });
-  connect(run_, &QPushButton::clicked, this, [this] { start(); });
-  connect(cancelButton_, &QPushButton::clicked, this, &GridSweepView::cancel);
   connect(session_, &Session::sceneChanged, this, [this] {
     if (running()) cancel();
   });

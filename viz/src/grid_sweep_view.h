@@ -16,7 +16,6 @@
 
 class QLabel;
 class QLineEdit;
-class QProgressBar;
 class QSlider;
 class QTableWidget;
 class QTimer;
@@ -35,7 +34,7 @@ class GridSweepView : public ReportWindow {
   void setDensities(const QString& densities);
   // Runs the sweep on the session's scene; the error (empty: started) is also shown in the view. Cancel, the
   // state: ReportWindow.
-  QString start();
+  QString start() override;
 
   // Moves the slider to d (clamped to the measured range) and asks for the grid at d, as a user's drag does.
   void chooseDensity(float d);
@@ -68,9 +67,7 @@ class GridSweepView : public ReportWindow {
   float chosen_ = 0.f;  // 0: none chosen yet (the charts mark the built grid's density)
   bool settingSlider_ = false;
 
-  QLabel* header_;
   QLineEdit* densities_;
-  QProgressBar* progress_;
   QSlider* slider_;
   QLabel* chosenText_;
   QTableWidget* table_;

@@ -4,9 +4,12 @@
 
 #include <QApplication>
 #include <QCloseEvent>
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QThread>
+#include <QVBoxLayout>
 #include <QtConcurrent>
 
 namespace raystep::viz {
@@ -15,6 +18,48 @@ ReportWindow::ReportWindow(QWidget* parent) : QWidget(parent, Qt::Window) {}
 
 ReportWindow::~ReportWindow() {
   stopWorker();
+}
+
+namespace {
+
+QLabel* selectableLabel(const QString& objectName) {
+  auto* l = new QLabel;
+  l->setObjectName(objectName);
+  l->setWordWrap(true);
+  l->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  return l;
+}
+
+}  // namespace
+
+void ReportWindow::addHeader(QVBoxLayout* layout, const QString& prefix) {
+  header_ = selectableLabel(prefix + "Header");
+  layout->addWidget(header_);
+}
+
+void ReportWindow::addRunCancel(QHBoxLayout* options, const QString& prefix) {
+  run_ = new QPushButton(tr("Run"));
+  run_->setObjectName(prefix + "Run");
+  cancelButton_ = new QPushButton(tr("Cancel"));
+  cancelButton_->setObjectName(prefix + "Cancel");
+  cancelButton_->setEnabled(false);
+  options->addWidget(run_);
+  options->addWidget(cancelButton_);
+  connect(run_, &QPushButton::clicked, this, [this] { start(); });
+  connect(cancelButton_, &QPushButton::clicked, this, &ReportWindow::cancel);
+}
+
+void ReportWindow::addProgress(QVBoxLayout* layout, const QString& prefix) {
+  progress_ = new QProgressBar;
+  progress_->setObjectName(prefix + "Progress");
+  progress_->setRange(0, 1000);
+  progress_->setValue(0);
+  layout->addWidget(progress_);
+}
+
+void ReportWindow::addStatus(QVBoxLayout* layout, const QString& prefix) {
+  status_ = selectableLabel(prefix + "Status");
+  layout->addWidget(status_);
 }
 
 void ReportWindow::stopWorker() {

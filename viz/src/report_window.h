@@ -11,8 +11,11 @@
 #include <QString>
 #include <QWidget>
 
+class QHBoxLayout;
 class QLabel;
+class QProgressBar;
 class QPushButton;
+class QVBoxLayout;
 
 namespace raystep::viz {
 
@@ -21,6 +24,9 @@ class ReportWindow : public QWidget {
  public:
   explicit ReportWindow(QWidget* parent = nullptr);  // a window of its own (Qt::Window)
   ~ReportWindow() override;  // cancels a running report and waits for its current step
+
+  // Runs the report (a running one is cancelled first); bad options: the error, also shown (empty: started).
+  virtual QString start() = 0;
 
   void cancel();  // as the Cancel button: the report stops after its current step
   bool running() const { return running_; }
@@ -36,6 +42,13 @@ class ReportWindow : public QWidget {
 
  protected:
   void closeEvent(QCloseEvent* event) override;  // closing the window cancels a run under way
+
+  // The widgets every report window has, named prefix + "Header", "Run", "Cancel", "Progress" (0..1000),
+  // "Status"; Run starts, Cancel cancels.
+  void addHeader(QVBoxLayout* layout, const QString& prefix);
+  void addRunCancel(QHBoxLayout* options, const QString& prefix);
+  void addProgress(QVBoxLayout* layout, const QString& prefix);
+  void addStatus(QVBoxLayout* layout, const QString& prefix);
 
   // start()'s steps: cancel and wait out a run under way (its last rows and end delivered), clear the error.
   void stopForNewRun();
@@ -57,6 +70,8 @@ class ReportWindow : public QWidget {
 
   std::atomic<bool> cancel_{false};
   QString cancellingText_;  // the status while cancelling, in the view's words
+  QLabel* header_ = nullptr;
+  QProgressBar* progress_ = nullptr;
   QPushButton* run_ = nullptr;
   QPushButton* cancelButton_ = nullptr;
   QLabel* status_ = nullptr;
