@@ -14,7 +14,6 @@
 #include <QLocale>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSaveFile>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QTabBar>
@@ -551,18 +550,13 @@ void AaReportView::renderNow() {
   d_->window->Render();
 }
 
-bool AaReportView::saveChart(const QString& path) {
-  renderNow();
-  QSaveFile file(path);
-  return file.open(QIODevice::WriteOnly) && d_->widget->grabFramebuffer().save(&file, "PNG") && file.commit();
+QOpenGLWidget* AaReportView::chartWidget() const {
+  return d_->widget;
 }
 
 QJsonObject AaReportView::dumpState() const {
   const Impl& d = *d_;
-  QJsonObject o;
-  o["state"] = state();
-  o["error"] = lastError();
-  o["visible"] = isVisible();
+  QJsonObject o = dumpCommon();
   o["x_axis"] = xAxis();
   o["progress"] = d.progress;
   o["reference"] =

@@ -47,8 +47,10 @@ class AaReportView : public ReportWindow {
   const AaReport& report() const { return report_; }
   // The points as plotted (per series, and in the order the rows came), the rows, the state (JSON).
   QJsonObject dumpState() const;
-  void renderNow();
-  bool saveChart(const QString& path);  // the chart alone, as PNG (atomically)
+  void renderNow() override;  // saveChart: ReportWindow
+
+ protected:
+  QOpenGLWidget* chartWidget() const override;
 
  private:
   void addRow(const AaReport& soFar, const AaReportRow& row);

@@ -13,7 +13,6 @@
 #include <QLocale>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSaveFile>
 #include <QSlider>
 #include <QSplitter>
 #include <QTableWidget>
@@ -526,18 +525,13 @@ void GridSweepView::renderNow() {
   d_->window->Render();
 }
 
-bool GridSweepView::saveChart(const QString& path) {
-  renderNow();
-  QSaveFile file(path);
-  return file.open(QIODevice::WriteOnly) && d_->widget->grabFramebuffer().save(&file, "PNG") && file.commit();
+QOpenGLWidget* GridSweepView::chartWidget() const {
+  return d_->widget;
 }
 
 QJsonObject GridSweepView::dumpState() const {
   const Impl& d = *d_;
-  QJsonObject o;
-  o["state"] = state();
-  o["error"] = lastError();
-  o["visible"] = isVisible();
+  QJsonObject o = dumpCommon();
   o["primitives"] = double(sweep_.primitives);
   QJsonArray rows;
   for (const GridSweepRow& r : sweep_.rows)

@@ -42,12 +42,14 @@ class GridSweepView : public ReportWindow {
 
   const GridSweep& sweep() const { return sweep_; }
   QJsonObject dumpState() const;
-  void renderNow();
-  bool saveChart(const QString& path);
+  void renderNow() override;  // saveChart: ReportWindow
 
  Q_SIGNALS:
   // The user chose density d on the slider: the main window rebuilds its grid with it.
   void densityChosen(float d);
+
+ protected:
+  QOpenGLWidget* chartWidget() const override;
 
  private:
   void addRow(const GridSweepRow& row);

@@ -6,8 +6,10 @@
 #include <QCloseEvent>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QOpenGLWidget>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QSaveFile>
 #include <QThread>
 #include <QVBoxLayout>
 #include <QtConcurrent>
@@ -60,6 +62,21 @@ void ReportWindow::addProgress(QVBoxLayout* layout, const QString& prefix) {
 void ReportWindow::addStatus(QVBoxLayout* layout, const QString& prefix) {
   status_ = selectableLabel(prefix + "Status");
   layout->addWidget(status_);
+}
+
+bool ReportWindow::saveChart(const QString& path) {
+  renderNow();
+  QSaveFile file(path);
+  return file.open(QIODevice::WriteOnly) && chartWidget()->grabFramebuffer().save(&file, "PNG") &&
+         file.commit();
+}
+
+QJsonObject ReportWindow::dumpCommon() const {
+  QJsonObject o;
+  o["state"] = state_;
+  o["error"] = error_;
+  o["visible"] = isVisible();
+  return o;
 }
 
 void ReportWindow::stopWorker() {

@@ -8,11 +8,13 @@
 #include <functional>
 
 #include <QFuture>
+#include <QJsonObject>
 #include <QString>
 #include <QWidget>
 
 class QHBoxLayout;
 class QLabel;
+class QOpenGLWidget;
 class QProgressBar;
 class QPushButton;
 class QVBoxLayout;
@@ -27,6 +29,8 @@ class ReportWindow : public QWidget {
 
   // Runs the report (a running one is cancelled first); bad options: the error, also shown (empty: started).
   virtual QString start() = 0;
+  virtual void renderNow() = 0;         // draws the chart now
+  bool saveChart(const QString& path);  // the chart alone, as PNG (atomically)
 
   void cancel();  // as the Cancel button: the report stops after its current step
   bool running() const { return running_; }
@@ -49,6 +53,9 @@ class ReportWindow : public QWidget {
   void addRunCancel(QHBoxLayout* options, const QString& prefix);
   void addProgress(QVBoxLayout* layout, const QString& prefix);
   void addStatus(QVBoxLayout* layout, const QString& prefix);
+
+  virtual QOpenGLWidget* chartWidget() const = 0;
+  QJsonObject dumpCommon() const;  // what every view's --dump-state has: state, error, visible
 
   // start()'s steps: cancel and wait out a run under way (its last rows and end delivered), clear the error.
   void stopForNewRun();
