@@ -1,12 +1,9 @@
 #include "aa_report_view.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 
-#include <QApplication>
-#include <QCloseEvent>
 #include <QComboBox>
 #include <QFileInfo>
 #include <QHBoxLayout>
@@ -17,14 +14,11 @@
 #include <QLocale>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSaveFile>
 #include <QSpinBox>
 #include <QSplitter>
 #include <QTabBar>
 #include <QTableWidget>
-#include <QThread>
 #include <QVBoxLayout>
-#include <QtConcurrent>
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkAxis.h>
@@ -101,17 +95,14 @@ struct AaReportView::Impl {
 };
 
 AaReportView::AaReportView(Session* session, QWidget* parent)
-    : QWidget(parent, Qt::Window), d_(new Impl), session_(session) {
+    : ReportWindow(parent), d_(new Impl), session_(session) {
   setObjectName("aaReportView");
+  cancellingText_ = tr("Cancelling: the report stops after the render under way...");
   setWindowTitle(tr("raystep - anti-aliasing report: error against rays"));
   resize(1040, 760);
   auto* layout = new QVBoxLayout(this);
 
-  header_ = new QLabel;
-  header_->setObjectName("aaReportHeader");
-  header_->setWordWrap(true);
-  header_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(header_);
+  addHeader(layout, "aaReport");
 
   // The options of a run, as `raystep aa-report` takes them.
   auto* options = new QHBoxLayout;
@@ -145,20 +136,9 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   seeds_->setValue(5);
   seeds_->setToolTip(tr("Runs of each random method (jitter, random): the table shows their spread"));
   options->addWidget(seeds_);
-  run_ = new QPushButton(tr("Run"));
-  run_->setObjectName("aaReportRun");
-  cancelButton_ = new QPushButton(tr("Cancel"));
-  cancelButton_->setObjectName("aaReportCancel");
-  cancelButton_->setEnabled(false);
-  options->addWidget(run_);
-  options->addWidget(cancelButton_);
+  addRunCancel(options, "aaReport");
   layout->addLayout(options);
-  progress_ = new QProgressBar;
-  progress_->setObjectName("aaReportProgress");
-  progress_->setRange(0, 1000);
-  progress_->setValue(0);
-  progress_->setFormat(tr("%p%"));
-  layout->addWidget(progress_);
+  addProgress(layout, "aaReport");
 
   axisTabs_ = new QTabBar;
   axisTabs_->setObjectName("aaReportAxis");
@@ -210,17 +190,11 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   split->setSizes({420, 230});
   layout->addWidget(split, 1);
 
-  status_ = new QLabel;
-  status_->setObjectName("aaReportStatus");
-  status_->setWordWrap(true);
-  status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(status_);
+  addStatus(layout, "aaReport");
 
-  connect(run_, &QPushButton::clicked, this, [this] { start(); });
-  connect(cancelButton_, &QPushButton::clicked, this, &AaReportView::cancel);
   connect(axisTabs_, &QTabBar::currentChanged, this, [this] { redraw(); });
   connect(session_, &Session::sceneChanged, this, [this] {
-    if (running_) cancel();
+    if (running()) cancel();
     updateHeader();
   });
   updateHeader();
@@ -231,8 +205,7 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
 }
 
 AaReportView::~AaReportView() {
-  cancel_ = true;
-  future_.waitForFinished();
+  stopWorker();
 }
 
 void AaReportView::setMethods(const QString& methods) {
@@ -263,7 +236,7 @@ void AaReportView::updateHeader() {
   const SceneData* scene = session_->scene();
   QString now = scene ? QFileInfo(QString::fromStdString(scene->path)).fileName() : QString();
   QString t;
-  if (!report_.rows.empty() || running_) {
+  if (!report_.rows.empty() || running()) {
     t = tr("<b>%1</b>, %2 x %3 pixels%4, rendered through the %5.")
             .arg(sceneName_)
             .arg(report_.width)
@@ -290,12 +263,7 @@ void AaReportView::updateHeader() {
 }
 
 QString AaReportView::start() {
-  if (running_) {
-    cancel();
-    future_.waitForFinished();
-    QApplication::processEvents();  // the old run's last rows and its end
-  }
-  error_.clear();
+  stopForNewRun();
   reducedFrom_.clear();
   auto structure = session_->structureShared();
   try {
@@ -340,87 +308,36 @@ QString AaReportView::start() {
     d_->pointsAfterRow.clear();
     d_->progress = 0.0;
     progress_->setValue(0);
-    state_ = "running";
-    running_ = true;
-    cancel_ = false;
-    run_->setEnabled(false);
-    cancelButton_->setEnabled(true);
-    status_->setText(tr("Measuring... each method is rendered, timed and compared with the reference."));
+    const int gen =
+        beginRun(tr("Measuring... each method is rendered, timed and compared with the reference."));
     updateHeader();
     redraw();
 
-    const int gen = ++generation_;
-    auto rows = std::make_shared<std::atomic<int>>(0);
-    future_ = QtConcurrent::run([this, structure, o, gen, rows] {
+    auto result = std::make_shared<AaReport>();
+    auto work = [this, structure, o, gen, result] {
       AaReportHooks hooks;
       hooks.cancel = &cancel_;
-      // Called on this worker: a copy of the row (and of the report's header) goes to the GUI thread.
-      hooks.row_done = [this, gen, rows](const AaReport& soFar, const AaReportRow& row) {
+      // Called on the worker: a copy of the row (and of the report's header) goes to the GUI thread.
+      hooks.row_done = [this, gen](const AaReport& soFar, const AaReportRow& row) {
         AaReport head = soFar;
         head.rows.clear();
-        QMetaObject::invokeMethod(
-            this,
-            [this, gen, head, row] {
-              if (gen == generation_) addRow(head, row);
-            },
-            Qt::QueuedConnection);
-        const int n = cancelAfterRows_;
-        if (++*rows == n) cancel_ = true;  // as a click on Cancel right after this row
+        toGui(gen, [this, head, row] { addRow(head, row); });
+        rowDoneOnWorker();
       };
       hooks.progress = [this, gen](double f) {
-        QMetaObject::invokeMethod(
-            this,
-            [this, gen, f] {
-              if (gen != generation_) return;
-              d_->progress = f;
-              progress_->setValue(int(std::lround(std::clamp(f, 0.0, 1.0) * 1000)));
-            },
-            Qt::QueuedConnection);
+        toGui(gen, [this, f] {
+          d_->progress = f;
+          progress_->setValue(int(std::lround(std::clamp(f, 0.0, 1.0) * 1000)));
+        });
       };
-      AaReport result;
-      QString state = "done", error;
-      try {
-        result = run_aa_report(structure->scene->scene, *structure->accel, o, hooks);
-        if (cancel_) state = "cancelled";
-      } catch (const std::exception& e) {
-        state = "failed";
-        error = QString::fromStdString(e.what());
-      }
-      QMetaObject::invokeMethod(
-          this,
-          [this, gen, result, state, error] {
-            if (gen == generation_) done(result, state, error);
-          },
-          Qt::QueuedConnection);
-    });
+      *result = run_aa_report(structure->scene->scene, *structure->accel, o, hooks);
+    };
+    runOnWorker(gen, work,
+                [this, result](const QString& state, const QString& error) { done(*result, state, error); });
   } catch (const std::exception& e) {
-    error_ = QString::fromStdString(e.what());
-    state_ = "failed";
-    status_->setText(tr("<span style='color:#b00'>%1</span>").arg(error_.toHtmlEscaped()));
+    return refuseStart(e);
   }
-  return error_;
-}
-
-void AaReportView::closeEvent(QCloseEvent* event) {
-  cancel();
-  QWidget::closeEvent(event);
-}
-
-void AaReportView::cancel() {
-  if (!running_) return;
-  cancel_ = true;
-  status_->setText(tr("Cancelling: the report stops after the render under way..."));
-}
-
-bool AaReportView::waitForFinished(int timeoutMs) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (running_) {
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(5);
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::milliseconds(timeoutMs)) return false;
-  }
-  QApplication::processEvents();
-  return true;
+  return lastError();
 }
 
 void AaReportView::addRow(const AaReport& soFar, const AaReportRow& row) {
@@ -457,11 +374,7 @@ void AaReportView::addRow(const AaReport& soFar, const AaReportRow& row) {
 }
 
 void AaReportView::done(const AaReport& report, const QString& state, const QString& error) {
-  running_ = false;
-  state_ = state;
-  error_ = error;
-  run_->setEnabled(true);
-  cancelButton_->setEnabled(false);
+  endRun(state, error);
   if (state != "failed" && report.rows.size() >= report_.rows.size()) {
     // The final report: the same rows, and the fitted slopes.
     const bool sameRows = report.rows.size() == report_.rows.size();
@@ -637,18 +550,13 @@ void AaReportView::renderNow() {
   d_->window->Render();
 }
 
-bool AaReportView::saveChart(const QString& path) {
-  renderNow();
-  QSaveFile file(path);
-  return file.open(QIODevice::WriteOnly) && d_->widget->grabFramebuffer().save(&file, "PNG") && file.commit();
+QOpenGLWidget* AaReportView::chartWidget() const {
+  return d_->widget;
 }
 
 QJsonObject AaReportView::dumpState() const {
   const Impl& d = *d_;
-  QJsonObject o;
-  o["state"] = state_;
-  o["error"] = error_;
-  o["visible"] = isVisible();
+  QJsonObject o = dumpCommon();
   o["x_axis"] = xAxis();
   o["progress"] = d.progress;
   o["reference"] =

@@ -5,20 +5,16 @@
 // dashed, the reference's own error as a floor; a table of the rows below. VTK stays inside the .cpp.
 #pragma once
 
-#include <atomic>
 #include <memory>
 
-#include <QFuture>
 #include <QJsonObject>
 #include <QString>
-#include <QWidget>
 
 #include "raystep/report/aa_report.h"
+#include "report_window.h"
 
 class QLabel;
 class QLineEdit;
-class QProgressBar;
-class QPushButton;
 class QSpinBox;
 class QComboBox;
 class QTabBar;
@@ -28,7 +24,7 @@ namespace raystep::viz {
 
 class Session;
 
-class AaReportView : public QWidget {
+class AaReportView : public ReportWindow {
   Q_OBJECT
  public:
   explicit AaReportView(Session* session, QWidget* parent = nullptr);
@@ -41,32 +37,20 @@ class AaReportView : public QWidget {
   void setReportSize(int width, int height);
   void setSeeds(int seeds);
   // Runs the report on the session's scene and structure (any running one is cancelled first). Bad options:
-  // the error is shown in the view and returned (empty: started).
-  QString start();
-  void cancel();  // as the Cancel button: the report stops after its current render
-  bool running() const { return running_; }
-  // Scripted mode: processes events until the report has finished (false after timeoutMs).
-  bool waitForFinished(int timeoutMs);
-  // Tests: cancel as the Cancel button does, on the worker right after the report's n-th row.
-  void setCancelAfterRows(int n) { cancelAfterRows_ = n; }
+  // the error is shown in the view and returned (empty: started). Cancel, the state: ReportWindow.
+  QString start() override;
   // "rays" (RMSE against rays per pixel) or "time" (against seconds per render).
   void setXAxis(const QString& axis);
   QString xAxis() const;
 
-  // What the report produced so far (the GUI thread's copy), its state and last error.
+  // What the report produced so far (the GUI thread's copy).
   const AaReport& report() const { return report_; }
-  QString state() const { return state_; }  // "idle", "running", "done", "cancelled", "failed"
-  QString lastError() const { return error_; }
   // The points as plotted (per series, and in the order the rows came), the rows, the state (JSON).
   QJsonObject dumpState() const;
-  void renderNow();
-  bool saveChart(const QString& path);  // the chart alone, as PNG (atomically)
-
- Q_SIGNALS:
-  void finished();
+  void renderNow() override;  // saveChart: ReportWindow
 
  protected:
-  void closeEvent(QCloseEvent* event) override;  // closing the window cancels a run under way
+  QOpenGLWidget* chartWidget() const override;
 
  private:
   void addRow(const AaReport& soFar, const AaReportRow& row);
@@ -78,26 +62,15 @@ class AaReportView : public QWidget {
   std::unique_ptr<Impl> d_;
   Session* session_;
   AaReport report_;
-  QString state_ = "idle", error_;
   QString sceneName_, structureName_;
   QString reducedFrom_;  // the scene's size, when the report renders it smaller (no Size given)
-  bool running_ = false;
-  std::atomic<bool> cancel_{false};
-  std::atomic<int> cancelAfterRows_{0};
-  QFuture<void> future_;
-  int generation_ = 0;
 
-  QLabel* header_;
   QLineEdit* methods_;
   QComboBox* reference_;
   QLineEdit* size_;
   QSpinBox* seeds_;
-  QPushButton* run_;
-  QPushButton* cancelButton_;
-  QProgressBar* progress_;
   QTabBar* axisTabs_;
   QTableWidget* table_;
-  QLabel* status_;
 };
 
 }  // namespace raystep::viz

@@ -1,6 +1,7 @@
-// What the report charts share (aa_report_view.cpp, grid_sweep_view.cpp): their colours (Okabe and Ito's
-// set, apart for colour-blind readers), tables of (x, y) points, and log axes with ticks a student can read
-// (1, 2, 5 x 10^k). Included only by the charts' .cpp files, so the views' own headers name no VTK type.
+// What the debugger's charts share (aa_report_view.cpp, grid_sweep_view.cpp; sah_chart.cpp its tables):
+// their colours (Okabe and Ito's set, apart for colour-blind readers), tables of (x, y) points, and log axes
+// with ticks a student can read (1, 2, 5 x 10^k). Included only by the charts' .cpp files, so the views' own
+// headers name no VTK type.
 #pragma once
 
 #include <QColor>

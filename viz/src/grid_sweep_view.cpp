@@ -1,12 +1,9 @@
 #include "grid_sweep_view.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 
-#include <QApplication>
-#include <QCloseEvent>
 #include <QFileInfo>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -16,14 +13,11 @@
 #include <QLocale>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QSaveFile>
 #include <QSlider>
 #include <QSplitter>
 #include <QTableWidget>
-#include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
-#include <QtConcurrent>
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkAxis.h>
@@ -121,16 +115,13 @@ struct GridSweepView::Impl {
 };
 
 GridSweepView::GridSweepView(Session* session, QWidget* parent)
-    : QWidget(parent, Qt::Window), d_(new Impl), session_(session) {
+    : ReportWindow(parent), d_(new Impl), session_(session) {
   setObjectName("gridSweepView");
+  cancellingText_ = tr("Cancelling: the sweep stops after the density under way...");
   setWindowTitle(tr("raystep - grid sweep: how fine should the grid be?"));
   resize(1040, 760);
   auto* layout = new QVBoxLayout(this);
-  header_ = new QLabel;
-  header_->setObjectName("gridSweepHeader");
-  header_->setWordWrap(true);
-  header_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  layout->addWidget(header_);
+  addHeader(layout, "gridSweep");
 
   auto* options = new QHBoxLayout;
   options->addWidget(new QLabel(tr("Densities d:")));
@@ -138,19 +129,9 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   densities_->setObjectName("gridSweepDensities");
   densities_->setPlaceholderText(tr("default: 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8"));
   options->addWidget(densities_, 1);
-  run_ = new QPushButton(tr("Run"));
-  run_->setObjectName("gridSweepRun");
-  cancelButton_ = new QPushButton(tr("Cancel"));
-  cancelButton_->setObjectName("gridSweepCancel");
-  cancelButton_->setEnabled(false);
-  options->addWidget(run_);
-  options->addWidget(cancelButton_);
+  addRunCancel(options, "gridSweep");
   layout->addLayout(options);
-  progress_ = new QProgressBar;
-  progress_->setObjectName("gridSweepProgress");
-  progress_->setRange(0, 1000);
-  progress_->setValue(0);
-  layout->addWidget(progress_);
+  addProgress(layout, "gridSweep");
 
   Impl& d = *d_;
   auto* split = new QSplitter(Qt::Vertical);
@@ -221,10 +202,7 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   split->setStretchFactor(1, 1);
   split->setSizes({440, 230});
   layout->addWidget(split, 1);
-  status_ = new QLabel;
-  status_->setObjectName("gridSweepStatus");
-  status_->setWordWrap(true);
-  layout->addWidget(status_);
+  addStatus(layout, "gridSweep");
 
   rebuildTimer_ = new QTimer(this);
   rebuildTimer_->setSingleShot(true);
@@ -235,10 +213,8 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
     rebuildTimer_->stop();
     Q_EMIT densityChosen(chosen_);
   });
-  connect(run_, &QPushButton::clicked, this, [this] { start(); });
-  connect(cancelButton_, &QPushButton::clicked, this, &GridSweepView::cancel);
   connect(session_, &Session::sceneChanged, this, [this] {
-    if (running_) cancel();
+    if (running()) cancel();
   });
   // The built grid's density is marked when none was chosen here (or another was built in the panel).
   connect(session_, &Session::structureChanged, this, [this] {
@@ -261,8 +237,7 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
 }
 
 GridSweepView::~GridSweepView() {
-  cancel_ = true;
-  future_.waitForFinished();
+  stopWorker();
 }
 
 void GridSweepView::setDensities(const QString& densities) {
@@ -270,12 +245,7 @@ void GridSweepView::setDensities(const QString& densities) {
 }
 
 QString GridSweepView::start() {
-  if (running_) {
-    cancel();
-    future_.waitForFinished();
-    QApplication::processEvents();
-  }
-  error_.clear();
+  stopForNewRun();
   auto scene = session_->sceneShared();
   try {
     if (!scene) throw InputError("", 0, "open a scene first: the sweep builds grids over the current scene");
@@ -296,11 +266,7 @@ QString GridSweepView::start() {
     d_->progress = 0.0;
     progress_->setValue(0);
     progress_->setRange(0, std::max<int>(1, int(o.densities.empty() ? 9 : o.densities.size())));
-    state_ = "running";
-    running_ = true;
-    cancel_ = false;
-    run_->setEnabled(false);
-    cancelButton_->setEnabled(true);
+    const int gen = beginRun(tr("Sweeping... each density's grid is built and traced."));
     slider_->setEnabled(false);
     const double n = double(std::max<size_t>(1, sweep_.primitives));
     header_->setText(tr("<b>%1</b>: n = %2 primitives, so the grid's longest axis has d &middot; &#8731;n = "
@@ -309,65 +275,22 @@ QString GridSweepView::start() {
                          .arg(sceneName_)
                          .arg(sweep_.primitives)
                          .arg(std::cbrt(n), 0, 'f', 2));
-    status_->setText(tr("Sweeping... each density's grid is built and traced."));
     redraw();
 
-    const int gen = ++generation_;
-    auto rows = std::make_shared<std::atomic<int>>(0);
-    future_ = QtConcurrent::run([this, scene, o, gen, rows] {
-      auto rowDone = [this, gen, rows](const GridSweepRow& row) {
-        QMetaObject::invokeMethod(
-            this,
-            [this, gen, row] {
-              if (gen == generation_) addRow(row);
-            },
-            Qt::QueuedConnection);
-        if (++*rows == cancelAfterRows_) cancel_ = true;  // as a click on Cancel right after this row
+    auto result = std::make_shared<GridSweep>();
+    auto work = [this, scene, o, gen, result] {
+      auto rowDone = [this, gen](const GridSweepRow& row) {
+        toGui(gen, [this, row] { addRow(row); });
+        rowDoneOnWorker();
       };
-      GridSweep result;
-      QString state = "done", error;
-      try {
-        result = run_grid_sweep(scene->scene, o, rowDone, &cancel_);
-        if (cancel_) state = "cancelled";
-      } catch (const std::exception& e) {
-        state = "failed";
-        error = QString::fromStdString(e.what());
-      }
-      QMetaObject::invokeMethod(
-          this,
-          [this, gen, result, state, error] {
-            if (gen == generation_) done(result, state, error);
-          },
-          Qt::QueuedConnection);
-    });
+      *result = run_grid_sweep(scene->scene, o, rowDone, &cancel_);
+    };
+    runOnWorker(gen, work,
+                [this, result](const QString& state, const QString& error) { done(*result, state, error); });
   } catch (const std::exception& e) {
-    error_ = QString::fromStdString(e.what());
-    state_ = "failed";
-    status_->setText(tr("<span style='color:#b00'>%1</span>").arg(error_.toHtmlEscaped()));
+    return refuseStart(e);
   }
-  return error_;
-}
-
-void GridSweepView::closeEvent(QCloseEvent* event) {
-  cancel();
-  QWidget::closeEvent(event);
-}
-
-void GridSweepView::cancel() {
-  if (!running_) return;
-  cancel_ = true;
-  status_->setText(tr("Cancelling: the sweep stops after the density under way..."));
-}
-
-bool GridSweepView::waitForFinished(int timeoutMs) {
-  auto t0 = std::chrono::steady_clock::now();
-  while (running_) {
-    QApplication::processEvents(QEventLoop::AllEvents, 20);
-    QThread::msleep(5);
-    if (std::chrono::steady_clock::now() - t0 > std::chrono::milliseconds(timeoutMs)) return false;
-  }
-  QApplication::processEvents();
-  return true;
+  return lastError();
 }
 
 void GridSweepView::addRow(const GridSweepRow& row) {
@@ -397,11 +320,7 @@ void GridSweepView::addRow(const GridSweepRow& row) {
 }
 
 void GridSweepView::done(const GridSweep& sweep, const QString& state, const QString& error) {
-  running_ = false;
-  state_ = state;
-  error_ = error;
-  run_->setEnabled(true);
-  cancelButton_->setEnabled(false);
+  endRun(state, error);
   if (state != "failed" && sweep.rows.size() >= sweep_.rows.size()) {
     const bool sameRows = sweep.rows.size() == sweep_.rows.size();
     if (!sameRows) {
@@ -462,7 +381,7 @@ int GridSweepView::sliderAt(float density) const {
 }
 
 void GridSweepView::updateSlider() {
-  slider_->setEnabled(sweep_.rows.size() >= 1 && !running_);
+  slider_->setEnabled(sweep_.rows.size() >= 1 && !running());
   settingSlider_ = true;
   slider_->setValue(sliderAt(chosen_ > 0.f ? chosen_ : d_->markerDensity));
   settingSlider_ = false;
@@ -606,18 +525,13 @@ void GridSweepView::renderNow() {
   d_->window->Render();
 }
 
-bool GridSweepView::saveChart(const QString& path) {
-  renderNow();
-  QSaveFile file(path);
-  return file.open(QIODevice::WriteOnly) && d_->widget->grabFramebuffer().save(&file, "PNG") && file.commit();
+QOpenGLWidget* GridSweepView::chartWidget() const {
+  return d_->widget;
 }
 
 QJsonObject GridSweepView::dumpState() const {
   const Impl& d = *d_;
-  QJsonObject o;
-  o["state"] = state_;
-  o["error"] = error_;
-  o["visible"] = isVisible();
+  QJsonObject o = dumpCommon();
   o["primitives"] = double(sweep_.primitives);
   QJsonArray rows;
   for (const GridSweepRow& r : sweep_.rows)

@@ -6,20 +6,16 @@
 // it. VTK stays inside the .cpp.
 #pragma once
 
-#include <atomic>
 #include <memory>
 
-#include <QFuture>
 #include <QJsonObject>
 #include <QString>
-#include <QWidget>
 
 #include "raystep/report/grid_sweep.h"
+#include "report_window.h"
 
 class QLabel;
 class QLineEdit;
-class QProgressBar;
-class QPushButton;
 class QSlider;
 class QTableWidget;
 class QTimer;
@@ -28,7 +24,7 @@ namespace raystep::viz {
 
 class Session;
 
-class GridSweepView : public QWidget {
+class GridSweepView : public ReportWindow {
   Q_OBJECT
  public:
   explicit GridSweepView(Session* session, QWidget* parent = nullptr);
@@ -36,31 +32,24 @@ class GridSweepView : public QWidget {
 
   // Comma-separated densities of the next run ("" : core's defaults, 0.5 .. 8).
   void setDensities(const QString& densities);
-  // Runs the sweep on the session's scene; the error (empty: started) is also shown in the view.
-  QString start();
-  void cancel();
-  bool running() const { return running_; }
-  bool waitForFinished(int timeoutMs);  // scripted mode: processes events until the sweep is done
-  void setCancelAfterRows(int n) { cancelAfterRows_ = n; }  // tests: as Cancel, right after row n
+  // Runs the sweep on the session's scene; the error (empty: started) is also shown in the view. Cancel, the
+  // state: ReportWindow.
+  QString start() override;
 
   // Moves the slider to d (clamped to the measured range) and asks for the grid at d, as a user's drag does.
   void chooseDensity(float d);
   float chosenDensity() const { return chosen_; }
 
   const GridSweep& sweep() const { return sweep_; }
-  QString state() const { return state_; }  // "idle", "running", "done", "cancelled", "failed"
-  QString lastError() const { return error_; }
   QJsonObject dumpState() const;
-  void renderNow();
-  bool saveChart(const QString& path);
+  void renderNow() override;  // saveChart: ReportWindow
 
  Q_SIGNALS:
-  void finished();
   // The user chose density d on the slider: the main window rebuilds its grid with it.
   void densityChosen(float d);
 
  protected:
-  void closeEvent(QCloseEvent* event) override;  // closing the window cancels a run under way
+  QOpenGLWidget* chartWidget() const override;
 
  private:
   void addRow(const GridSweepRow& row);
@@ -76,25 +65,14 @@ class GridSweepView : public QWidget {
   std::unique_ptr<Impl> d_;
   Session* session_;
   GridSweep sweep_;
-  QString state_ = "idle", error_;
   QString sceneName_;
-  bool running_ = false;
-  std::atomic<bool> cancel_{false};
-  std::atomic<int> cancelAfterRows_{0};
-  QFuture<void> future_;
-  int generation_ = 0;
   float chosen_ = 0.f;  // 0: none chosen yet (the charts mark the built grid's density)
   bool settingSlider_ = false;
 
-  QLabel* header_;
   QLineEdit* densities_;
-  QPushButton* run_;
-  QPushButton* cancelButton_;
-  QProgressBar* progress_;
   QSlider* slider_;
   QLabel* chosenText_;
   QTableWidget* table_;
-  QLabel* status_;
   QTimer* rebuildTimer_;
 };
 

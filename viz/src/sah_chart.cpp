@@ -16,7 +16,6 @@
 #include <vtkChartXY.h>
 #include <vtkContextScene.h>
 #include <vtkContextView.h>
-#include <vtkFloatArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
 #include <vtkPen.h>
@@ -28,6 +27,7 @@
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 
+#include "chart_util.h"
 #include "palette.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "replay.h"
@@ -35,28 +35,15 @@
 namespace raystep::viz {
 namespace {
 
+using chartutil::addRow;
+using chartutil::makeTable;
+
 QJsonArray jsonColor(const QColor& c) {
   return QJsonArray{c.red(), c.green(), c.blue()};
 }
 
 const QColor& axisColor(int axis) {
   return axis == 0 ? palette::sahX : axis == 1 ? palette::sahY : palette::sahZ;
-}
-
-vtkSmartPointer<vtkTable> makeTable(const char* xName, const char* yName) {
-  auto t = vtkSmartPointer<vtkTable>::New();
-  vtkNew<vtkFloatArray> x, y;
-  x->SetName(xName);
-  y->SetName(yName);
-  t->AddColumn(x);
-  t->AddColumn(y);
-  return t;
-}
-
-void addRow(vtkTable* t, double x, double y) {
-  vtkIdType r = t->InsertNextBlankRow();
-  t->SetValue(r, 0, vtkVariant(float(x)));
-  t->SetValue(r, 1, vtkVariant(float(y)));
 }
 
 vtkPlot* addLine(vtkChartXY* chart, vtkTable* t, const QColor& c, float width, const std::string& label) {
