@@ -52,7 +52,7 @@ double overlap_area(const FlatTriangle& a, const FlatTriangle& b, const glm::dve
   return p.size() >= 3 ? std::fabs(signed_area(p)) : 0.0;
 }
 
-// The flat colour the Whitted tracer (render_whitted.cpp) gives material m, or the reason there is none.
+// The flat colour the Whitted tracer (render/whitted.cpp) gives material m, or the reason there is none.
 // At a hit the tracer starts from ambient * diffuse; lights add diffuse and specular terms that vary with the
 // shadow rays and, for point lights, over the surface; secondary rays (mirror, refraction) bring in what they
 // see. With neither, every point of a triangle gets exactly ambient * diffuse (there is no emission term).

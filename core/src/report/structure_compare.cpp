@@ -10,8 +10,8 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
-#include "report_camera_size.h"
-#include "report_timing.h"
+#include "camera_size.h"
+#include "timing.h"
 
 namespace raystep {
 
