@@ -29,6 +29,17 @@ struct TreeStep {
   float t_min, t_max;
 };
 
+// A BVH child's bounding box tested from its parent (lecture: "bounding volumes can overlap", so both children
+// of a node may be entered): [t_near, t_far] where the ray is inside the box, or a miss. A wide BVH tests up to
+// eight children at once and reports each.
+struct BoxTest {
+  int32_t parent;  // the node whose children are tested
+  int32_t child;   // the child's node id
+  int32_t depth;   // the child's depth
+  bool hit;
+  float t_near, t_far;  // meaningful on a hit
+};
+
 // Why a hit was accepted as the nearest.
 enum class AcceptReason : uint8_t {
   inside_cell,     // the hit lies before the next cell's entry: "tmin(cell) > tmax(ray)"
@@ -47,6 +58,8 @@ struct NullRecorder {
   void push(const TreeStep&) {}  // the far child pushed on the stack, with its interval
   void pop(const TreeStep&) {}   // an entry popped
   void leaf(const TreeStep&) {}  // a leaf reached: its primitives are tested next
+  void box_test(const BoxTest&) {}  // BVH: a child's box tested
+  void skip(const TreeStep&) {}  // BVH: a popped entry not visited, its t_near being beyond the nearest hit
   void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
   void mailbox_hit(uint32_t /*prim*/) {}
   void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
@@ -59,6 +72,7 @@ struct CountingRecorder {
   static constexpr bool enabled = false;  // counters only: no event payloads are built
   uint64_t rays = 0, cells = 0, nodes = 0, leaves = 0, pushes = 0, pops = 0;
   uint64_t prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
+  uint64_t box_tests = 0, skips = 0;
   void ray_begin(const Ray&) { ++rays; }
   void cell(const GridCellStep&) { ++cells; }
   void box_entered(uint32_t, float) { ++nodes; }
@@ -66,6 +80,8 @@ struct CountingRecorder {
   void push(const TreeStep&) { ++pushes; }
   void pop(const TreeStep&) { ++pops; }
   void leaf(const TreeStep&) { ++leaves; }
+  void box_test(const BoxTest&) { ++box_tests; }
+  void skip(const TreeStep&) { ++skips; }
   void prim_test(uint32_t, bool hit, float) {
     ++prim_tests;
     prim_hits += hit;
