@@ -59,7 +59,7 @@ std::vector<Ray> face_rays(const BvhData& d, uint32_t seed) {
   std::vector<Ray> rays;
   const Bounds3& root = d.nodes[0].box;
   glm::vec3 lo = root.lo - 0.25f * root.extent(), e = 1.5f * root.extent();
-  for (size_t id = 1; id < d.nodes.size() && rays.size() < 20000; ++id) {
+  for (size_t id = 1; id < d.nodes.size() && rays.size() < 4000; ++id) {
     const Bounds3& box = d.nodes[id].box;
     for (int k = 0; k < 5; ++k) {
       int axis = int(rng() % 3);
