@@ -35,13 +35,13 @@ struct StructureArgs {
 };
 
 struct RenderArgs {
-  std::string scene;   // scene JSON or bare OBJ mesh
+  std::string scene;  // scene JSON or bare OBJ mesh
   std::string output;  // .png or .pfm
   StructureArgs structure;
   std::string heatmap;  // cells | tests | mailbox: write a heat map of per-pixel work instead of the picture
-  std::optional<std::string> aa;    // overrides the scene's anti-aliasing
+  std::optional<std::string> aa;  // overrides the scene's anti-aliasing
   std::optional<std::string> size;  // "WxH", overrides the scene's size
-  int threads = 0;                  // 0: all cores
+  int threads = 0;  // 0: all cores
   std::optional<uint64_t> seed;
   std::string samples_map;  // optional PNG of per-pixel sample counts
 };
@@ -123,7 +123,7 @@ struct AaReportArgs {
   int seeds = 5;                       // seeds of each random method (jitter, random)
   int threads = 0;                     // 0: all cores
   std::string accel = "grid";
-  std::string output;  // the report folder
+  std::string output;                  // the report folder
 };
 
 // structure_commands.cpp: the structures and the cost formula measured, each into a report folder.

@@ -28,8 +28,7 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--grid-res", s.grid_res, "grid: explicit resolution NX,NY,NZ");
   cmd->add_option("--grid-density", s.grid_density, "grid: d in max(nx,ny,nz) = d * cbrt(primitives)")
       ->capture_default_str();
-  cmd->add_option("--grid-insert", s.grid_insert,
-                  "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
+  cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
@@ -42,9 +41,8 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
   cmd->add_option("--tt", s.kd_tt, "kd, bvh: t_t, the cost of a traversal step")->capture_default_str();
   cmd->add_option("--empty-bonus", s.kd_empty_bonus, "kd: bonus in [0,1) for splits that cut off empty space")
       ->capture_default_str();
-  cmd->add_option(
-         "--max-depth", s.kd_max_depth,
-         "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); bvh: 1..64 (0: 64)")
+  cmd->add_option("--max-depth", s.kd_max_depth,
+                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); bvh: 0..64 (0: 64)")
       ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();
@@ -55,8 +53,7 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
 
 // The BVH's own build and traversal options (t_i, t_t and --max-depth are shared with the kd-tree's).
 void add_bvh_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
-  cmd->add_option("--bins", s.bvh_bins, "bvh: bins per axis of the binned SAH, 2..256")
-      ->capture_default_str();
+  cmd->add_option("--bins", s.bvh_bins, "bvh: bins per axis of the binned SAH, 2..256")->capture_default_str();
   cmd->add_option("--bvh-leaf", s.bvh_leaf, "bvh: a node with at most this many primitives is a leaf")
       ->capture_default_str();
   cmd->add_option("--bvh-max-leaf", s.bvh_max_leaf,
@@ -79,16 +76,12 @@ int main(int argc, char** argv) {
   RenderArgs render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
   render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
-  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")
-      ->required();
+  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
   add_structure_options(render_cmd, render.structure, "grid");
-  render_cmd
-      ->add_option(
-          "--heatmap", render.heatmap,
-          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
+  render_cmd->add_option("--heatmap", render.heatmap,
+                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox"}));
-  render_cmd->add_option("--aa", render.aa,
-                         "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
       ->capture_default_str();
@@ -116,21 +109,17 @@ int main(int argc, char** argv) {
   rays_cmd->add_option("-o,--output", rays.output, "output .rays file")->required();
 
   InfoArgs info;
-  CLI::App* info_cmd =
-      app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
+  CLI::App* info_cmd = app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
   info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
 
   TraceArgs trace;
-  CLI::App* trace_cmd =
-      app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
   trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
   add_structure_options(trace_cmd, trace.structure, "grid");
-  auto* pixel_opt =
-      trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
+  auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
   auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
   pixel_opt->excludes(ray_opt);
-  trace_cmd->add_flag("--secondary", trace.secondary,
-                      "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
   trace_cmd->add_flag("--build-events", trace.build_events,
                       "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
@@ -145,21 +134,18 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("-o,--output", trace.output, "output trace file")->required();
 
   SahArgs sah;
-  CLI::App* sah_cmd =
-      app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
+  CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   sah.structure.accel = "kd";
   sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median")
       ->capture_default_str()
       ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median"}));
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
-  auto* path_opt =
-      sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
+  auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
   add_bvh_options(sah_cmd, sah.structure);
-  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")
-      ->required();
+  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
 
   KdStatsArgs kd_stats;
   CLI::App* kd_stats_cmd = app.add_subcommand(
@@ -173,13 +159,12 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
-  kd_stats_cmd->add_option("--csv", kd_stats.csv,
-                           "also write every node's row (id, depth, predicted, measured)");
+  kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
 
   KdStatsArgs bvh_stats;
   CLI::App* bvh_stats_cmd = app.add_subcommand(
-      "bvh-stats",
-      "BVH statistics (overlap, SAH cost), and each node's predicted entry probability against measurement");
+      "bvh-stats", "BVH statistics (sibling overlap, SAH cost), and each node's predicted entry probability against "
+                   "measurement");
   bvh_stats_cmd->add_option("scene", bvh_stats.scene, "scene .json or mesh .obj")->required();
   bvh_stats.structure.accel = "bvh";
   bvh_stats_cmd->add_option("--accel", bvh_stats.structure.accel, "bvh (binned SAH) | bvh-sweep | bvh-median")
@@ -190,8 +175,7 @@ int main(int argc, char** argv) {
   bvh_stats_cmd->add_option("--lines", bvh_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   bvh_stats_cmd->add_option("--seed", bvh_stats.seed, "random seed")->capture_default_str();
-  bvh_stats_cmd->add_option("--csv", bvh_stats.csv,
-                            "also write every node's row (id, depth, predicted, measured)");
+  bvh_stats_cmd->add_option("--csv", bvh_stats.csv, "also write every node's row (id, depth, predicted, measured)");
 
   CompareArgs compare;
   CLI::App* compare_cmd = app.add_subcommand(
@@ -262,27 +246,20 @@ int main(int argc, char** argv) {
 
   AaReportArgs aa_report;
   CLI::App* aa_report_cmd = app.add_subcommand(
-      "aa-report",
-      "Anti-aliasing speed against error: every method rendered, timed and measured, with plots");
+      "aa-report", "Anti-aliasing speed against error: every method rendered, timed and measured, with plots");
   aa_report_cmd->add_option("scene", aa_report.scene, "scene .json or mesh .obj")->required();
-  aa_report_cmd->add_option(
-      "--methods", aa_report.methods,
-      "comma-separated anti-aliasing specs, e.g. none,jitter:2,jitter:4,adaptive:0.1:3 "
-      "(default: none, regular:2..8, jitter:2..8, random:4..64, adaptive at 5 thresholds)");
-  aa_report_cmd
-      ->add_option(
-          "--reference", aa_report.reference,
-          "exact (area coverage) | jitter:K (two seeds) | auto (exact where possible, else jitter:16)")
+  aa_report_cmd->add_option("--methods", aa_report.methods,
+                            "comma-separated anti-aliasing specs, e.g. none,jitter:2,jitter:4,adaptive:0.1:3 "
+                            "(default: none, regular:2..8, jitter:2..8, random:4..64, adaptive at 5 thresholds)");
+  aa_report_cmd->add_option("--reference", aa_report.reference,
+                            "exact (area coverage) | jitter:K (two seeds) | auto (exact where possible, else jitter:16)")
       ->capture_default_str();
   aa_report_cmd->add_option("--size", aa_report.size, "image size WxH (default: the scene's)");
-  aa_report_cmd->add_option("--seeds", aa_report.seeds, "seeds of each jitter and random method")
-      ->capture_default_str();
-  aa_report_cmd->add_option("--threads", aa_report.threads, "threads, 0..256 (0: all cores)")
-      ->capture_default_str();
+  aa_report_cmd->add_option("--seeds", aa_report.seeds, "seeds of each jitter and random method")->capture_default_str();
+  aa_report_cmd->add_option("--threads", aa_report.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
   aa_report_cmd->add_option("--accel", aa_report.accel, accel_help())->capture_default_str();
-  aa_report_cmd
-      ->add_option("-o,--output", aa_report.output,
-                   "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
+  aa_report_cmd->add_option("-o,--output", aa_report.output,
+                            "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
       ->required();
 
   try {
