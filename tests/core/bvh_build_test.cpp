@@ -366,19 +366,22 @@ TEST(BvhBuild, StatisticsOfAKnownTree) {
     add_mesh(g, make_box(glm::vec3(0.f), glm::vec3(1.f)), glm::mat4(1.f));
     add_mesh(g, make_box(glm::vec3(1.f + gap, 0.f, 0.f), glm::vec3(2.f + gap, 1.f, 1.f)), glm::mat4(1.f));
     BvhOptions o;
-    o.leaf_size = 12;
+    o.leaf_size = 12;  // each cube's 12 triangles a leaf without a search; the root's 24 are split
     o.max_leaf_size = 12;
-    // 24 triangles > leaf_size: one split between the cubes (the cheapest), each cube a leaf of 12.
-    o.leaf_size = 11;
     BvhData d = build_bvh(g, o);
     BvhStats s = bvh_stats(d, o);
     double root = d.nodes[0].box.surface_area();
-    if (d.nodes.size() == 3) {
+    ASSERT_FALSE(d.nodes[0].is_leaf());
+    if (gap > 0.f) {
+      // The split between the cubes: two leaves of 12, each of area 6.
+      ASSERT_EQ(d.nodes.size(), 3u);
       EXPECT_EQ(s.leaves, 2u);
       EXPECT_NEAR(s.sah_cost, o.t_t + o.t_i * 12.0 * 2.0 * 6.0 / root, 1e-3);
-      if (gap > 0.f) EXPECT_EQ(s.overlap, 0.0);
+      EXPECT_EQ(s.overlap, 0.0);
+      EXPECT_EQ(s.max_depth, 1);
+    } else {
+      EXPECT_GT(s.overlap, 0.0);  // the cubes overlap, so do their leaves' boxes
     }
-    if (gap < 0.f) EXPECT_GT(s.overlap, 0.0);
     EXPECT_EQ(s.mean_leaf_prims, double(g.size()) / double(s.leaves));
   }
 }
