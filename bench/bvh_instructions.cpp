@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
     CountingRecorder counting;
     NullRecorder null_rec;
     if (variant == "hookfree")
-      count_loop(rays, hits, [&](const Ray& r, Hit* h) { return bench::bvh_traverse_hookfree(bvh, r, h, false); });
+      count_loop(rays, hits,
+                 [&](const Ray& r, Hit* h) { return bench::bvh_traverse_hookfree(bvh, r, h, false); });
     else if (variant == "counting")
       count_loop(rays, hits, [&](const Ray& r, Hit* h) { return bvh.traverse(r, h, false, counting); });
     else

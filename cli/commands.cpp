@@ -97,7 +97,8 @@ BvhOptions bvh_options(const StructureArgs& s) {
   if (s.bvh_leaf < 1) throw InputError("", 0, "--bvh-leaf must be at least 1");
   bvh.leaf_size = s.bvh_leaf;
   if (s.bvh_max_leaf < s.bvh_leaf || s.bvh_max_leaf > int(BvhNode::kMaxCount))
-    throw InputError("", 0, "--bvh-max-leaf must be at least --bvh-leaf (" + std::to_string(s.bvh_leaf) + ")");
+    throw InputError("", 0,
+                     "--bvh-max-leaf must be at least --bvh-leaf (" + std::to_string(s.bvh_leaf) + ")");
   bvh.max_leaf_size = s.bvh_max_leaf;
   if (s.bvh_order != "entry" && s.bvh_order != "axis")
     throw InputError("", 0, "--bvh-order '" + s.bvh_order + "': entry | axis");

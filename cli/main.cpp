@@ -42,7 +42,8 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
   cmd->add_option("--empty-bonus", s.kd_empty_bonus, "kd: bonus in [0,1) for splits that cut off empty space")
       ->capture_default_str();
   cmd->add_option("--max-depth", s.kd_max_depth,
-                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); bvh: 0..64 (0: 64)")
+                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); "
+                  "bvh: 0..64 (0: 64)")
       ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();
@@ -53,7 +54,8 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
 
 // The BVH's own build and traversal options (t_i, t_t and --max-depth are shared with the kd-tree's).
 void add_bvh_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
-  cmd->add_option("--bins", s.bvh_bins, "bvh: bins per axis of the binned SAH, 2..256")->capture_default_str();
+  cmd->add_option("--bins", s.bvh_bins, "bvh: bins per axis of the binned SAH, 2..256")
+      ->capture_default_str();
   cmd->add_option("--bvh-leaf", s.bvh_leaf, "bvh: a node with at most this many primitives is a leaf")
       ->capture_default_str();
   cmd->add_option("--bvh-max-leaf", s.bvh_max_leaf,
@@ -134,7 +136,8 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("-o,--output", trace.output, "output trace file")->required();
 
   SahArgs sah;
-  CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
+  CLI::App* sah_cmd =
+      app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   sah.structure.accel = "kd";
   sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median")
@@ -163,8 +166,9 @@ int main(int argc, char** argv) {
 
   KdStatsArgs bvh_stats;
   CLI::App* bvh_stats_cmd = app.add_subcommand(
-      "bvh-stats", "BVH statistics (sibling overlap, SAH cost), and each node's predicted entry probability against "
-                   "measurement");
+      "bvh-stats",
+      "BVH statistics (sibling overlap, SAH cost), and each node's predicted entry probability against "
+      "measurement");
   bvh_stats_cmd->add_option("scene", bvh_stats.scene, "scene .json or mesh .obj")->required();
   bvh_stats.structure.accel = "bvh";
   bvh_stats_cmd->add_option("--accel", bvh_stats.structure.accel, "bvh (binned SAH) | bvh-sweep | bvh-median")
@@ -175,7 +179,8 @@ int main(int argc, char** argv) {
   bvh_stats_cmd->add_option("--lines", bvh_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   bvh_stats_cmd->add_option("--seed", bvh_stats.seed, "random seed")->capture_default_str();
-  bvh_stats_cmd->add_option("--csv", bvh_stats.csv, "also write every node's row (id, depth, predicted, measured)");
+  bvh_stats_cmd->add_option("--csv", bvh_stats.csv,
+                            "also write every node's row (id, depth, predicted, measured)");
 
   CompareArgs compare;
   CLI::App* compare_cmd = app.add_subcommand(

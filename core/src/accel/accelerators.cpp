@@ -124,7 +124,8 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median"};
+std::vector<std::string> accelerator_names() {
+  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -142,7 +143,9 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
   }
   if (name == "bvh" || name == "bvh-sweep" || name == "bvh-median") {
     BvhOptions bvh = options.bvh;
-    bvh.builder = name == "bvh-sweep" ? BvhBuilder::sweep : name == "bvh-median" ? BvhBuilder::median : BvhBuilder::binned;
+    bvh.builder = name == "bvh-sweep"    ? BvhBuilder::sweep
+                  : name == "bvh-median" ? BvhBuilder::median
+                                         : BvhBuilder::binned;
     return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
   std::string known;

@@ -78,7 +78,8 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
                  const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
   const int bins = o.bins;
   BinMap map(centroids, bins);
-  // The bins live on the stack (about 20 kB; the recursion does not hold them); big nodes are binned in parallel chunks, each with its own.
+  // The bins live on the stack (about 20 kB; the recursion does not hold them); big nodes are binned in
+  // parallel chunks, each with its own.
   BinSet set(bins);
   if (n >= kParallelPrims) {
     set = tbb::parallel_reduce(
