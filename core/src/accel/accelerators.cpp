@@ -6,6 +6,7 @@
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -123,7 +124,7 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median"}; }
+std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median", "bvh4", "bvh8"}; }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
   return make_accelerator(name, StructureOptions{});
@@ -138,6 +139,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     kd.builder = name == "kd-median" ? KdBuilder::median : KdBuilder::sah;
     return std::make_unique<KdTree>(kd, options.kd_mailboxes);
   }
+  if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

@@ -1,0 +1,301 @@
+// The wide BVH's kernels: one walk (wide_bvh_kernel.inc) compiled three times, with scalar lanes, with SSE
+// and with AVX2 (the last under `#pragma GCC target`, so that only these functions use AVX2 and the program
+// runs on any x86-64; the choice is made at run time, wide_bvh.cpp). Every version computes the box test of
+// intersect_slabs (geometry/bounds.h) lane by lane with the same roundings, and the triangle filter the
+// watertight test's own first steps (geometry/triangle.h) with the same roundings, so that the answers do not
+// depend on the instruction set. No FMA: a fused multiply-add rounds once where the scalar code rounds twice.
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "raystep/trace/event_recorder.h"
+#include "wide_bvh_impl.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace raystep {
+
+namespace {
+constexpr float kMaxFloat = std::numeric_limits<float>::max();
+// Ize's widening of the slab distances (bounds.h): down by 2 gamma(3) on one side of 0, up on the other.
+constexpr float kDown = 1.f - 2.f * gamma(3);
+constexpr float kUp = 1.f + 2.f * gamma(3);
+}  // namespace
+
+// ---- Scalar lanes: any architecture ----
+namespace wide_scalar {
+namespace {
+
+struct BoxRay {
+  float origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  explicit BoxRay(const SlabRay& r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = r.origin[a];
+      inv_dir[a] = r.inv_dir[a];
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+inline float max_nan_first(float a, float b) {
+  return a > b ? a : b;
+}  // as maxps: b when either is NaN
+inline float min_nan_first(float a, float b) {
+  return a < b ? a : b;
+}
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  uint32_t mask = 0;
+  for (int i = 0; i < W; ++i) {
+    float t_near = -kInfinity, t_far = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+      t_near = max_nan_first((n.box[r.near_row[a]][i] - r.origin[a]) * r.inv_dir[a], t_near);
+      t_far = min_nan_first((n.box[r.far_row[a]][i] - r.origin[a]) * r.inv_dir[a], t_far);
+    }
+    // Ize's factor, after the max: it is monotonic, so widening the largest is widening each.
+    float t0 = max_nan_first(min_nan_first(t_near * kDown, t_near * kUp), tmin);
+    float t1 = min_nan_first(max_nan_first(t_far * kUp, t_far * kDown), tmax);
+    t_near_out[i] = t0;
+    if (t_far_out) t_far_out[i] = t1;
+    mask |= uint32_t(t0 <= t1) << i;
+  }
+  return mask;
+}
+
+struct TriRay {
+  explicit TriRay(const WatertightRay&) {}
+};
+// No filter: every triangle goes to the watertight test.
+inline uint32_t tri_filter(const TriPacket&, const TriRay&, float) {
+  return (1u << kWidePacket) - 1;
+}
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_scalar
+
+#if defined(__x86_64__)
+
+// ---- SSE: 4 lanes (8-wide nodes as two halves); also the triangle filter of the AVX2 kernel ----
+#define RAYSTEP_SSE_FILTER                                                                                  \
+  struct TriRay {                                                                                           \
+    __m128 origin[3];                                                                                       \
+    int kx, ky, kz;                                                                                         \
+    __m128 sx, sy, sz, shear_x, shear_y;                                                                    \
+    explicit TriRay(const WatertightRay& r) : kx(r.kx), ky(r.ky), kz(r.kz) {                                \
+      for (int a = 0; a < 3; ++a) origin[a] = _mm_set1_ps(r.origin[a]);                                     \
+      sx = _mm_set1_ps(r.sx);                                                                               \
+      sy = _mm_set1_ps(r.sy);                                                                               \
+      sz = _mm_set1_ps(r.sz);                                                                               \
+      shear_x = _mm_set1_ps(r.shear_x);                                                                     \
+      shear_y = _mm_set1_ps(r.shear_y);                                                                     \
+    }                                                                                                       \
+  };                                                                                                        \
+  inline __m128 abs4(__m128 x) {                                                                            \
+    return _mm_andnot_ps(_mm_set1_ps(-0.f), x);                                                             \
+  }                                                                                                         \
+  /* The watertight test (triangle.h) up to its decisions, four triangles at once, with the same operations \
+     in the same order: a lane it rejects is one the test rejects with this tmax (or a smaller one). The    \
+     lanes within rounding of an edge, and the lanes that pass, go to the test itself. */                   \
+  inline uint32_t tri_filter(const TriPacket& p, const TriRay& r, float tmax_scalar) {                      \
+    const __m128 ax0 = _mm_sub_ps(_mm_load_ps(p.v[r.kx]), r.origin[r.kx]);                                  \
+    const __m128 ay0 = _mm_sub_ps(_mm_load_ps(p.v[r.ky]), r.origin[r.ky]);                                  \
+    const __m128 az0 = _mm_sub_ps(_mm_load_ps(p.v[r.kz]), r.origin[r.kz]);                                  \
+    const __m128 bx0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.kx]), r.origin[r.kx]);                              \
+    const __m128 by0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.ky]), r.origin[r.ky]);                              \
+    const __m128 bz0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.kz]), r.origin[r.kz]);                              \
+    const __m128 cx0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.kx]), r.origin[r.kx]);                              \
+    const __m128 cy0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.ky]), r.origin[r.ky]);                              \
+    const __m128 cz0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.kz]), r.origin[r.kz]);                              \
+    const __m128 ax = _mm_add_ps(ax0, _mm_mul_ps(r.sx, az0)), ay = _mm_add_ps(ay0, _mm_mul_ps(r.sy, az0));  \
+    const __m128 bx = _mm_add_ps(bx0, _mm_mul_ps(r.sx, bz0)), by = _mm_add_ps(by0, _mm_mul_ps(r.sy, bz0));  \
+    const __m128 cx = _mm_add_ps(cx0, _mm_mul_ps(r.sx, cz0)), cy = _mm_add_ps(cy0, _mm_mul_ps(r.sy, cz0));  \
+    const __m128 e0 = _mm_sub_ps(_mm_mul_ps(bx, cy), _mm_mul_ps(by, cx));                                   \
+    const __m128 e1 = _mm_sub_ps(_mm_mul_ps(cx, ay), _mm_mul_ps(cy, ax));                                   \
+    const __m128 e2 = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));                                   \
+    const __m128 max_z = _mm_max_ps(_mm_max_ps(abs4(az0), abs4(bz0)), abs4(cz0));                           \
+    const __m128 max_xt = _mm_max_ps(_mm_max_ps(abs4(ax), abs4(bx)), abs4(cx));                             \
+    const __m128 max_yt = _mm_max_ps(_mm_max_ps(abs4(ay), abs4(by)), abs4(cy));                             \
+    const __m128 g6 = _mm_set1_ps(gamma(6));                                                                \
+    const __m128 delta_x = _mm_mul_ps(g6, _mm_add_ps(max_xt, _mm_mul_ps(r.shear_x, max_z)));                \
+    const __m128 delta_y = _mm_mul_ps(g6, _mm_add_ps(max_yt, _mm_mul_ps(r.shear_y, max_z)));                \
+    const __m128 delta_e =                                                                                  \
+        _mm_mul_ps(_mm_set1_ps(2.f),                                                                        \
+                   _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(gamma(3)), max_xt), max_yt),     \
+                                         _mm_mul_ps(delta_y, max_xt)),                                      \
+                              _mm_mul_ps(delta_x, max_yt)));                                                \
+    const __m128 undecided =                                                                                \
+        _mm_or_ps(_mm_or_ps(_mm_cmple_ps(abs4(e0), delta_e), _mm_cmple_ps(abs4(e1), delta_e)),              \
+                  _mm_cmple_ps(abs4(e2), delta_e));                                                         \
+    const __m128 zero = _mm_setzero_ps();                                                                   \
+    const __m128 some_neg =                                                                                 \
+        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero));       \
+    const __m128 some_pos =                                                                                 \
+        _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));       \
+    const __m128 outside = _mm_and_ps(some_neg, some_pos);                                                  \
+    const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);                                                  \
+    const __m128 az = _mm_mul_ps(r.sz, az0), bz = _mm_mul_ps(r.sz, bz0), cz = _mm_mul_ps(r.sz, cz0);        \
+    const __m128 t_scaled =                                                                                 \
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz));                 \
+    const __m128 tmax = _mm_set1_ps(tmax_scalar);                                                           \
+    const __m128 tmax_det = _mm_mul_ps(tmax, det);                                                          \
+    const __m128 beyond = _mm_or_ps(_mm_and_ps(_mm_cmplt_ps(det, zero), _mm_cmplt_ps(t_scaled, tmax_det)),  \
+                                    _mm_and_ps(_mm_cmpgt_ps(det, zero), _mm_cmpgt_ps(t_scaled, tmax_det))); \
+    const __m128 t = _mm_mul_ps(t_scaled, _mm_div_ps(_mm_set1_ps(1.f), det));                               \
+    const __m128 before_tmax = _mm_cmplt_ps(t, tmax);                                                       \
+    const __m128 pass = _mm_andnot_ps(_mm_or_ps(outside, beyond), before_tmax);                             \
+    return uint32_t(_mm_movemask_ps(_mm_or_ps(undecided, pass)));                                           \
+  }
+
+namespace wide_sse {
+namespace {
+
+struct BoxRay {
+  __m128 origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  explicit BoxRay(const SlabRay& r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = _mm_set1_ps(r.origin[a]);
+      inv_dir[a] = _mm_set1_ps(r.inv_dir[a]);
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+// Four lanes of intersect_slabs. maxps/minps return their second operand when either is NaN, so a NaN
+// distance (0 * inf: the ray in a slab's plane) leaves the accumulated one unchanged, as in bounds.h.
+template <int W>
+inline uint32_t box_test4(const WideNode<W>& n, int off, const BoxRay& r, __m128 tmin, __m128 tmax,
+                          float* t_near_out, float* t_far_out) {
+  __m128 t_near = _mm_set1_ps(-kInfinity), t_far = _mm_set1_ps(kInfinity);
+  for (int a = 0; a < 3; ++a) {
+    __m128 dn = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[r.near_row[a]][off]), r.origin[a]), r.inv_dir[a]);
+    __m128 df = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[r.far_row[a]][off]), r.origin[a]), r.inv_dir[a]);
+    t_near = _mm_max_ps(dn, t_near);
+    t_far = _mm_min_ps(df, t_far);
+  }
+  __m128 t0 = _mm_max_ps(
+      _mm_min_ps(_mm_mul_ps(t_near, _mm_set1_ps(kDown)), _mm_mul_ps(t_near, _mm_set1_ps(kUp))), tmin);
+  __m128 t1 = _mm_min_ps(
+      _mm_max_ps(_mm_mul_ps(t_far, _mm_set1_ps(kUp)), _mm_mul_ps(t_far, _mm_set1_ps(kDown))), tmax);
+  _mm_store_ps(t_near_out + off, t0);
+  if (t_far_out) _mm_store_ps(t_far_out + off, t1);
+  return uint32_t(_mm_movemask_ps(_mm_cmple_ps(t0, t1)));
+}
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  __m128 lo = _mm_set1_ps(tmin), hi = _mm_set1_ps(tmax);
+  uint32_t mask = box_test4<W>(n, 0, r, lo, hi, t_near_out, t_far_out);
+  if constexpr (W == 8) mask |= box_test4<W>(n, 4, r, lo, hi, t_near_out, t_far_out) << 4;
+  return mask;
+}
+
+RAYSTEP_SSE_FILTER
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_sse
+
+// ---- AVX2: 8 lanes (4-wide nodes use the SSE box test) ----
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace wide_avx2 {
+namespace {
+
+struct BoxRay {
+  __m256 origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  wide_sse::BoxRay sse;
+  explicit BoxRay(const SlabRay& r) : sse(r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = _mm256_set1_ps(r.origin[a]);
+      inv_dir[a] = _mm256_set1_ps(r.inv_dir[a]);
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  if constexpr (W == 4) {
+    return wide_sse::box_test4<4>(n, 0, r.sse, _mm_set1_ps(tmin), _mm_set1_ps(tmax), t_near_out, t_far_out);
+  } else {
+    __m256 t_near = _mm256_set1_ps(-kInfinity), t_far = _mm256_set1_ps(kInfinity);
+    for (int a = 0; a < 3; ++a) {
+      __m256 dn =
+          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.near_row[a]]), r.origin[a]), r.inv_dir[a]);
+      __m256 df =
+          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.far_row[a]]), r.origin[a]), r.inv_dir[a]);
+      t_near = _mm256_max_ps(dn, t_near);
+      t_far = _mm256_min_ps(df, t_far);
+    }
+    __m256 t0 = _mm256_max_ps(_mm256_min_ps(_mm256_mul_ps(t_near, _mm256_set1_ps(kDown)),
+                                            _mm256_mul_ps(t_near, _mm256_set1_ps(kUp))),
+                              _mm256_set1_ps(tmin));
+    __m256 t1 = _mm256_min_ps(
+        _mm256_max_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kUp)), _mm256_mul_ps(t_far, _mm256_set1_ps(kDown))),
+        _mm256_set1_ps(tmax));
+    _mm256_store_ps(t_near_out, t0);
+    if (t_far_out) _mm256_store_ps(t_far_out, t1);
+    return uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)));
+  }
+}
+
+RAYSTEP_SSE_FILTER
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_avx2
+#pragma GCC pop_options
+
+#endif  // __x86_64__
+
+template <class Recorder>
+bool WideBvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+  const Impl& m = *impl_;
+  bool wide8 = width_ == 8;
+  switch (wide_simd_in_use()) {
+#if defined(__x86_64__)
+    case WideSimd::avx2:
+      return wide8 ? wide_avx2::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_avx2::walk<4>(m, ray, hit, any_hit, rec);
+    case WideSimd::sse:
+      return wide8 ? wide_sse::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_sse::walk<4>(m, ray, hit, any_hit, rec);
+#endif
+    default:
+      return wide8 ? wide_scalar::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_scalar::walk<4>(m, ray, hit, any_hit, rec);
+  }
+}
+
+#if RAYSTEP_WIDE_EVENTS
+bool WideBvh::record(const Ray& ray, Hit* hit, bool any_hit, EventRecorder& rec) const {
+  return traverse(ray, hit, any_hit, rec);
+}
+#endif
+
+template bool WideBvh::traverse<NullRecorder>(const Ray&, Hit*, bool, NullRecorder&) const;
+template bool WideBvh::traverse<CountingRecorder>(const Ray&, Hit*, bool, CountingRecorder&) const;
+#if RAYSTEP_WIDE_EVENTS
+template bool WideBvh::traverse<EventRecorder>(const Ray&, Hit*, bool, EventRecorder&) const;
+#endif
+
+}  // namespace raystep
