@@ -3,6 +3,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
@@ -124,7 +125,9 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median", "bvh4", "bvh8"}; }
+std::vector<std::string> accelerator_names() {
+  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"};
+}
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
   return make_accelerator(name, StructureOptions{});
@@ -139,7 +142,12 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     kd.builder = name == "kd-median" ? KdBuilder::median : KdBuilder::sah;
     return std::make_unique<KdTree>(kd, options.kd_mailboxes);
   }
-  if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8);
+  if (name == "bvh" || name == "bvh-sweep" || name == "bvh-median") {
+    BvhOptions bvh = options.bvh;
+    bvh.builder = name == "bvh-sweep" ? BvhBuilder::sweep : name == "bvh-median" ? BvhBuilder::median : BvhBuilder::binned;
+    return std::make_unique<Bvh>(bvh, options.bvh_order);
+  }
+  if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

@@ -137,49 +137,6 @@ void lay_out_packets(WideBvh::Impl& m) {
   }
 }
 
-// Until the binned builder is merged: a throwaway object-median builder (longest centroid axis, leaves of
-// at most 4).
-uint32_t median_node(const Geometry& g, std::vector<uint32_t>& ids, uint32_t lo, uint32_t hi, int depth,
-                     BvhData& out) {
-  Bounds3 box, cbox;
-  for (uint32_t i = lo; i < hi; ++i) {
-    Bounds3 b = g.prim_bounds(ids[i]);
-    box.extend(b);
-    cbox.extend(b.center());
-  }
-  uint32_t index = uint32_t(out.nodes.size());
-  out.nodes.emplace_back();
-  out.info.emplace_back();
-  if (hi - lo <= 4 || depth >= 40) {
-    std::sort(ids.begin() + lo, ids.begin() + hi);
-    out.nodes[index] = BvhNode::make_leaf(box, lo, hi - lo);
-    return index;
-  }
-  int axis = cbox.max_axis();
-  uint32_t mid = (lo + hi) / 2;
-  std::nth_element(ids.begin() + lo, ids.begin() + mid, ids.begin() + hi, [&](uint32_t a, uint32_t b) {
-    float ca = g.prim_bounds(a).center()[axis], cb = g.prim_bounds(b).center()[axis];
-    return ca < cb || (ca == cb && a < b);
-  });
-  median_node(g, ids, lo, mid, depth + 1, out);
-  uint32_t second = median_node(g, ids, mid, hi, depth + 1, out);
-  out.nodes[index] = BvhNode::make_inner(box, axis, second);
-  return index;
-}
-
-BvhData median_bvh(const Geometry& g) {
-  BvhData out;
-  out.prim_index.resize(g.size());
-  for (uint32_t i = 0; i < g.size(); ++i) out.prim_index[i] = i;
-  if (g.size() == 0) {
-    out.nodes.push_back(BvhNode::make_leaf(Bounds3(), 0, 0));
-    out.info.emplace_back();
-    return out;
-  }
-  median_node(g, out.prim_index, 0, uint32_t(g.size()), 0, out);
-  return out;
-}
-
 }  // namespace
 
 WideBvh::WideBvh(int width, BvhOptions options) : width_(width), options_(options) {
@@ -196,7 +153,7 @@ std::string WideBvh::name() const {
 }
 
 void WideBvh::build(const Geometry& geometry) {
-  build(geometry, median_bvh(geometry));
+  build(geometry, build_bvh(geometry, options_));
 }
 
 void WideBvh::build(const Geometry& geometry, const BvhData& binary) {
