@@ -8,12 +8,14 @@
 #include <random>
 
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/geometry/icosphere.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
+#include "raystep/trace/event_recorder.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"
 
@@ -38,15 +40,35 @@ bool same_hit(const Hit& a, const Hit& b) {
   return a.prim == b.prim && (!a.found() || (a.t == b.t && a.b1 == b.b1 && a.b2 == b.b2));
 }
 
-// Rays on which the wide BVH differs from brute force: the hit (bit for bit) or the occlusion.
-int disagreements(const WideBvh& wide, const BruteForce& brute, const std::vector<Ray>& rays) {
+// An accelerator's answers on a ray set: the nearest hit and the occlusion.
+struct Answers {
+  std::vector<Hit> hits;
+  std::vector<char> occluded;
+};
+Answers answers(const Accelerator& acc, const std::vector<Ray>& rays) {
+  Answers out;
+  out.hits.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    acc.intersect(rays[i], &out.hits[i]);
+    out.occluded.push_back(acc.occluded(rays[i]));
+  }
+  return out;
+}
+
+// Rays on which the wide BVH differs from the reference answers: the hit (bit for bit) or the occlusion.
+int disagreements(const WideBvh& wide, const Answers& reference, const std::vector<Ray>& rays) {
   int bad = 0;
-  for (const Ray& r : rays) {
-    Hit a, b;
-    bool ha = brute.intersect(r, &a), hb = wide.intersect(r, &b);
-    if (ha != hb || !same_hit(a, b) || brute.occluded(r) != wide.occluded(r)) ++bad;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    Hit b;
+    bool hb = wide.intersect(rays[i], &b);
+    if (hb != reference.hits[i].found() || !same_hit(reference.hits[i], b) ||
+        char(wide.occluded(rays[i])) != reference.occluded[i])
+      ++bad;
   }
   return bad;
+}
+int disagreements(const WideBvh& wide, const BruteForce& brute, const std::vector<Ray>& rays) {
+  return disagreements(wide, answers(brute, rays), rays);
 }
 
 // Axis-parallel rays with +0 and -0 components, rays in the planes of the boxes' faces, grazing rays.
@@ -225,8 +247,8 @@ TEST(WideBvh, IdenticalAndCoplanarTriangles) {
   for (const Geometry* g : {&same, &plane}) {
     BruteForce brute;
     brute.build(*g);
-    std::vector<Ray> rays = random_rays(g->bounds(), 300, 9);
-    std::vector<Ray> hard = hard_rays(*g, 300, 10);
+    std::vector<Ray> rays = random_rays(g->bounds(), 150, 9);
+    std::vector<Ray> hard = hard_rays(*g, 150, 10);
     rays.insert(rays.end(), hard.begin(), hard.end());
     for (int width : {4, 8}) {
       auto wide = make_wide(*g, width);
@@ -282,6 +304,121 @@ TEST(WideBvh, KernelsAgreeBitForBitAndCountTheirWork) {
       EXPECT_EQ(counts.prim_tests, reference_counts.prim_tests);
       EXPECT_EQ(counts.skips, reference_counts.skips);
     }
+  }
+}
+
+// The same hits as the binary BVH, bit for bit: collapsed from the binary BVH's own tree, and each built by
+// default; every builder.
+TEST(WideBvh, SameHitsAsTheBinaryBvh) {
+  RestoreSimd restore;
+  Geometry g;
+  add_to_geometry(make_icosphere(3), g);
+  Geometry soup = make_soup(11, 2000, 0);
+  for (const Geometry* geometry : {&g, &soup}) {
+    std::vector<Ray> rays = random_rays(geometry->bounds(), 3000, 31);
+    std::vector<Ray> edges = edge_rays(*geometry, 3000, 32);
+    std::vector<Ray> hard = hard_rays(*geometry, 2000, 33);
+    rays.insert(rays.end(), edges.begin(), edges.end());
+    rays.insert(rays.end(), hard.begin(), hard.end());
+    for (BvhBuilder builder : {BvhBuilder::binned, BvhBuilder::sweep, BvhBuilder::median}) {
+      BvhOptions options;
+      options.builder = builder;
+      Bvh binary(options);
+      binary.build(*geometry);
+      Answers reference = answers(binary, rays);
+      for (int width : {4, 8}) {
+        WideBvh same_tree(width, options), own(width, options);
+        same_tree.build(*geometry, binary.data());
+        own.build(*geometry);
+        for (WideSimd level : levels()) {
+          ASSERT_TRUE(WideBvh::force_simd(level));
+          EXPECT_EQ(disagreements(same_tree, reference, rays), 0) << int(builder) << " " << width;
+          EXPECT_EQ(disagreements(own, reference, rays), 0) << int(builder) << " " << width;
+        }
+      }
+    }
+  }
+}
+
+// The recorded walk finds the kernel's hit, and tells it as the debugger expects: each node's box tests name
+// it as their parent, the pushes are the other hit children farthest first, every push is popped or the walk
+// ended on a hit, skipped entries start beyond the hit.
+TEST(WideBvh, RecordedWalkMatchesTheKernel) {
+  Geometry g = make_soup(3, 3000, 0);
+  std::vector<Ray> rays = random_rays(g.bounds(), 400, 5);
+  for (int width : {4, 8}) {
+    WideBvh wide(width);
+    wide.build(g);
+    WideBvhView view = wide.describe();
+    EventRecorder rec;
+    for (const Ray& r : rays)
+      for (bool any_hit : {false, true}) {
+        rec.clear();
+        Hit recorded, plain;
+        bool found = wide.record(r, &recorded, any_hit, rec);
+        bool plain_found = any_hit ? wide.occluded(r) : wide.intersect(r, &plain);
+        ASSERT_EQ(found, plain_found);
+        if (!any_hit) ASSERT_TRUE(same_hit(recorded, plain));
+        const std::vector<Event>& ev = rec.events();
+        ASSERT_GE(ev.size(), 2u);
+        EXPECT_EQ(ev.front().type, EventType::ray_begin);
+        EXPECT_EQ(ev.back().type, EventType::ray_end);
+        int32_t current = -1;
+        int pushes = 0, pops = 0, box_tests = 0, prim_tests = 0;
+        std::vector<float> pushed_t;
+        for (size_t i = 0; i < ev.size(); ++i) {
+          const Event& e = ev[i];
+          switch (e.type) {
+            case EventType::node:
+              current = e.node;
+              ASSERT_FALSE(view.nodes[size_t(e.node)].leaf);
+              pushed_t.clear();
+              break;
+            case EventType::box_test:
+              ++box_tests;
+              EXPECT_EQ(e.parent, current);
+              EXPECT_EQ(view.nodes[size_t(e.node)].parent, current);
+              EXPECT_EQ(e.depth, view.nodes[size_t(e.node)].depth);
+              break;
+            case EventType::push:
+              ++pushes;
+              EXPECT_EQ(view.nodes[size_t(e.node)].parent, current);
+              // Farthest first.
+              if (!pushed_t.empty()) EXPECT_LE(e.t_min_node, pushed_t.back());
+              pushed_t.push_back(e.t_min_node);
+              break;
+            case EventType::pop:
+              ++pops;
+              break;
+            case EventType::skip:
+              ASSERT_GT(i, 0u);
+              EXPECT_EQ(ev[i - 1].type, EventType::pop);
+              EXPECT_TRUE(recorded.found());
+              EXPECT_GT(e.t_min_node, recorded.t);
+              break;
+            case EventType::leaf:
+              EXPECT_TRUE(view.nodes[size_t(e.node)].leaf);
+              break;
+            case EventType::prim_test: {
+              ++prim_tests;
+              break;
+            }
+            default:
+              break;
+          }
+        }
+        EXPECT_TRUE(pops == pushes || (recorded.found() && pops <= pushes)) << pops << " " << pushes;
+        EXPECT_EQ(int(rec.counters().box_tests), box_tests);
+        EXPECT_EQ(int(rec.counters().prim_tests), prim_tests);
+        if (!any_hit) {
+          CountingRecorder counts;
+          Hit h;
+          wide.intersect_counted(r, &h, counts);
+          EXPECT_EQ(counts.box_tests, uint64_t(box_tests));
+          EXPECT_EQ(counts.prim_tests, uint64_t(prim_tests));
+          EXPECT_EQ(counts.pushes, uint64_t(pushes));
+        }
+      }
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <limits>
 
 #include "raystep/util/error.h"
@@ -33,6 +34,12 @@ class Collapser {
   Collapser(const BvhData& bin, const Geometry& g, WideBvh::Impl& m) : bin_(bin), g_(g), m_(m) {}
 
   void run() {
+    // Primitives under each binary node (preorder: children come after their parent).
+    subtree_.assign(bin_.nodes.size(), 0);
+    for (size_t i = bin_.nodes.size(); i-- > 0;) {
+      const BvhNode& n = bin_.nodes[i];
+      subtree_[i] = n.is_leaf() ? n.prim_count() : subtree_[i + 1] + subtree_[n.second_child()];
+    }
     m_.node_id.push_back(0);  // the root wide node is id 0
     m_.id_count = 1;
     emit(0, 0, 0);
@@ -45,7 +52,7 @@ class Collapser {
     uint32_t kids[W];
     int n = 0;
     const BvhNode& node = bin_.nodes[b];
-    if (node.is_leaf()) {
+    if (leaf_like(b)) {
       kids[n++] = b;  // the root is a leaf: one child
     } else {
       kids[n++] = b + 1;
@@ -55,8 +62,8 @@ class Collapser {
       int best = -1;
       float best_area = -1.f;
       for (int i = 0; i < n; ++i) {
+        if (leaf_like(kids[i])) continue;
         const BvhNode& k = bin_.nodes[kids[i]];
-        if (k.is_leaf()) continue;
         float a = k.box.surface_area();
         if (a > best_area) best_area = a, best = i;
       }
@@ -97,13 +104,14 @@ class Collapser {
           wn.box[2 * a][i] = k.box.lo[a];
           wn.box[2 * a + 1][i] = k.box.hi[a];
         }
-      if (k.is_leaf()) {
+      if (leaf_like(kids[i])) {
         uint32_t first = uint32_t(m_.prims.size());
         if (first >= kWideLeaf) throw InputError("", 0, "bvh: too many primitives for the wide BVH");
-        for (uint32_t j = 0; j < k.prim_count(); ++j) m_.prims.push_back(bin_.prim_index[k.first_prim() + j]);
-        while (m_.prims.size() % kWidePacket) m_.prims.push_back(kWideEmpty);
+        gather(kids[i]);
+        std::sort(m_.prims.begin() + first, m_.prims.end());  // a leaf's primitives in id order
         wn.child[i] = kWideLeaf | first;
-        wn.count[i] = k.prim_count();
+        wn.count[i] = uint32_t(m_.prims.size()) - first;
+        while (m_.prims.size() % kWidePacket) m_.prims.push_back(kWideEmpty);
         m_.max_depth = std::max(m_.max_depth, depth + 1);
       } else {
         wn.child[i] = emit(kids[i], child_id, depth + 1);
@@ -116,6 +124,21 @@ class Collapser {
     return index;
   }
 
+  // A binary leaf, or a subtree with no more primitives than a packet holds: they cost one SIMD test
+  // together, which is cheaper than the node visits that would separate them.
+  bool leaf_like(uint32_t b) const { return bin_.nodes[b].is_leaf() || subtree_[b] <= uint32_t(kWidePacket); }
+
+  void gather(uint32_t b) {
+    const BvhNode& n = bin_.nodes[b];
+    if (n.is_leaf()) {
+      for (uint32_t j = 0; j < n.prim_count(); ++j) m_.prims.push_back(bin_.prim_index[n.first_prim() + j]);
+      return;
+    }
+    gather(b + 1);
+    gather(n.second_child());
+  }
+
+  std::vector<uint32_t> subtree_;
   const BvhData& bin_;
   const Geometry& g_;
   WideBvh::Impl& m_;
@@ -131,6 +154,7 @@ void lay_out_packets(WideBvh::Impl& m) {
     TriPacket& tp = m.packets[p];
     for (int lane = 0; lane < kWidePacket; ++lane) {
       uint32_t prim = m.prims[p * kWidePacket + size_t(lane)];
+      tp.prim[lane] = prim;
       for (int k = 0; k < 3; ++k)
         for (int a = 0; a < 3; ++a) tp.v[3 * k + a][lane] = prim == kWideEmpty ? 0.f : g.vertex(prim, k)[a];
     }

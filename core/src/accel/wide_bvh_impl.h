@@ -25,9 +25,11 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode<8>) == 256 && sizeof(WideNode<4>) == 128, "nodes fill whole cache lines");
 
-// Four triangles: v[3 * k + axis][lane] is vertex k of the lane's triangle.
-struct alignas(16) TriPacket {
+// Four triangles: v[3 * k + axis][lane] is vertex k of the lane's triangle, prim[lane] its id (the id
+// beside the vertices: one cache miss less per leaf).
+struct alignas(32) TriPacket {
   float v[9][kWidePacket];
+  uint32_t prim[kWidePacket];
 };
 
 struct WideBvh::Impl {

@@ -286,16 +286,12 @@ bool WideBvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) co
   }
 }
 
-#if RAYSTEP_WIDE_EVENTS
 bool WideBvh::record(const Ray& ray, Hit* hit, bool any_hit, EventRecorder& rec) const {
   return traverse(ray, hit, any_hit, rec);
 }
-#endif
 
 template bool WideBvh::traverse<NullRecorder>(const Ray&, Hit*, bool, NullRecorder&) const;
 template bool WideBvh::traverse<CountingRecorder>(const Ray&, Hit*, bool, CountingRecorder&) const;
-#if RAYSTEP_WIDE_EVENTS
 template bool WideBvh::traverse<EventRecorder>(const Ray&, Hit*, bool, EventRecorder&) const;
-#endif
 
 }  // namespace raystep
