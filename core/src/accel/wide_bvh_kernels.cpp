@@ -6,6 +6,7 @@
 // depend on the instruction set. No FMA: a fused multiply-add rounds once where the scalar code rounds twice.
 #include <cmath>
 #include <limits>
+#include <new>
 #include <type_traits>
 
 #include "raystep/trace/event_recorder.h"
@@ -22,6 +23,47 @@ constexpr float kMaxFloat = std::numeric_limits<float>::max();
 // Ize's widening of the slab distances (bounds.h): down by 2 gamma(3) on one side of 0, up on the other.
 constexpr float kDown = 1.f - 2.f * gamma(3);
 constexpr float kUp = 1.f + 2.f * gamma(3);
+
+// SlabRay (bounds.h) computed here, so that it is inlined into every kernel (a function of the default
+// target is not inlined into the AVX2 one unless it must be): the same reciprocal, the same validity.
+struct RayPrep {
+  float origin[3], inv_dir[3];
+  float tmin, tmax;
+  bool valid;
+};
+[[gnu::always_inline]] inline RayPrep prepare(const Ray& r) {
+  RayPrep p;
+  const glm::vec3& d = r.direction;
+  for (int a = 0; a < 3; ++a) {
+    p.origin[a] = r.origin[a];
+    p.inv_dir[a] = 1.f / d[a];
+  }
+  p.tmin = r.tmin;
+  p.tmax = r.tmax;
+  bool finite_dir = std::isfinite(d.x) & std::isfinite(d.y) & std::isfinite(d.z);
+  bool nonzero_dir = (d.x != 0.f) | (d.y != 0.f) | (d.z != 0.f);
+  bool finite_origin = std::isfinite(r.origin.x) & std::isfinite(r.origin.y) & std::isfinite(r.origin.z);
+  p.valid = finite_origin & finite_dir & nonzero_dir & !std::isnan(r.tmin) & !std::isnan(r.tmax) &
+            (r.tmin < r.tmax);
+  return p;
+}
+
+// The watertight test of one triangle of a packet (triangle.h's intersect_triangle, with the vertices from
+// the packet: the same floats as the geometry's).
+[[gnu::always_inline]] inline bool packet_triangle(const WatertightRay& w, const TriPacket& p, int lane,
+                                                   float tmax, TriangleHit* th) {
+  glm::vec3 v0(p.v[0][lane], p.v[1][lane], p.v[2][lane]);
+  glm::vec3 v1(p.v[3][lane], p.v[4][lane], p.v[5][lane]);
+  glm::vec3 v2(p.v[6][lane], p.v[7][lane], p.v[8][lane]);
+  switch (w.kz) {
+    case 0:
+      return detail::intersect_triangle_permuted<1, 2, 0>(w, v0, v1, v2, tmax, th);
+    case 1:
+      return detail::intersect_triangle_permuted<2, 0, 1>(w, v0, v1, v2, tmax, th);
+    default:
+      return detail::intersect_triangle_permuted<0, 1, 2>(w, v0, v1, v2, tmax, th);
+  }
+}
 }  // namespace
 
 // ---- Scalar lanes: any architecture ----
@@ -31,7 +73,7 @@ namespace {
 struct BoxRay {
   float origin[3], inv_dir[3];
   int near_row[3], far_row[3];
-  explicit BoxRay(const SlabRay& r) {
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
     for (int a = 0; a < 3; ++a) {
       origin[a] = r.origin[a];
       inv_dir[a] = r.inv_dir[a];
@@ -70,7 +112,7 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
 }
 
 struct TriRay {
-  explicit TriRay(const WatertightRay&) {}
+  void init(const WatertightRay&) {}
 };
 // No filter: every triangle goes to the watertight test.
 inline uint32_t tri_filter(const TriPacket&, const TriRay&, float) {
@@ -90,7 +132,8 @@ inline uint32_t tri_filter(const TriPacket&, const TriRay&, float) {
     __m128 origin[3];                                                                                       \
     int kx, ky, kz;                                                                                         \
     __m128 sx, sy, sz, shear_x, shear_y;                                                                    \
-    explicit TriRay(const WatertightRay& r) : kx(r.kx), ky(r.ky), kz(r.kz) {                                \
+    [[gnu::always_inline]] void init(const WatertightRay& r) {                                              \
+      kx = r.kx, ky = r.ky, kz = r.kz;                                                                      \
       for (int a = 0; a < 3; ++a) origin[a] = _mm_set1_ps(r.origin[a]);                                     \
       sx = _mm_set1_ps(r.sx);                                                                               \
       sy = _mm_set1_ps(r.sy);                                                                               \
@@ -161,7 +204,7 @@ namespace {
 struct BoxRay {
   __m128 origin[3], inv_dir[3];
   int near_row[3], far_row[3];
-  explicit BoxRay(const SlabRay& r) {
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
     for (int a = 0; a < 3; ++a) {
       origin[a] = _mm_set1_ps(r.origin[a]);
       inv_dir[a] = _mm_set1_ps(r.inv_dir[a]);
@@ -219,7 +262,7 @@ struct BoxRay {
   __m256 origin[3], inv_dir[3];
   int near_row[3], far_row[3];
   wide_sse::BoxRay sse;
-  explicit BoxRay(const SlabRay& r) : sse(r) {
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) : sse(r) {
     for (int a = 0; a < 3; ++a) {
       origin[a] = _mm256_set1_ps(r.origin[a]);
       inv_dir[a] = _mm256_set1_ps(r.inv_dir[a]);
