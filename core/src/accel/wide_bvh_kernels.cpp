@@ -48,6 +48,14 @@ struct RayPrep {
   return p;
 }
 
+// What the SIMD part of the watertight test found for a packet: `candidates` are the lanes not rejected;
+// among them, `decided` are hits it proved (beyond tmin, before the packet's tmax), with their det, scaled t,
+// t and barycentrics, computed with the scalar test's operations; the others go to the scalar test.
+struct PacketResult {
+  uint32_t candidates, decided;
+  alignas(16) float det[kWidePacket], t_scaled[kWidePacket], t[kWidePacket], b1[kWidePacket], b2[kWidePacket];
+};
+
 // The watertight test of one triangle of a packet (triangle.h's intersect_triangle, with the vertices from
 // the packet: the same floats as the geometry's).
 [[gnu::always_inline]] inline bool packet_triangle(const WatertightRay& w, const TriPacket& p, int lane,
@@ -115,8 +123,9 @@ struct TriRay {
   void init(const WatertightRay&) {}
 };
 // No filter: every triangle goes to the watertight test.
-inline uint32_t tri_filter(const TriPacket&, const TriRay&, float) {
-  return (1u << kWidePacket) - 1;
+inline void tri_filter(const TriPacket&, const TriRay&, float, PacketResult* out) {
+  out->candidates = (1u << kWidePacket) - 1;
+  out->decided = 0;
 }
 
 #include "wide_bvh_kernel.inc"
@@ -127,77 +136,6 @@ inline uint32_t tri_filter(const TriPacket&, const TriRay&, float) {
 #if defined(__x86_64__)
 
 // ---- SSE: 4 lanes (8-wide nodes as two halves); also the triangle filter of the AVX2 kernel ----
-#define RAYSTEP_SSE_FILTER                                                                                  \
-  struct TriRay {                                                                                           \
-    __m128 origin[3];                                                                                       \
-    int kx, ky, kz;                                                                                         \
-    __m128 sx, sy, sz, shear_x, shear_y;                                                                    \
-    [[gnu::always_inline]] void init(const WatertightRay& r) {                                              \
-      kx = r.kx, ky = r.ky, kz = r.kz;                                                                      \
-      for (int a = 0; a < 3; ++a) origin[a] = _mm_set1_ps(r.origin[a]);                                     \
-      sx = _mm_set1_ps(r.sx);                                                                               \
-      sy = _mm_set1_ps(r.sy);                                                                               \
-      sz = _mm_set1_ps(r.sz);                                                                               \
-      shear_x = _mm_set1_ps(r.shear_x);                                                                     \
-      shear_y = _mm_set1_ps(r.shear_y);                                                                     \
-    }                                                                                                       \
-  };                                                                                                        \
-  inline __m128 abs4(__m128 x) {                                                                            \
-    return _mm_andnot_ps(_mm_set1_ps(-0.f), x);                                                             \
-  }                                                                                                         \
-  /* The watertight test (triangle.h) up to its decisions, four triangles at once, with the same operations \
-     in the same order: a lane it rejects is one the test rejects with this tmax (or a smaller one). The    \
-     lanes within rounding of an edge, and the lanes that pass, go to the test itself. */                   \
-  inline uint32_t tri_filter(const TriPacket& p, const TriRay& r, float tmax_scalar) {                      \
-    const __m128 ax0 = _mm_sub_ps(_mm_load_ps(p.v[r.kx]), r.origin[r.kx]);                                  \
-    const __m128 ay0 = _mm_sub_ps(_mm_load_ps(p.v[r.ky]), r.origin[r.ky]);                                  \
-    const __m128 az0 = _mm_sub_ps(_mm_load_ps(p.v[r.kz]), r.origin[r.kz]);                                  \
-    const __m128 bx0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.kx]), r.origin[r.kx]);                              \
-    const __m128 by0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.ky]), r.origin[r.ky]);                              \
-    const __m128 bz0 = _mm_sub_ps(_mm_load_ps(p.v[3 + r.kz]), r.origin[r.kz]);                              \
-    const __m128 cx0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.kx]), r.origin[r.kx]);                              \
-    const __m128 cy0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.ky]), r.origin[r.ky]);                              \
-    const __m128 cz0 = _mm_sub_ps(_mm_load_ps(p.v[6 + r.kz]), r.origin[r.kz]);                              \
-    const __m128 ax = _mm_add_ps(ax0, _mm_mul_ps(r.sx, az0)), ay = _mm_add_ps(ay0, _mm_mul_ps(r.sy, az0));  \
-    const __m128 bx = _mm_add_ps(bx0, _mm_mul_ps(r.sx, bz0)), by = _mm_add_ps(by0, _mm_mul_ps(r.sy, bz0));  \
-    const __m128 cx = _mm_add_ps(cx0, _mm_mul_ps(r.sx, cz0)), cy = _mm_add_ps(cy0, _mm_mul_ps(r.sy, cz0));  \
-    const __m128 e0 = _mm_sub_ps(_mm_mul_ps(bx, cy), _mm_mul_ps(by, cx));                                   \
-    const __m128 e1 = _mm_sub_ps(_mm_mul_ps(cx, ay), _mm_mul_ps(cy, ax));                                   \
-    const __m128 e2 = _mm_sub_ps(_mm_mul_ps(ax, by), _mm_mul_ps(ay, bx));                                   \
-    const __m128 max_z = _mm_max_ps(_mm_max_ps(abs4(az0), abs4(bz0)), abs4(cz0));                           \
-    const __m128 max_xt = _mm_max_ps(_mm_max_ps(abs4(ax), abs4(bx)), abs4(cx));                             \
-    const __m128 max_yt = _mm_max_ps(_mm_max_ps(abs4(ay), abs4(by)), abs4(cy));                             \
-    const __m128 g6 = _mm_set1_ps(gamma(6));                                                                \
-    const __m128 delta_x = _mm_mul_ps(g6, _mm_add_ps(max_xt, _mm_mul_ps(r.shear_x, max_z)));                \
-    const __m128 delta_y = _mm_mul_ps(g6, _mm_add_ps(max_yt, _mm_mul_ps(r.shear_y, max_z)));                \
-    const __m128 delta_e =                                                                                  \
-        _mm_mul_ps(_mm_set1_ps(2.f),                                                                        \
-                   _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_mul_ps(_mm_set1_ps(gamma(3)), max_xt), max_yt),     \
-                                         _mm_mul_ps(delta_y, max_xt)),                                      \
-                              _mm_mul_ps(delta_x, max_yt)));                                                \
-    const __m128 undecided =                                                                                \
-        _mm_or_ps(_mm_or_ps(_mm_cmple_ps(abs4(e0), delta_e), _mm_cmple_ps(abs4(e1), delta_e)),              \
-                  _mm_cmple_ps(abs4(e2), delta_e));                                                         \
-    const __m128 zero = _mm_setzero_ps();                                                                   \
-    const __m128 some_neg =                                                                                 \
-        _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(e0, zero), _mm_cmplt_ps(e1, zero)), _mm_cmplt_ps(e2, zero));       \
-    const __m128 some_pos =                                                                                 \
-        _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(e0, zero), _mm_cmpgt_ps(e1, zero)), _mm_cmpgt_ps(e2, zero));       \
-    const __m128 outside = _mm_and_ps(some_neg, some_pos);                                                  \
-    const __m128 det = _mm_add_ps(_mm_add_ps(e0, e1), e2);                                                  \
-    const __m128 az = _mm_mul_ps(r.sz, az0), bz = _mm_mul_ps(r.sz, bz0), cz = _mm_mul_ps(r.sz, cz0);        \
-    const __m128 t_scaled =                                                                                 \
-        _mm_add_ps(_mm_add_ps(_mm_mul_ps(e0, az), _mm_mul_ps(e1, bz)), _mm_mul_ps(e2, cz));                 \
-    const __m128 tmax = _mm_set1_ps(tmax_scalar);                                                           \
-    const __m128 tmax_det = _mm_mul_ps(tmax, det);                                                          \
-    const __m128 beyond = _mm_or_ps(_mm_and_ps(_mm_cmplt_ps(det, zero), _mm_cmplt_ps(t_scaled, tmax_det)),  \
-                                    _mm_and_ps(_mm_cmpgt_ps(det, zero), _mm_cmpgt_ps(t_scaled, tmax_det))); \
-    const __m128 t = _mm_mul_ps(t_scaled, _mm_div_ps(_mm_set1_ps(1.f), det));                               \
-    const __m128 before_tmax = _mm_cmplt_ps(t, tmax);                                                       \
-    const __m128 pass = _mm_andnot_ps(_mm_or_ps(outside, beyond), before_tmax);                             \
-    return uint32_t(_mm_movemask_ps(_mm_or_ps(undecided, pass)));                                           \
-  }
-
 namespace wide_sse {
 namespace {
 
@@ -245,7 +183,7 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
   return mask;
 }
 
-RAYSTEP_SSE_FILTER
+#include "wide_bvh_filter.inc"
 
 #include "wide_bvh_kernel.inc"
 
@@ -300,7 +238,7 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
   }
 }
 
-RAYSTEP_SSE_FILTER
+#include "wide_bvh_filter.inc"
 
 #include "wide_bvh_kernel.inc"
 
