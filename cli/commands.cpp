@@ -122,8 +122,11 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   }
   options.kd = kd_options(s);
   options.kd_mailboxes = s.kd_mailbox != "off";
-  options.bvh = bvh_options(s);
-  options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  // The BVH's options are checked only for a BVH (the kd-tree's --max-depth keeps its own message).
+  if (s.accel.rfind("bvh", 0) == 0) {
+    options.bvh = bvh_options(s);
+    options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  }
   try {
     return make_accelerator(s.accel, options);
   } catch (const InputError& e) {
