@@ -21,6 +21,37 @@ enum class BvhOrder : uint8_t {
   split_axis,      // by the sign of the ray's direction on the node's split axis (no comparison of t)
 };
 
+// The slab test of geometry/bounds.h (intersect_slabs) prepared once per ray for the many boxes of one walk:
+// the near and far planes chosen by the direction's sign bits up front, the three slabs combined without
+// early exits. The same float operations in the same order, so the same answers: conservative (never a miss
+// where the exact segment meets the box), +0 and -0 alike, NaN rays miss, a parallel ray outside a slab
+// misses.
+struct BvhBoxRay {
+  glm::vec3 origin, inv_dir;
+  int near_hi[3];  // 1: the near plane is the box's upper one (negative direction, or -0)
+  float tmin, tmax;
+  bool valid;
+  explicit BvhBoxRay(const SlabRay& r)
+      : origin(r.origin), inv_dir(r.inv_dir), tmin(r.tmin), tmax(r.tmax), valid(r.valid) {
+    for (int a = 0; a < 3; ++a) near_hi[a] = std::signbit(r.inv_dir[a]) ? 1 : 0;
+  }
+  bool hit(const Bounds3& b, float* t_enter, float* t_exit) const {
+    const glm::vec3* planes = &b.lo;  // planes[0] = lo, planes[1] = hi
+    float t0 = tmin, t1 = tmax;
+    for (int a = 0; a < 3; ++a) {
+      float t_near = (planes[near_hi[a]][a] - origin[a]) * inv_dir[a];
+      float t_far = (planes[1 - near_hi[a]][a] - origin[a]) * inv_dir[a];
+      t_near *= t_near > 0.f ? 1.f - 2.f * gamma(3) : 1.f + 2.f * gamma(3);
+      t_far *= t_far > 0.f ? 1.f + 2.f * gamma(3) : 1.f - 2.f * gamma(3);
+      t0 = t_near > t0 ? t_near : t0;
+      t1 = t_far < t1 ? t_far : t1;
+    }
+    *t_enter = t0;
+    *t_exit = t1;
+    return t0 <= t1 && t0 != kInfinity;
+  }
+};
+
 class Bvh final : public Accelerator {
  public:
   explicit Bvh(BvhOptions options = {}, BvhOrder order = BvhOrder::entry_distance)
@@ -58,12 +89,11 @@ template <class Recorder>
 bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
   *hit = Hit{};
   rec.ray_begin(ray);
-  SlabRay slab(ray);  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
+  BvhBoxRay slab{SlabRay(ray)};  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
   float t_min, t_max;
   const BvhNode* nodes = bvh_.nodes.data();
-  if (bvh_.nodes.empty() || !intersect_slabs(nodes[0].box, slab, &t_min, &t_max)) {
-    if constexpr (Recorder::enabled)
-      if (!bvh_.nodes.empty()) rec.box_test(BoxTest{-1, 0, 0, false, 0.f, 0.f});
+  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(nodes[0].box, &t_min, &t_max)) {
+    if (!bvh_.nodes.empty()) rec.box_test(BoxTest{-1, 0, 0, false, 0.f, 0.f});  // the root's box: a miss
     rec.ray_end(*hit);
     return false;
   }
@@ -99,8 +129,8 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
       uint32_t left = node_id + 1, right = node.second_child();
       __builtin_prefetch(&nodes[right]);
       float l_near, l_far, r_near, r_far;
-      bool hit_left = intersect_slabs(nodes[left].box, slab, &l_near, &l_far);
-      bool hit_right = intersect_slabs(nodes[right].box, slab, &r_near, &r_far);
+      bool hit_left = slab.hit(nodes[left].box, &l_near, &l_far);
+      bool hit_right = slab.hit(nodes[right].box, &r_near, &r_far);
       rec.box_test(BoxTest{int32_t(node_id), int32_t(left), depth + 1, hit_left, l_near, l_far});
       rec.box_test(BoxTest{int32_t(node_id), int32_t(right), depth + 1, hit_right, r_near, r_far});
       if (hit_left && hit_right) {
