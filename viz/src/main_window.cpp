@@ -152,14 +152,18 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   });
   connect(session_, &Session::selectedNodeChanged, this, &MainWindow::showSahCurve);
   connect(session_, &Session::structureChanged, this, [this] {
-    const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+    // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
+    const bool kd = session_->structure() && treeShapeOf(*session_->structure());
+    const bool isBvh = session_->structure() && session_->structure()->bvh();
+    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector") : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(
-          tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
-             "3D view, shows its nodes and SAH curves"));
+          isBvh ? tr("BVH built: View > tree and SAH inspector shows its nodes and binned SAH curves")
+                : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+                     "3D view, shows its nodes and SAH curves"));
     else if (!kd)
       hideKdPanel();
     showSahCurve();
@@ -739,6 +743,26 @@ void MainWindow::buildStructure() {
                                 .arg(coarsened)
                                 .arg(grid->reference_count())
                                 .arg(double(grid->reference_count()) / n, 0, 'f', 2) +
+                            took(tr(", built"), built->buildMs));
+      } else if (const Bvh* bvh = built->bvh()) {
+        BvhStats st = bvh_stats(bvh->data(), bvh->options());
+        structure_->setInfo(
+            tr("%1: %2 nodes, %3 leaves, depth %4, %5 primitives per leaf (max %6), SAH cost %7, "
+               "children's overlap %8 (each primitive in one leaf)")
+                .arg(QString::fromStdString(built->kind))
+                .arg(st.nodes)
+                .arg(st.leaves)
+                .arg(st.max_depth)
+                .arg(st.mean_leaf_prims, 0, 'f', 2)
+                .arg(st.max_leaf_prims)
+                .arg(st.sah_cost, 0, 'f', 1)
+                .arg(st.overlap, 0, 'f', 3) +
+            took(tr(", built"), built->buildMs));
+      } else if (built->kind == "bvh4" || built->kind == "bvh8") {
+        structure_->setInfo(tr("%1: the binned BVH collapsed into %2-wide nodes, %3 KiB")
+                                .arg(QString::fromStdString(built->kind))
+                                .arg(built->kind == "bvh4" ? 4 : 8)
+                                .arg(double(built->accel->memory_bytes()) / 1024.0, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
       } else if (const KdTree* kd = built->kdTree()) {
         KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
