@@ -2,7 +2,8 @@
 // Embree 3 in the same run, on the same rays (primary rays of the mesh's default camera, and random rays).
 // Usage: raystep_bench_structures [MESH.obj|SCENE.json] [--accel a,b,...] [--size N] [--random N] [--reps N]
 //        [--embree-robust]
-// (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D).
+// (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D; bvh:axis / bvh:entry the BVH's child
+// order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median).
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <embree3/rtcore.h>
@@ -163,15 +164,27 @@ int main(int argc, char** argv) {
     for (std::string name; std::getline(list, name, ',');) {
       // NAME, or kd:D / kd-median:D, a kd-tree with the depth limit D (the sweep behind the default limit).
       StructureOptions options;
+      options.bvh.threads = 1;  // one thread, as Embree's device
       std::string kind = name;
       if (size_t colon = name.find(':'); colon != std::string::npos) {
         kind = name.substr(0, colon);
         char* end = nullptr;
         long depth = std::strtol(name.c_str() + colon + 1, &end, 10);
-        if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
-          bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
-                            std::to_string(kKdMaxDepth));
-        options.kd.max_depth = int(depth);
+        std::string tail = name.substr(colon + 1);
+        bool is_bvh = kind == "bvh" || kind == "bvh-sweep" || kind == "bvh-median";
+        if (is_bvh && (tail == "axis" || tail == "entry")) {
+          options.bvh_order = tail == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+        } else if (is_bvh && tail.rfind("leaf", 0) == 0) {
+          options.bvh.leaf_size = std::atoi(tail.c_str() + 4);
+          options.bvh.max_leaf_size = std::max(options.bvh.max_leaf_size, options.bvh.leaf_size);
+        } else if (is_bvh && tail.rfind("ti", 0) == 0) {
+          options.bvh.t_i = float(std::atof(tail.c_str() + 2));
+        } else {
+          if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
+            bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
+                              std::to_string(kKdMaxDepth) + ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX");
+          options.kd.max_depth = int(depth);
+        }
       }
       names.push_back(name);
       accels.push_back(make_accelerator(kind, options));

@@ -3,6 +3,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
@@ -123,7 +124,8 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median"}; }
+std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median"};
+}
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
   return make_accelerator(name, StructureOptions{});
@@ -137,6 +139,11 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     KdOptions kd = options.kd;
     kd.builder = name == "kd-median" ? KdBuilder::median : KdBuilder::sah;
     return std::make_unique<KdTree>(kd, options.kd_mailboxes);
+  }
+  if (name == "bvh" || name == "bvh-sweep" || name == "bvh-median") {
+    BvhOptions bvh = options.bvh;
+    bvh.builder = name == "bvh-sweep" ? BvhBuilder::sweep : name == "bvh-median" ? BvhBuilder::median : BvhBuilder::binned;
+    return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;

@@ -2,9 +2,9 @@
 // primitives are split in two by a plane through their centroids, chosen to minimise
 // C = t_t + p_l N_l t_i + p_r N_r t_i with p = S(box of the side) / S(node box). Unlike the kd-tree, each
 // primitive goes to exactly one side and each side's box is tight around its primitives, so the two boxes may
-// overlap. Three builders write the same layout: binned SAH (Wald, "On fast construction of SAH-based bounding
-// volume hierarchies", 2007; the default), a full sweep over every centroid (the reference the binned one is
-// tested against) and the object median (the contrast).
+// overlap. Three builders write the same layout: binned SAH (Wald, "On fast construction of SAH-based
+// bounding volume hierarchies", 2007; the default), a full sweep over every centroid (the reference the
+// binned one is tested against) and the object median (the contrast).
 #pragma once
 
 #include <cstdint>
@@ -23,10 +23,10 @@ enum class BvhBuilder : uint8_t {
 
 struct BvhOptions {
   BvhBuilder builder = BvhBuilder::binned;
-  float t_i = 80.f;   // cost of one ray-primitive test (lecture: t_i = 80 t_t), the kd-tree's constants
-  float t_t = 1.f;    // cost of one traversal step
-  int bins = 16;      // binned builder: bins per axis, 2..256
-  int leaf_size = 1;  // a node with at most this many primitives is a leaf without a search
+  float t_i = 80.f;        // cost of one ray-primitive test (lecture: t_i = 80 t_t), the kd-tree's constants
+  float t_t = 1.f;         // cost of one traversal step
+  int bins = 16;           // binned builder: bins per axis, 2..256
+  int leaf_size = 1;       // a node with at most this many primitives is a leaf without a search
   int max_leaf_size = 16;  // a node with more primitives is always split when a split exists (wide kernels)
   int max_depth = 64;      // <= kBvhMaxDepth
   int threads = 0;         // 0: TBB's default; the tree is the same for every thread count
@@ -42,6 +42,7 @@ struct BvhCandidate {
   uint32_t n_left = 0, n_right = 0;
   float area_left = 0.f, area_right = 0.f, area_node = 0.f;
   float cost = 0.f;
+  bool chosen = false;  // the split the builder took (listener, SAH inspector)
 };
 
 // Why a BVH node became a leaf.
@@ -73,9 +74,9 @@ BvhData build_bvh(const Geometry& geometry, const BvhOptions& options);
 BvhData build_bvh(const Geometry& geometry, const BvhOptions& options, BvhBuildListener& listener);
 
 // The shape of a built hierarchy and its SAH cost: sum over inner nodes of t_t S(node) / S(root) plus over
-// leaves of t_i N_leaf S(leaf) / S(root). Overlap: for each inner node the surface area of the intersection of
-// its children's boxes over its own, summed over inner nodes weighted by S(node) / S(root) ("bounding volumes
-// can overlap", measured).
+// leaves of t_i N_leaf S(leaf) / S(root). Overlap: for each inner node the surface area of the intersection
+// of its children's boxes over its own, summed over inner nodes weighted by S(node) / S(root) ("bounding
+// volumes can overlap", measured).
 struct BvhStats {
   size_t nodes = 0, leaves = 0;
   int max_depth = 0;

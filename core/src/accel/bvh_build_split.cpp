@@ -1,0 +1,333 @@
+// The BVH builders' split search, one function per algorithm (binned SAH, full sweep SAH, object median)
+// behind the one decision per node of plan_node: leaf rules first, then the builder's best candidate, then
+// the comparison with the leaf cost N t_i (which a node of more than max_leaf_size primitives may not take).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "bvh_build_common.h"
+
+namespace raystep::bvh {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Bins of one axis: slot = floor((c - lo) * bins / extent), clamped to the last; an axis whose centroids do
+// not spread (or spread over so little that bins / extent overflows) has no bins.
+struct BinMap {
+  float lo[3], scale[3];
+  bool usable[3];
+  int bins;
+  BinMap(const Bounds3& centroids, int bins_) : bins(bins_) {
+    for (int a = 0; a < 3; ++a) {
+      float extent = centroids.hi[a] - centroids.lo[a];
+      lo[a] = centroids.lo[a];
+      scale[a] = extent > 0.f ? float(bins) / extent : 0.f;
+      usable[a] = extent > 0.f && std::isfinite(scale[a]);
+    }
+  }
+  int slot(const PrimRef& r, int a) const {
+    float f = (r.centroid(a) - lo[a]) * scale[a];
+    return f >= float(bins - 1) ? bins - 1 : int(f);
+  }
+};
+
+// Per-bin boxes and counts for three axes; combined by union and sum, exact whatever the order.
+struct BinSet {
+  int bins;
+  std::vector<Bounds3> box;     // [axis * bins + slot]
+  std::vector<uint32_t> count;  // [axis * bins + slot]
+  explicit BinSet(int b) : bins(b), box(size_t(3 * b)), count(size_t(3 * b), 0) {}
+  void add(const PrimRef* refs, size_t begin, size_t end, const BinMap& map) {
+    for (size_t i = begin; i < end; ++i)
+      for (int a = 0; a < 3; ++a) {
+        if (!map.usable[a]) continue;
+        size_t k = size_t(a * bins + map.slot(refs[i], a));
+        box[k].extend(refs[i].box);
+        ++count[k];
+      }
+  }
+  void merge(const BinSet& o) {
+    for (size_t k = 0; k < box.size(); ++k) {
+      box[k].extend(o.box[k]);
+      count[k] += o.count[k];
+    }
+  }
+};
+
+// Binned SAH (Wald 2007): bin the centroids, sweep the bin boundaries from both ends. Candidate `bin` b puts
+// slots 0..b on the left.
+bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
+                 const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
+  const int bins = o.bins;
+  BinMap map(centroids, bins);
+  BinSet set(bins);
+  if (n >= kParallelPrims) {
+    set = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 1024), BinSet(bins),
+        [&](const tbb::blocked_range<size_t>& r, BinSet s) {
+          s.add(refs, r.begin(), r.end(), map);
+          return s;
+        },
+        [](BinSet a, const BinSet& b) {
+          a.merge(b);
+          return a;
+        });
+  } else {
+    set.add(refs, 0, n, map);
+  }
+  const float area_node = box.surface_area();
+  bool found = false;
+  float right_area[256];
+  uint32_t right_count[256];
+  for (int a = 0; a < 3; ++a) {
+    if (!map.usable[a]) continue;
+    const Bounds3* bb = &set.box[size_t(a * bins)];
+    const uint32_t* bc = &set.count[size_t(a * bins)];
+    // Sweep from the right: what lies in slots b+1.. .
+    Bounds3 acc;
+    uint32_t cnt = 0;
+    for (int b = bins - 1; b > 0; --b) {
+      acc.extend(bb[b]);
+      cnt += bc[b];
+      right_area[b - 1] = acc.surface_area();
+      right_count[b - 1] = cnt;
+    }
+    // Sweep from the left, evaluating each boundary.
+    Bounds3 left;
+    uint32_t n_left = 0;
+    for (int b = 0; b < bins - 1; ++b) {
+      left.extend(bb[b]);
+      n_left += bc[b];
+      BvhCandidate c;
+      c.axis = a;
+      c.bin = b;
+      c.position = map.lo[a] + float(b + 1) / map.scale[a];
+      c.n_left = n_left;
+      c.n_right = right_count[b];
+      c.area_left = left.surface_area();
+      c.area_right = right_area[b];
+      c.area_node = area_node;
+      c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
+      if (out) out->push_back(c);
+      // Only a boundary with primitives on both sides is a split; the first lowest cost wins (lower axis,
+      // bin).
+      if (c.n_left > 0 && c.n_right > 0 && (!found || c.cost < best->cost)) {
+        *best = c;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
+bool centroid_less(const PrimRef& x, const PrimRef& y, int a) {
+  float cx = x.centroid(a), cy = y.centroid(a);
+  return cx < cy || (cx == cy && x.id < y.id);
+}
+
+// Full sweep SAH: on each axis sort by centroid (ties by id) and evaluate every boundary between neighbours.
+// Candidate `bin` i puts sorted positions 0..i on the left.
+bool best_sweep(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
+                const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
+  thread_local std::vector<PrimRef> sorted;
+  thread_local std::vector<float> right_area;
+  sorted.assign(refs, refs + n);
+  right_area.resize(n);
+  const float area_node = box.surface_area();
+  bool found = false;
+  for (int a = 0; a < 3; ++a) {
+    if (!(centroids.hi[a] > centroids.lo[a])) continue;  // as the binned builder: an axis without spread
+    std::sort(sorted.begin(), sorted.end(),
+              [a](const PrimRef& x, const PrimRef& y) { return centroid_less(x, y, a); });
+    Bounds3 acc;
+    for (uint32_t i = n - 1; i > 0; --i) {
+      acc.extend(sorted[i].box);
+      right_area[i - 1] = acc.surface_area();
+    }
+    Bounds3 left;
+    for (uint32_t i = 0; i + 1 < n; ++i) {
+      left.extend(sorted[i].box);
+      BvhCandidate c;
+      c.axis = a;
+      c.bin = int(i);
+      c.position = 0.5f * (sorted[i].centroid(a) + sorted[i + 1].centroid(a));
+      c.n_left = i + 1;
+      c.n_right = n - i - 1;
+      c.area_left = left.surface_area();
+      c.area_right = right_area[i];
+      c.area_node = area_node;
+      c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
+      if (out) out->push_back(c);
+      if (!found || c.cost < best->cost) {
+        *best = c;
+        found = true;
+      }
+    }
+  }
+  return found;
+}
+
+// Object median: the longest axis of the centroids' box, the lower half of the centroids (ties by id) left.
+BvhCandidate median_split(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
+                          const BvhOptions& o) {
+  thread_local std::vector<PrimRef> sorted;
+  sorted.assign(refs, refs + n);
+  int a = centroids.max_axis();
+  uint32_t m = n / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + m, sorted.end(),
+                   [a](const PrimRef& x, const PrimRef& y) { return centroid_less(x, y, a); });
+  Bounds3 left, right;
+  for (uint32_t i = 0; i < m; ++i) left.extend(sorted[i].box);
+  for (uint32_t i = m; i < n; ++i) right.extend(sorted[i].box);
+  BvhCandidate c;
+  c.axis = a;
+  c.bin = int(m) - 1;
+  c.position = sorted[m].centroid(a);
+  c.n_left = m;
+  c.n_right = n - m;
+  c.area_left = left.surface_area();
+  c.area_right = right.surface_area();
+  c.area_node = box.surface_area();
+  c.cost = split_cost(o, c.area_node, m, c.area_left, n - m, c.area_right);
+  return c;
+}
+
+// All centroids at one point: no plane separates them, so the ids are halved (the lower ids left).
+BvhCandidate forced_split(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
+                          const BvhOptions& o) {
+  thread_local std::vector<PrimRef> sorted;
+  sorted.assign(refs, refs + n);
+  uint32_t m = n / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + m, sorted.end(),
+                   [](const PrimRef& x, const PrimRef& y) { return x.id < y.id; });
+  Bounds3 left, right;
+  for (uint32_t i = 0; i < m; ++i) left.extend(sorted[i].box);
+  for (uint32_t i = m; i < n; ++i) right.extend(sorted[i].box);
+  BvhCandidate c;
+  c.axis = box.max_axis();
+  c.bin = int(m) - 1;
+  c.position = centroids.lo[c.axis];
+  c.n_left = m;
+  c.n_right = n - m;
+  c.area_left = left.surface_area();
+  c.area_right = right.surface_area();
+  c.area_node = box.surface_area();
+  c.cost = split_cost(o, c.area_node, m, c.area_left, n - m, c.area_right);
+  return c;
+}
+
+}  // namespace
+
+float split_cost(const BvhOptions& o, float area_node, uint32_t n_l, float area_l, uint32_t n_r,
+                 float area_r) {
+  if (!(area_node > 0.f)) return o.t_t + o.t_i * float(n_l + n_r);
+  return o.t_t + o.t_i * (area_l * float(n_l) + area_r * float(n_r)) / area_node;
+}
+
+void range_bounds(const PrimRef* refs, uint32_t n, Bounds3* box, Bounds3* centroids) {
+  using Pair = std::pair<Bounds3, Bounds3>;
+  auto add = [refs](size_t begin, size_t end, Pair p) {
+    for (size_t i = begin; i < end; ++i) {
+      p.first.extend(refs[i].box);
+      p.second.extend(0.5f * (refs[i].box.lo + refs[i].box.hi));
+    }
+    return p;
+  };
+  Pair p;
+  if (n >= kParallelPrims) {
+    p = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, 4096), Pair{},
+        [&](const tbb::blocked_range<size_t>& r, Pair acc) { return add(r.begin(), r.end(), acc); },
+        [](Pair a, const Pair& b) {
+          a.first.extend(b.first);
+          a.second.extend(b.second);
+          return a;
+        });
+  } else {
+    p = add(0, n, p);
+  }
+  *box = p.first;
+  *centroids = p.second;
+}
+
+NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids, int depth,
+                   const BvhOptions& o, std::vector<BvhCandidate>* candidates) {
+  NodePlan plan;
+  plan.leaf_cost = o.t_i * float(n);
+  if (n <= uint32_t(o.leaf_size)) {
+    plan.reason = BvhLeafReason::few_primitives;
+    return plan;
+  }
+  if (depth >= o.max_depth) {
+    plan.reason = BvhLeafReason::max_depth;
+    return plan;
+  }
+  const bool spread =
+      centroids.hi.x > centroids.lo.x || centroids.hi.y > centroids.lo.y || centroids.hi.z > centroids.lo.z;
+  BvhCandidate best;
+  bool found = false;
+  if (spread) {
+    switch (o.builder) {
+      case BvhBuilder::sweep:
+        found = best_sweep(refs, n, box, centroids, o, candidates, &best);
+        break;
+      case BvhBuilder::median:
+        best = median_split(refs, n, box, centroids, o);
+        if (candidates) candidates->push_back(best);
+        found = true;
+        break;
+      case BvhBuilder::binned:
+      default:
+        found = best_binned(refs, n, box, centroids, o, candidates, &best);
+        break;
+    }
+  }
+  if (!found) {
+    // No plane separates the centroids: a leaf while that is allowed, else the id range halved.
+    if (n <= uint32_t(o.max_leaf_size)) {
+      plan.reason = BvhLeafReason::no_candidate;
+      return plan;
+    }
+    best = forced_split(refs, n, box, centroids, o);
+    if (candidates) candidates->push_back(best);
+    plan.forced = true;
+  } else if (o.builder != BvhBuilder::median && !(best.cost < plan.leaf_cost) &&
+             n <= uint32_t(o.max_leaf_size)) {
+    // The median builder splits whenever it can (leaves by size and depth only): the contrast to the SAH.
+    plan.reason = BvhLeafReason::no_cheaper_split;
+    return plan;
+  }
+  plan.leaf = false;
+  plan.chosen = best;
+  plan.chosen.chosen = true;
+  if (candidates)
+    for (BvhCandidate& c : *candidates)
+      if (c.axis == best.axis && c.bin == best.bin) c.chosen = true;
+  return plan;
+}
+
+uint32_t apply_split(PrimRef* refs, uint32_t n, const Bounds3& centroids, const NodePlan& plan,
+                     const BvhOptions& o) {
+  const BvhCandidate& c = plan.chosen;
+  const int a = c.axis;
+  if (plan.forced) {
+    std::nth_element(refs, refs + c.n_left, refs + n,
+                     [](const PrimRef& x, const PrimRef& y) { return x.id < y.id; });
+  } else if (o.builder == BvhBuilder::binned) {
+    BinMap map(centroids, o.bins);
+    std::partition(refs, refs + n, [&](const PrimRef& r) { return map.slot(r, a) <= c.bin; });
+  } else {
+    // Sweep and median: the n_left smallest by (centroid, id), the order their candidates were counted in.
+    std::nth_element(refs, refs + c.n_left, refs + n,
+                     [a](const PrimRef& x, const PrimRef& y) { return centroid_less(x, y, a); });
+  }
+  return c.n_left;
+}
+
+}  // namespace raystep::bvh
