@@ -24,6 +24,8 @@ TEST(Events, NamesRoundTripAndAreUnique) {
   EXPECT_STREQ(event_type_name(EventType::mailbox_hit), "mailbox_hit");
   EXPECT_STREQ(event_type_name(EventType::hit_deferred), "hit_deferred");
   EXPECT_STREQ(event_type_name(EventType::sah_candidate), "sah_candidate");
+  EXPECT_STREQ(event_type_name(EventType::box_test), "box_test");  // version 3
+  EXPECT_STREQ(event_type_name(EventType::skip), "skip");
 }
 
 TEST(Events, AcceptReasonsRoundTrip) {

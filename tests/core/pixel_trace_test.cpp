@@ -115,7 +115,7 @@ TEST(PixelTrace, JsonRoundTripIsIdenticalForEveryPattern) {
       const std::string once = trace_to_json(t);
       const Trace back = parse_trace_json(once, "mem.json");
       EXPECT_EQ(trace_to_json(back), once);
-      EXPECT_EQ(back.version, 2);
+      EXPECT_EQ(back.version, 3);
       ASSERT_TRUE(back.pixel);
       const PixelSampling &a = t.pixel->sampling, &b = back.pixel->sampling;
       ASSERT_EQ(a.samples.size(), b.samples.size());
@@ -200,10 +200,17 @@ TEST(PixelTrace, Version1DocumentsStillRead) {
   EXPECT_EQ(t.rays[0].sample, -1);
   EXPECT_EQ(t.rays[0].pixel[0], 12);
   EXPECT_EQ(t.rays[0].events.size(), 9u);
-  // Written back it is a version 2 document that differs in the version only.
+  // Written back it is a version 3 document that differs in the version and the box_tests counter only.
+  std::string v3 = kVersion1;
+  v3.replace(v3.find("\"version\": 1"), 12, "\"version\": 3");
+  v3.replace(v3.find("\"pops\":0}"), 9, "\"pops\":0,\"box_tests\":0}");
+  EXPECT_EQ(trace_to_json(t), v3);
+  // The same document as version 2 reads the same.
   std::string v2 = kVersion1;
   v2.replace(v2.find("\"version\": 1"), 12, "\"version\": 2");
-  EXPECT_EQ(trace_to_json(t), v2);
+  const Trace t2 = parse_trace_json(v2, "v2.json");
+  EXPECT_EQ(t2.version, 2);
+  EXPECT_EQ(trace_to_json(t2), v3);
   // Version 1 knew no "pixel" nor "sample": a reader ignores keys it does not know, whatever they hold.
   std::string extra = kVersion1;
   extra.replace(extra.find(" \"rays\""), 0, " \"pixel\": {\"x\": \"nonsense\"},\n");
@@ -348,15 +355,17 @@ TEST(PixelTrace, CsvAppendsTheSampleColumn) {
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
-  // The version 1 columns first, unchanged; the sample last.
+  // The version 1 columns first, unchanged; the sample after them; version 3's parent (box_test) last.
   EXPECT_EQ(
       line,
       "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
-      "node,depth,t_min,t_max,prim,hit,t,reason,sample");
+      "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent");
   size_t rows = 0;
   while (std::getline(in, line)) {
     const size_t ray = size_t(std::stoi(line.substr(0, line.find(','))));
-    EXPECT_EQ(line.substr(line.rfind(',') + 1), std::to_string(t.rays[ray].sample)) << line;
+    const std::string head = line.substr(0, line.rfind(','));  // a grid trace's parent column is empty
+    EXPECT_EQ(line.substr(head.size()), ",") << line;
+    EXPECT_EQ(head.substr(head.rfind(',') + 1), std::to_string(t.rays[ray].sample)) << line;
     ++rows;
   }
   size_t events = 0;

@@ -186,8 +186,8 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   TrapScene s;
   std::string text = trace_to_json(s.trace());
   expect_rejected(text, "\"raystep-trace\"", "\"other-trace\"", "not a raystep trace");
-  expect_rejected(text, "\"version\": 2", "\"version\": 7", "unsupported trace version 7");
-  expect_rejected(text, "\"version\": 2", "\"version\": 0", "unsupported trace version 0");
+  expect_rejected(text, "\"version\": 3", "\"version\": 7", "unsupported trace version 7");
+  expect_rejected(text, "\"version\": 3", "\"version\": 0", "unsupported trace version 0");
   expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"", "unknown event type \"teleport\"",
                   line_of(text, "\"type\":\"mailbox_hit\""));
   expect_rejected(text, "\"prim\":1", "\"prim\":99", "rays[0].events[6].prim: value 99 out of range 0..2");
@@ -209,6 +209,228 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
     }
   }
   EXPECT_THROW(read_trace_json(::testing::TempDir() + "/no_such_trace.json"), InputError);
+}
+
+// ---- version 3: a bounding volume hierarchy's trace ----
+
+// A two-leaf BVH's trace made by hand (bvh_trace_test.cpp records real ones): the root's children are two
+// leaves with a triangle each, at x = 2 and x = 3. The first ray tests both boxes, enters the nearer leaf,
+// hits triangle 0, pops the other leaf and skips it; the second misses leaf 1's box and ends in a miss.
+Trace bvh_trace_by_hand() {
+  Trace t;
+  t.scene_path = "two.obj";
+  t.scene_hash = "fnv1a64:0000000000000002";
+  t.scene_primitives = 2;
+  t.structure.kind = "bvh";
+  t.structure.bounds = Bounds3{glm::vec3(2.f, 0.f, 0.f), glm::vec3(3.f, 1.f, 1.f)};
+  t.structure.params = {
+      {"builder", true, 0.0, "binned"}, {"leaves", false, 2.0, ""}, {"nodes", false, 3.0, ""}};
+  auto event = [](EventType type, int32_t node, int32_t depth, float t_min, float t_max) {
+    Event e;
+    e.type = type;
+    e.node = node;
+    e.depth = depth;
+    e.t_min_node = t_min;
+    e.t_max_node = t_max;
+    return e;
+  };
+  auto box = [](int32_t parent, int32_t child, bool hit, float t_near, float t_far) {
+    Event e;
+    e.type = EventType::box_test;
+    e.parent = parent;
+    e.node = child;
+    e.depth = 1;
+    e.hit = hit;
+    e.t_min_node = hit ? t_near : 0.f;
+    e.t_max_node = hit ? t_far : 0.f;
+    return e;
+  };
+  auto prim = [](EventType type, int32_t id, bool hit, float at) {
+    Event e;
+    e.type = type;
+    e.prim = id;
+    e.hit = hit;
+    e.t = at;
+    if (type == EventType::hit_accepted) e.reason = AcceptReason::structure_done;
+    return e;
+  };
+  using E = EventType;
+  TracedRay a;
+  a.ray.origin = glm::vec3(0.f, 0.5f, 0.25f);
+  a.ray.direction = glm::vec3(1.f, 0.f, 0.f);
+  a.events = {event(E::ray_begin, -1, 0, 0.f, 0.f),
+              event(E::node, 0, 0, 2.f, 3.f),
+              box(0, 1, true, 2.f, 2.f),
+              box(0, 2, true, 3.f, 3.f),
+              event(E::push, 2, 1, 3.f, 3.f),
+              event(E::node, 1, 1, 2.f, 2.f),
+              event(E::leaf, 1, 1, 2.f, 2.f),
+              prim(E::prim_test, 0, true, 2.f),
+              event(E::pop, 2, 1, 3.f, 3.f),
+              event(E::skip, 2, 1, 3.f, 3.f),
+              prim(E::hit_accepted, 0, true, 2.f),
+              prim(E::ray_end, 0, true, 2.f)};
+  TracedRay b;
+  b.kind = RayKind::shadow;
+  b.depth = 1;
+  b.ray.origin = glm::vec3(3.f, 0.9f, -1.f);
+  b.ray.direction = glm::vec3(0.f, 0.f, 1.f);
+  b.ray.tmax = 5.f;
+  b.events = {event(E::ray_begin, -1, 0, 0.f, 0.f), event(E::node, 0, 0, 1.f, 2.f),
+              box(0, 1, false, 0.f, 0.f),           box(0, 2, true, 1.f, 2.f),
+              event(E::node, 2, 1, 1.f, 2.f),       event(E::leaf, 2, 1, 1.f, 2.f),
+              prim(E::prim_test, 1, false, 0.f),    prim(E::ray_end, -1, false, kInfinity)};
+  for (TracedRay* r : {&a, &b})
+    for (size_t i = 0; i < r->events.size(); ++i) r->events[i].seq = uint32_t(i);
+  t.rays = {a, b};
+  TraceNode root;
+  root.box = t.structure.bounds;
+  root.axis = 0;
+  root.children = {1, 2};
+  TraceNode left;
+  left.id = 1;
+  left.parent = 0;
+  left.depth = 1;
+  left.box = Bounds3{glm::vec3(2.f, 0.f, 0.f), glm::vec3(2.f, 1.f, 1.f)};
+  left.leaf = true;
+  left.prims = {0};
+  TraceNode right = left;
+  right.id = 2;
+  right.box = Bounds3{glm::vec3(3.f, 0.f, 0.f), glm::vec3(3.f, 1.f, 1.f)};
+  right.prims = {1};
+  t.nodes = {root, left, right};
+  for (int32_t id : {0, 1}) {
+    TracePrimitive p;
+    p.id = id;
+    const float x = 2.f + float(id);
+    p.v[0] = glm::vec3(x, 0.f, 0.f);
+    p.v[1] = glm::vec3(x, 1.f, 0.f);
+    p.v[2] = glm::vec3(x, 0.f, 1.f);
+    t.primitives.push_back(p);
+  }
+  return t;
+}
+
+TEST(TraceFile, Version3BvhTraceRoundTripsWithBoxTestsSkipsAndChildren) {
+  const Trace t = bvh_trace_by_hand();
+  const std::string once = trace_to_json(t);
+  const Trace back = parse_trace_json(once, "bvh.json");
+  EXPECT_EQ(trace_to_json(back), once);
+  EXPECT_EQ(back.version, 3);
+  EXPECT_NE(once.find("{\"seq\":2,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,"
+                      "\"t_near\":2.0,\"t_far\":2.0}"),
+            std::string::npos)
+      << once;
+  // A missed box has no interval.
+  EXPECT_NE(once.find("{\"seq\":2,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":false}"),
+            std::string::npos);
+  EXPECT_NE(once.find("{\"seq\":9,\"type\":\"skip\",\"node\":2,\"depth\":1,\"t_min\":3.0,\"t_max\":3.0}"),
+            std::string::npos);
+  EXPECT_NE(once.find("\"leaf\":false,\"axis\":\"x\",\"children\":[1,2]}"), std::string::npos) << once;
+  EXPECT_NE(once.find("\"pops\":1,\"box_tests\":2}"), std::string::npos);
+  ASSERT_EQ(back.rays.size(), 2u);
+  const Event& box = back.rays[0].events[3];
+  EXPECT_EQ(box.type, EventType::box_test);
+  EXPECT_EQ(box.parent, 0);
+  EXPECT_EQ(box.node, 2);
+  EXPECT_TRUE(box.hit);
+  EXPECT_EQ(box.t_min_node, 3.f);
+  EXPECT_EQ(back.rays[0].events[9].type, EventType::skip);
+  EXPECT_FALSE(back.rays[1].events[2].hit);
+  ASSERT_EQ(back.nodes.size(), 3u);
+  EXPECT_EQ(back.nodes[0].children, (std::vector<int32_t>{1, 2}));
+  EXPECT_TRUE(back.nodes[1].children.empty());
+  // A wide node has no split axis: null, read back as -1.
+  Trace wide = t;
+  wide.structure.kind = "bvh8";
+  wide.nodes[0].axis = -1;
+  const std::string wide_text = trace_to_json(wide);
+  EXPECT_NE(wide_text.find("\"axis\":null,\"children\":[1,2]"), std::string::npos);
+  EXPECT_EQ(parse_trace_json(wide_text, "wide.json").nodes[0].axis, -1);
+  // The summary counts box tests and skips.
+  const std::string summary = trace_summary(back);
+  EXPECT_NE(summary.find("2 box tests, 1 skips"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("box_test=4"), std::string::npos) << summary;
+}
+
+TEST(TraceFile, Version3CsvAppendsTheParentColumn) {
+  const Trace t = bvh_trace_by_hand();
+  const std::string path = ::testing::TempDir() + "/bvh_trace.csv";
+  write_trace_csv(path, t);
+  std::ifstream csv(path);
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(
+      header,
+      "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
+      "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent");
+  std::vector<std::string> rows;
+  while (std::getline(csv, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), t.rays[0].events.size() + t.rays[1].events.size());
+  EXPECT_EQ(rows[2], "0,2,box_test,,,,,,,,,,,,,1,1,2,2,,1,,,,0");
+  EXPECT_EQ(rows[9], "0,9,skip,,,,,,,,,,,,,2,1,3,3,,,,,,");
+  EXPECT_EQ(rows[12 + 2], "1,2,box_test,,,,,,,,,,,,,1,1,,,,0,,,,0");
+}
+
+TEST(TraceFile, DamagedVersion3TracesAreRefusedWithLineAndPath) {
+  const std::string text = trace_to_json(bvh_trace_by_hand());
+  const std::string hit_box = "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0";
+  const int box_line = line_of(text, hit_box);
+  expect_rejected(text, hit_box,
+                  "\"parent\":7,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
+                  "rays[0].events[2].parent: value 7 out of range 0..2", box_line);
+  expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_far\":2.0",
+                  "rays[0].events[2]: missing \"t_near\"", box_line);
+  expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0",
+                  "rays[0].events[2]: missing \"t_far\"", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":null,\"t_far\":2.0",
+                  "t_near: expected a number, found null", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":\"-inf\",\"t_far\":2.0",
+                  "rays[0].events[2].t_near: expected a finite number", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":1.0",
+                  "rays[0].events[2].t_far: below t_near", box_line);
+  expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":1,\"t_near\":2.0,\"t_far\":2.0",
+                  "rays[0].events[2].hit: expected true or false", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":0,\"node\":1,\"depth\":0,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
+                  "rays[0].events[2].depth: value 0 out of range 1..", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":1,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
+                  "rays[0].events[2].node: a node is not its own child", box_line);
+  expect_rejected(text, hit_box,
+                  "\"parent\":1,\"node\":2,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
+                  "rays[0].events[2].node: node 2 is not a child of node 1", box_line);
+  expect_rejected(text, "\"type\":\"skip\",\"node\":2", "\"type\":\"skip\",\"node\":3",
+                  "rays[0].events[9].node: value 3 out of range 0..2");
+  expect_rejected(text, "\"type\":\"skip\",\"node\":2,\"depth\":1,\"t_min\":3.0",
+                  "\"type\":\"skip\",\"node\":2,\"depth\":1", "rays[0].events[9]: missing \"t_min\"");
+  // The nodes: children in range, distinct, present on every inner node; the parent chain consistent.
+  const int root_line = line_of(text, "\"children\":[1,2]");
+  expect_rejected(text, "\"children\":[1,2]", "\"children\":[1,9]",
+                  "geometry.nodes[0].children[1]: value 9 out of range 0..2", root_line);
+  expect_rejected(text, "\"children\":[1,2]", "\"children\":[1,1]",
+                  "geometry.nodes[0].children[1]: child 1 is listed twice", root_line);
+  expect_rejected(text, "\"children\":[1,2]", "\"children\":[]",
+                  "geometry.nodes[0].children: expected 1 to 8", root_line);
+  expect_rejected(text, "\"children\":[1,2]", "\"children\":[0,2]",
+                  "geometry.nodes[0].children[0]: a node is not its own child", root_line);
+  expect_rejected(text, ",\"children\":[1,2]", "",
+                  "geometry.nodes[0]: missing \"children\" (an inner BVH node lists its children)",
+                  root_line);
+  expect_rejected(text, "\"children\":[1,2]", "\"children\":[1]",
+                  "geometry.nodes[2].parent: node 0 does not list it as a child");
+  expect_rejected(text, "{\"id\":2,\"parent\":0,\"depth\":1", "{\"id\":2,\"parent\":0,\"depth\":2",
+                  "geometry.nodes[2].depth: expected 1, one below its parent");
+  expect_rejected(text, "{\"id\":2,\"parent\":0,\"depth\":1", "{\"id\":2,\"parent\":1,\"depth\":1",
+                  "geometry.nodes[2].parent: node 1 does not list it as a child");
+  expect_rejected(text, "\"prims\":[1]}", "\"prims\":[1],\"children\":[0]}",
+                  "geometry.nodes[2].children: a leaf has no children");
+  // Box tests and skips are version 3's: a version 2 document with one is refused.
+  expect_rejected(text, "\"version\": 3", "\"version\": 2",
+                  "rays[0].events[2].type: event type \"box_test\" needs version 3", box_line);
 }
 
 // ---- the reader on damaged traces ----
@@ -267,13 +489,58 @@ void expect_reader_survives_damage(const std::string& text, int trials, uint32_t
     tokens.emplace_back(i, j);
     i = j;
   }
-  const char* values[] = {"0", "1", "2", "-1", "3", "99", "4096", "4097", "1e400", "-0", "0.5", "4294967296",
-                          "18446744073709551615", "9223372036854775808", "-9223372036854775809", "1e39", "3.5e38",
-                          "1e-50", "null", "true", "false", "\"inf\"", "\"-inf\"", "\"x\"", "\"w\"", "\"cell\"",
-                          "\"node\"", "\"split\"", "\"leaf_made\"", "\"prim_test\"", "\"ray_begin\"", "\"ray_end\"",
-                          "\"grid\"", "\"kd\"", "\"sphere\"", "\"triangle\"", "\"below\"", "\"budget\"",
-                          "\"any_hit\"", "\"shadow\"", "[]", "{}", "[0,0,0]", "[1,2]", "[1,2,3,4]", "\"caf\\u00e9\"",
-                          "\"\\\"\"", "\"trace\"", "\"\""};
+  const char* values[] = {"0",
+                          "1",
+                          "2",
+                          "-1",
+                          "3",
+                          "99",
+                          "4096",
+                          "4097",
+                          "1e400",
+                          "-0",
+                          "0.5",
+                          "4294967296",
+                          "18446744073709551615",
+                          "9223372036854775808",
+                          "-9223372036854775809",
+                          "1e39",
+                          "3.5e38",
+                          "1e-50",
+                          "null",
+                          "true",
+                          "false",
+                          "\"inf\"",
+                          "\"-inf\"",
+                          "\"x\"",
+                          "\"w\"",
+                          "\"cell\"",
+                          "\"node\"",
+                          "\"split\"",
+                          "\"leaf_made\"",
+                          "\"prim_test\"",
+                          "\"ray_begin\"",
+                          "\"ray_end\"",
+                          "\"grid\"",
+                          "\"kd\"",
+                          "\"sphere\"",
+                          "\"triangle\"",
+                          "\"below\"",
+                          "\"budget\"",
+                          "\"any_hit\"",
+                          "\"shadow\"",
+                          "\"box_test\"",
+                          "\"skip\"",
+                          "\"bvh\"",
+                          "[]",
+                          "{}",
+                          "[0,0,0]",
+                          "[1,2]",
+                          "[1,2,3,4]",
+                          "\"caf\\u00e9\"",
+                          "\"\\\"\"",
+                          "\"trace\"",
+                          "\"\""};
   const std::string bytes = "{}[],:\"\\ 0123456789.-+eE\ntrufalsnx";
   std::mt19937 rng(seed);
   int accepted = 0;
@@ -330,8 +597,11 @@ TEST(TraceFile, DamagedTracesAreReadOrRefusedWithTheFileNamed) {
     EXPECT_NE(grid.find(part), std::string::npos) << part;
   EXPECT_EQ(new_reader(grid), "trace " + grid);
   EXPECT_EQ(new_reader(kd), "trace " + kd);
+  const std::string bvh = trace_to_json(bvh_trace_by_hand());
+  EXPECT_EQ(new_reader(bvh), "trace " + bvh);
   expect_reader_survives_damage(grid, 3000, 1);
   expect_reader_survives_damage(kd, 1500, 2);
+  expect_reader_survives_damage(bvh, 1500, 3);
 }
 
 }  // namespace

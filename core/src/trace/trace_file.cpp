@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <nlohmann/json.hpp>
@@ -33,7 +34,8 @@ using ordered = nlohmann::ordered_json;
 namespace {
 const char* const kEventNames[kEventTypeCount] = {
     "ray_begin", "cell",         "node",     "push",          "pop",   "leaf",     "prim_test",
-    "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate", "split", "leaf_made"};
+    "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate", "split", "leaf_made",
+    "box_test", "skip"};
 const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", "structure_done",
                                                      "next_node_beyond"};
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
@@ -120,10 +122,21 @@ ordered event_to_json(const Event& e) {
     case EventType::push:
     case EventType::pop:
     case EventType::leaf:
+    case EventType::skip:
       j["node"] = e.node;
       j["depth"] = e.depth;
       j["t_min"] = number(e.t_min_node);
       j["t_max"] = number(e.t_max_node);
+      break;
+    case EventType::box_test:
+      j["parent"] = e.parent;
+      j["node"] = e.node;
+      j["depth"] = e.depth;
+      j["hit"] = e.hit;
+      if (e.hit) {
+        j["t_near"] = number(e.t_min_node);
+        j["t_far"] = number(e.t_max_node);
+      }
       break;
     case EventType::prim_test:
       j["prim"] = e.prim;
@@ -166,6 +179,7 @@ RayCounters count_events(const std::vector<Event>& events) {
         c.prim_hits += e.hit;
         break;
       case EventType::mailbox_hit: ++c.mailbox_hits; break;
+      case EventType::box_test: ++c.box_tests; break;
       default: break;
     }
   }
@@ -305,7 +319,8 @@ std::string trace_json_rest(const Trace& t) {
     RayCounters c = count_events(tr.events);
     head["counters"] = {{"cells", c.cells},         {"nodes", c.nodes},   {"prim_tests", c.prim_tests},
                         {"prim_hits", c.prim_hits}, {"mailbox_hits", c.mailbox_hits},
-                        {"pushes", c.pushes},       {"pops", c.pops}};
+                        {"pushes", c.pushes},       {"pops", c.pops},
+                        {"box_tests", c.box_tests}};
     std::string h = head.dump();
     h.pop_back();  // reopen the object to append the events, one per line
     out << (r ? ",\n  " : "\n  ") << h << ",\n   \"events\": [";
@@ -336,6 +351,9 @@ std::string trace_json_rest(const Trace& t) {
       jn["leaf"] = n.leaf;
       if (n.leaf) {
         jn["prims"] = n.prims;
+      } else if (!n.children.empty()) {  // a BVH node: its children; its axis, if the builder split on one
+        jn["axis"] = n.axis >= 0 && n.axis < 3 ? ordered(kAxes[n.axis]) : ordered(nullptr);
+        jn["children"] = n.children;
       } else {
         jn["axis"] = kAxes[n.axis];
         jn["split"] = number(n.split);
@@ -371,10 +389,12 @@ void write_trace_json(const std::string& path, const Trace& trace) {
 
 void write_trace_csv(const std::string& path, const Trace& t) {
   enum Col { ray, seq, type, i, j, k, t_enter, t_exit, t_max_x, t_max_y, t_max_z, t_delta_x, t_delta_y, t_delta_z,
-             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, sample, kColumns };
+             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, sample, parent, kColumns };
+  // Columns are only ever appended, so that scripts reading by position still work: sample in version 2,
+  // parent (box_test's) in version 3.
   static const char* const kHeader =
       "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
-      "node,depth,t_min,t_max,prim,hit,t,reason,sample\n";  // sample: appended in version 2
+      "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent\n";
   auto num = [](float v) {
     if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
     char buf[32];
@@ -405,10 +425,21 @@ void write_trace_csv(const std::string& path, const Trace& t) {
           case EventType::push:
           case EventType::pop:
           case EventType::leaf:
+          case EventType::skip:
             row[node] = std::to_string(e.node);
             row[depth] = std::to_string(e.depth);
             row[t_min] = num(e.t_min_node);
             row[t_max] = num(e.t_max_node);
+            break;
+          case EventType::box_test:  // the child's box: [t_near, t_far] in t_min, t_max on a hit
+            row[parent] = std::to_string(e.parent);
+            row[node] = std::to_string(e.node);
+            row[depth] = std::to_string(e.depth);
+            row[hit] = e.hit ? "1" : "0";
+            if (e.hit) {
+              row[t_min] = num(e.t_min_node);
+              row[t_max] = num(e.t_max_node);
+            }
             break;
           case EventType::prim_test:
             row[prim] = std::to_string(e.prim);
@@ -759,6 +790,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     t.structure.params.push_back(p);
   }
 
+  // Version 3's bounding volume hierarchies: "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8".
+  const bool bvh = version >= 3 && t.structure.kind.rfind("bvh", 0) == 0;
   const int64_t max_prim = int64_t(t.scene_primitives) - 1;
   int64_t max_node = INT32_MAX;  // trees: ids below the structure's node count, when it gives one
   for (const TraceParam& p : t.structure.params)
@@ -815,6 +848,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       int type_index = name_index(type, kEventNames);
       if (type_index < 0) rd.fail(ep.key("type"), "unknown event type \"" + std::string(type) + "\"");
       e.type = EventType(type_index);
+      if (version < 3 && (e.type == EventType::box_test || e.type == EventType::skip))
+        rd.fail(ep.key("type"), "event type \"" + std::string(type) + "\" needs version 3");
       switch (e.type) {
         case EventType::cell: {
           const Value c = rd.array_at(je, ep, "cell");
@@ -833,11 +868,30 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         case EventType::push:
         case EventType::pop:
         case EventType::leaf:
+        case EventType::skip:
           e.node = int32_t(rd.integer_at(je, ep, "node", 0, max_node));
           e.depth = int32_t(rd.integer_at(je, ep, "depth", 0, 1 << 16));
           e.t_min_node = rd.real_at(je, ep, "t_min");
           e.t_max_node = rd.real_at(je, ep, "t_max");
           break;
+        case EventType::box_test: {
+          // A child's box tested from its parent: [t_near, t_far] on a hit, finite (boxes are) and in order.
+          e.parent = int32_t(rd.integer_at(je, ep, "parent", 0, max_node));
+          e.node = int32_t(rd.integer_at(je, ep, "node", 0, max_node));
+          if (e.node == e.parent) rd.fail(ep.key("node"), "a node is not its own child");
+          e.depth = int32_t(rd.integer_at(je, ep, "depth", 1, 1 << 16));
+          const Value h = rd.member(je, ep, "hit");
+          if (!h.is_boolean()) rd.fail(ep.key("hit"), "expected true or false");
+          e.hit = h.get_bool();
+          if (e.hit) {
+            e.t_min_node = rd.real_at(je, ep, "t_near");
+            if (!std::isfinite(e.t_min_node)) rd.fail(ep.key("t_near"), "expected a finite number");
+            e.t_max_node = rd.real_at(je, ep, "t_far");
+            if (!std::isfinite(e.t_max_node)) rd.fail(ep.key("t_far"), "expected a finite number");
+            if (e.t_max_node < e.t_min_node) rd.fail(ep.key("t_far"), "below t_near");
+          }
+          break;
+        }
         case EventType::prim_test: {
           e.prim = int32_t(rd.integer_at(je, ep, "prim", 0, max_prim));
           const Value h = rd.member(je, ep, "hit");
@@ -916,12 +970,29 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       const Value leaf = rd.member(jn, np, "leaf");
       if (!leaf.is_boolean()) rd.fail(np.key("leaf"), "expected true or false");
       n.leaf = leaf.get_bool();
+      // Version 3: a BVH's inner node lists its children (1 to 8 distinct ids, not its own), and its axis may
+      // be null (the wide BVH); a kd node has a split plane instead. Older versions had no children: ignored
+      const bool has_children = version >= 3 && jn.contains("children");
       if (n.leaf) {
         const Value ids = rd.array_at(jn, np, "prims");
         const Path pp = np.key("prims");
         n.prims.reserve(capped(ids.size()));
         for (size_t k = 0; k < ids.size(); ++k) n.prims.push_back(int32_t(rd.integer(ids[k], pp.at(k), 0, max_prim)));
+        if (has_children) rd.fail(np.key("children"), "a leaf has no children");
+      } else if (has_children) {
+        const Value ids = rd.array_at(jn, np, "children");
+        const Path cp = np.key("children");
+        if (ids.size() < 1 || ids.size() > 8) rd.fail(cp, "expected 1 to 8 child ids");
+        for (size_t k = 0; k < ids.size(); ++k) {
+          const int32_t c = int32_t(rd.integer(ids[k], cp.at(k), 0, max_node));
+          if (c == n.id) rd.fail(cp.at(k), "a node is not its own child");
+          if (std::find(n.children.begin(), n.children.end(), c) != n.children.end())
+            rd.fail(cp.at(k), "child " + std::to_string(c) + " is listed twice");
+          n.children.push_back(c);
+        }
+        n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
       } else {
+        if (bvh) rd.fail(np, "missing \"children\" (an inner BVH node lists its children)");
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
         if (n.axis < 0) rd.fail(np.key("axis"), "an inner node has a split axis");
         n.split = rd.real_at(jn, np, "split");
@@ -929,15 +1000,50 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
       t.nodes.push_back(std::move(n));
     }
   }
+  // A BVH's nodes (version 3) hang together: each listed node's parent is listed (the chain up to the root),
+  // names it among its children, and lies one level above it.
+  std::unordered_map<int32_t, size_t> node_at;
+  for (size_t i = 0; i < t.nodes.size(); ++i) node_at.emplace(t.nodes[i].id, i);
+  if (bvh) {
+    const Path nodes_path = gp.key("nodes");
+    for (size_t i = 0; i < t.nodes.size(); ++i) {
+      const TraceNode& n = t.nodes[i];
+      const Path np = nodes_path.at(i);
+      if (n.parent < 0) {
+        if (n.depth != 0) rd.fail(np.key("depth"), "the root (parent -1) has depth 0");
+        continue;
+      }
+      auto p = node_at.find(n.parent);
+      if (p == node_at.end())
+        rd.fail(np.key("parent"), "node " + std::to_string(n.parent) + " is not in geometry.nodes");
+      const TraceNode& parent = t.nodes[p->second];
+      if (std::find(parent.children.begin(), parent.children.end(), n.id) == parent.children.end())
+        rd.fail(np.key("parent"), "node " + std::to_string(n.parent) + " does not list it as a child");
+      if (n.depth != parent.depth + 1)
+        rd.fail(np.key("depth"), "expected " + std::to_string(parent.depth + 1) + ", one below its parent");
+    }
+  }
   if (t.structure.kind != "grid") {
     for (size_t r = 0; r < t.rays.size(); ++r)
       for (size_t i = 0; i < t.rays[r].events.size(); ++i) {
         const Event& e = t.rays[r].events[i];
-        bool tree_event = e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop ||
-                          e.type == EventType::leaf;
+        bool tree_event = e.type == EventType::node || e.type == EventType::push ||
+                          e.type == EventType::pop || e.type == EventType::leaf ||
+                          e.type == EventType::skip || e.type == EventType::box_test;
+        const Path rp = rays_path.at(r);
+        const Path esp = rp.key("events");
+        const Path ep = esp.at(i);
         if (tree_event && !listed.count(e.node))
-          rd.fail(rays_path.at(r).key("events").at(i).key("node"),
-                  "node " + std::to_string(e.node) + " is not in geometry.nodes");
+          rd.fail(ep.key("node"), "node " + std::to_string(e.node) + " is not in geometry.nodes");
+        if (e.type == EventType::box_test) {
+          auto p = node_at.find(e.parent);
+          if (p == node_at.end())
+            rd.fail(ep.key("parent"), "node " + std::to_string(e.parent) + " is not in geometry.nodes");
+          const std::vector<int32_t>& children = t.nodes[p->second].children;
+          if (std::find(children.begin(), children.end(), e.node) == children.end())
+            rd.fail(ep.key("node"), "node " + std::to_string(e.node) + " is not a child of node " +
+                                        std::to_string(e.parent));
+        }
       }
   }
 
@@ -1108,6 +1214,11 @@ std::string trace_summary(const Trace& t) {
     out << ", " << tr.events.size() << " events, ";
     if (t.structure.kind == "grid") out << c.cells << " cells, ";
     else out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";
+    if (t.structure.kind.rfind("bvh", 0) == 0) {  // version 3: the boxes tested and the entries skipped
+      size_t skips = 0;
+      for (const Event& e : tr.events) skips += e.type == EventType::skip;
+      out << c.box_tests << " box tests, " << skips << " skips, ";
+    }
     out << c.prim_tests << " tests (" << c.prim_hits << " hits), " << c.mailbox_hits << " mailbox hits; ";
     if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
     else out << "miss\n";

@@ -47,6 +47,18 @@ class EventRecorder {
     ++counters_.pops;
   }
   void leaf(const TreeStep& s) { tree_event(EventType::leaf, s); }
+  void box_test(const BoxTest& b) {
+    Event& e = add(EventType::box_test);
+    e.parent = b.parent;
+    e.node = b.child;
+    e.depth = b.depth;
+    e.hit = b.hit;
+    // A miss carries no interval: zeros, as the reader reads a box_test without t_near and t_far.
+    e.t_min_node = b.hit ? b.t_near : 0.f;
+    e.t_max_node = b.hit ? b.t_far : 0.f;
+    ++counters_.box_tests;
+  }
+  void skip(const TreeStep& s) { tree_event(EventType::skip, s); }
   void prim_test(uint32_t prim, bool hit, float t) {
     Event& e = add(EventType::prim_test);
     e.prim = int32_t(prim);

@@ -1,7 +1,8 @@
 // Trace files: the recorded traversal of one or more rays, the contract between core and the debugger and
-// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 2, which adds an
-// anti-aliased pixel's samples; docs/trace-format.md lists every field) read back by a validating reader that
-// also reads version 1, and CSV with one event per row.
+// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 3: version 2 added an
+// anti-aliased pixel's samples, version 3 the bounding volume hierarchies' box tests, skips and node
+// children; docs/trace-format.md lists every field) read back by a validating reader that also reads versions
+// 1 and 2, and CSV with one event per row.
 #pragma once
 
 #include <array>
@@ -18,7 +19,7 @@
 namespace raystep {
 
 constexpr const char* kTraceFormat = "raystep-trace";
-constexpr int kTraceVersion = 2;        // what the writer writes
+constexpr int kTraceVersion = 3;        // what the writer writes
 constexpr int kTraceOldestVersion = 1;  // the oldest version the reader reads
 
 // A build parameter of the structure: a number or a text.
@@ -30,7 +31,9 @@ struct TraceParam {
 };
 
 struct TraceStructure {
-  std::string kind;                     // "grid", "kd", "kd-median"
+  // "grid", "kd", "kd-median", and since version 3 "bvh", "bvh-sweep", "bvh-median" (binary) and "bvh4",
+  // "bvh8"
+  std::string kind;
   Bounds3 bounds;
   std::array<int, 3> resolution{1, 1, 1};  // grid only
   std::vector<TraceParam> params;          // every build parameter, sorted by key
@@ -51,7 +54,10 @@ struct TraceCell {
   int cell[3];
   Bounds3 box;
 };
-// A tree node that an event names (visited, pushed or popped): its cell, and its split plane or its primitives.
+// A tree node that an event names (visited, pushed, popped or, in a BVH, its box tested), for a BVH also the
+// chain of its parents up to the root: its cell, and its split plane or its primitives. kd-tree: the box is
+// the cell, axis and split the plane. BVH (version 3): the box is the node's tight bounding box, axis the
+// builder's split axis (-1: none, the wide BVH), split unused, and an inner node lists its children.
 struct TraceNode {
   int32_t id = 0;
   int32_t parent = -1;  // -1: the root
@@ -60,7 +66,8 @@ struct TraceNode {
   bool leaf = false;
   int axis = 0;        // inner: the split plane's axis (0, 1, 2) and position
   float split = 0.f;
-  std::vector<int32_t> prims;  // leaf: its primitive ids
+  std::vector<int32_t> prims;     // leaf: its primitive ids
+  std::vector<int32_t> children;  // BVH inner node: its children's ids (2 binary, up to 8 wide); else empty
 };
 struct TracePrimitive {
   int32_t id = 0;
