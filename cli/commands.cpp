@@ -50,6 +50,8 @@ std::string extension(const std::string& path) {
   return ext;
 }
 
+}  // namespace
+
 // Refuse an output whose folder does not exist before spending time on the work.
 void check_output_folder(const std::string& path) {
   std::filesystem::path parent = std::filesystem::path(path).parent_path();
@@ -83,6 +85,25 @@ KdOptions kd_options(const StructureArgs& s) {
   return kd;
 }
 
+BvhOptions bvh_options(const StructureArgs& s) {
+  BvhOptions bvh;
+  bvh.t_i = s.kd_ti;
+  bvh.t_t = s.kd_tt;
+  if (s.kd_max_depth < 0 || s.kd_max_depth > kBvhMaxDepth)
+    throw InputError("", 0, "--max-depth must be 0.." + std::to_string(kBvhMaxDepth) + " (0: automatic)");
+  bvh.max_depth = s.kd_max_depth == 0 ? kBvhMaxDepth : s.kd_max_depth;
+  if (s.bvh_bins < 2 || s.bvh_bins > 256) throw InputError("", 0, "--bins must be 2..256");
+  bvh.bins = s.bvh_bins;
+  if (s.bvh_leaf < 1) throw InputError("", 0, "--bvh-leaf must be at least 1");
+  bvh.leaf_size = s.bvh_leaf;
+  if (s.bvh_max_leaf < s.bvh_leaf || s.bvh_max_leaf > int(BvhNode::kMaxCount))
+    throw InputError("", 0, "--bvh-max-leaf must be at least --bvh-leaf (" + std::to_string(s.bvh_leaf) + ")");
+  bvh.max_leaf_size = s.bvh_max_leaf;
+  if (s.bvh_order != "entry" && s.bvh_order != "axis")
+    throw InputError("", 0, "--bvh-order '" + s.bvh_order + "': entry | axis");
+  return bvh;
+}
+
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   StructureOptions options;
   if (!(s.grid_density > 0.f && s.grid_density <= 64.f))
@@ -101,6 +122,8 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   }
   options.kd = kd_options(s);
   options.kd_mailboxes = s.kd_mailbox != "off";
+  options.bvh = bvh_options(s);
+  options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
   try {
     return make_accelerator(s.accel, options);
   } catch (const InputError& e) {
@@ -112,8 +135,6 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
 void check_threads(int threads) {
   if (threads < 0 || threads > 256) throw InputError("", 0, "--threads must be 0..256 (0: all cores)");
 }
-
-}  // namespace
 
 // "WxH" with 1 <= W, H <= 16384.
 void parse_size(const std::string& spec, int* w, int* h) {
@@ -391,6 +412,7 @@ int run_trace(const TraceArgs& a) {
 }
 
 int run_sah(const SahArgs& a) {
+  if (a.structure.accel.rfind("bvh", 0) == 0) return run_bvh_sah(a);
   std::string ext = extension(a.output);
   if (ext != ".csv" && ext != ".json") throw InputError(a.output, 0, "the curve is written as .csv or .json");
   check_output_folder(a.output);

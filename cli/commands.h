@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "raystep/accel/structure_options.h"
 
 namespace raystep::cli {
 
@@ -23,6 +26,12 @@ struct StructureArgs {
   int kd_max_depth = 0;  // 0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N
   int kd_leaf_size = 1;
   std::string kd_mailbox = "on";  // on | off
+  // BVH (bvh, bvh-sweep, bvh-median); t_i, t_t and the depth limit are the kd-tree's options (kd_max_depth 0:
+  // the BVH's limit, kBvhMaxDepth)
+  int bvh_bins = 16;
+  int bvh_leaf = 1;
+  int bvh_max_leaf = 16;
+  std::string bvh_order = "entry";  // entry | axis
 };
 
 struct RenderArgs {
@@ -143,6 +152,12 @@ struct CostArgs {
   std::string output;  // optional report folder
 };
 
+// Shared by the commands (commands.cpp).
+void check_output_folder(const std::string& path);
+KdOptions kd_options(const StructureArgs& s);
+BvhOptions bvh_options(const StructureArgs& s);  // InputError naming the option for a bad value
+std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);
+
 int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
@@ -151,6 +166,9 @@ int run_cast(const CastArgs& args);
 int run_rays(const RaysArgs& args);
 int run_info(const InfoArgs& args);
 int run_sah(const SahArgs& args);
+// bvh_commands.cpp: `raystep bvh-stats` and `raystep sah --accel bvh...`.
+int run_bvh_stats(const KdStatsArgs& args);
+int run_bvh_sah(const SahArgs& args);
 int run_kdtree_stats(const KdStatsArgs& args);
 int run_compare(const CompareArgs& args);
 int run_grid_sweep_command(const GridSweepArgs& args);

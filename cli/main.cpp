@@ -19,6 +19,7 @@ std::string accel_help() {
 }
 
 void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s);
+void add_bvh_options(CLI::App* cmd, raystep::cli::StructureArgs& s);
 
 // --accel and every structure's build options.
 void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const std::string& default_accel) {
@@ -31,22 +32,36 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
+  add_bvh_options(cmd, s);
 }
 
 // The kd-tree's build options (also for the sah and kdtree-stats commands).
 void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
-  cmd->add_option("--ti", s.kd_ti, "kd: t_i, the cost of a ray-primitive test")->capture_default_str();
-  cmd->add_option("--tt", s.kd_tt, "kd: t_t, the cost of a traversal step")->capture_default_str();
+  cmd->add_option("--ti", s.kd_ti, "kd, bvh: t_i, the cost of a ray-primitive test")->capture_default_str();
+  cmd->add_option("--tt", s.kd_tt, "kd, bvh: t_t, the cost of a traversal step")->capture_default_str();
   cmd->add_option("--empty-bonus", s.kd_empty_bonus, "kd: bonus in [0,1) for splits that cut off empty space")
       ->capture_default_str();
   cmd->add_option("--max-depth", s.kd_max_depth,
-                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N)")
+                  "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); bvh: 0..64 (0: 64)")
       ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();
   cmd->add_option("--mailbox", s.kd_mailbox, "kd: mailboxes on | off")
       ->capture_default_str()
       ->check(CLI::IsMember({"on", "off"}));
+}
+
+// The BVH's own build and traversal options (t_i, t_t and --max-depth are shared with the kd-tree's).
+void add_bvh_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
+  cmd->add_option("--bins", s.bvh_bins, "bvh: bins per axis of the binned SAH, 2..256")->capture_default_str();
+  cmd->add_option("--bvh-leaf", s.bvh_leaf, "bvh: a node with at most this many primitives is a leaf")
+      ->capture_default_str();
+  cmd->add_option("--bvh-max-leaf", s.bvh_max_leaf,
+                  "bvh: a node with more primitives is split even when a leaf would cost less")
+      ->capture_default_str();
+  cmd->add_option("--bvh-order", s.bvh_order,
+                  "bvh: nearer child first by entry distance (entry) or by the split axis's direction (axis)")
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -119,12 +134,17 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("-o,--output", trace.output, "output trace file")->required();
 
   SahArgs sah;
-  CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree node (x, y and z)");
+  CLI::App* sah_cmd = app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
+  sah.structure.accel = "kd";
+  sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median"}));
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
   auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
+  add_bvh_options(sah_cmd, sah.structure);
   sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
 
   KdStatsArgs kd_stats;
@@ -140,6 +160,22 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
   kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
+
+  KdStatsArgs bvh_stats;
+  CLI::App* bvh_stats_cmd = app.add_subcommand(
+      "bvh-stats", "BVH statistics (sibling overlap, SAH cost), and each node's predicted entry probability against "
+                   "measurement");
+  bvh_stats_cmd->add_option("scene", bvh_stats.scene, "scene .json or mesh .obj")->required();
+  bvh_stats.structure.accel = "bvh";
+  bvh_stats_cmd->add_option("--accel", bvh_stats.structure.accel, "bvh (binned SAH) | bvh-sweep | bvh-median")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"bvh", "bvh-sweep", "bvh-median"}));
+  add_kd_options(bvh_stats_cmd, bvh_stats.structure);
+  add_bvh_options(bvh_stats_cmd, bvh_stats.structure);
+  bvh_stats_cmd->add_option("--lines", bvh_stats.lines, "random lines through the root for the measurement")
+      ->capture_default_str();
+  bvh_stats_cmd->add_option("--seed", bvh_stats.seed, "random seed")->capture_default_str();
+  bvh_stats_cmd->add_option("--csv", bvh_stats.csv, "also write every node's row (id, depth, predicted, measured)");
 
   CompareArgs compare;
   CLI::App* compare_cmd = app.add_subcommand(
@@ -249,6 +285,7 @@ int main(int argc, char** argv) {
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
+    if (*bvh_stats_cmd) return run_bvh_stats(bvh_stats);
     if (*compare_cmd) return run_compare(compare);
     if (*sweep_cmd) return run_grid_sweep_command(sweep);
     if (*cost_cmd) return run_cost(cost);

@@ -1,0 +1,186 @@
+// `raystep bvh-stats` (the BVH's shape, SAH cost, sibling overlap, and Crofton's entry probability predicted
+// against measured) and `raystep sah --accel bvh|bvh-sweep|bvh-median` (one node's SAH curve).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "commands.h"
+#include "raystep/accel/bvh.h"
+#include "raystep/accel/bvh_entry_probability.h"
+#include "raystep/accel/bvh_sah_curve.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/util/atomic_file.h"
+#include "raystep/util/error.h"
+
+namespace raystep::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+BvhBuilder builder_of(const std::string& accel) {
+  if (accel == "bvh") return BvhBuilder::binned;
+  if (accel == "bvh-sweep") return BvhBuilder::sweep;
+  if (accel == "bvh-median") return BvhBuilder::median;
+  throw InputError("", 0, "--accel '" + accel + "': bvh | bvh-sweep | bvh-median");
+}
+
+std::string extension(const std::string& path) {
+  size_t dot = path.find_last_of('.');
+  size_t slash = path.find_last_of('/');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+int run_bvh_sah(const SahArgs& a) {
+  std::string ext = extension(a.output);
+  if (ext != ".csv" && ext != ".json") throw InputError(a.output, 0, "the curve is written as .csv or .json");
+  BvhOptions options = bvh_options(a.structure);
+  options.builder = builder_of(a.structure.accel);
+  check_output_folder(a.output);
+  Scene scene = load_scene(a.scene);
+  uint32_t node = a.node ? *a.node : 0;
+  if (a.path) node = bvh_node_by_path(build_bvh(scene.geometry, options), *a.path);
+  BvhSahCurve curve = record_bvh_sah_curve(scene.geometry, options, node);
+  if (ext == ".csv")
+    write_bvh_sah_csv(a.output, curve);
+  else
+    write_bvh_sah_json(a.output, curve, options);
+  const Bounds3& box = curve.bvh_node.box;
+  std::printf("node %u: depth %d, %u primitives, box [%g, %g, %g] .. [%g, %g, %g]\n", node, curve.info.depth,
+              curve.info.prims, box.lo.x, box.lo.y, box.lo.z, box.hi.x, box.hi.y, box.hi.z);
+  if (curve.leaf) {
+    std::printf("decision: leaf (%s), leaf cost N*t_i = %g\n", bvh_leaf_reason_name(curve.leaf_reason),
+                curve.leaf_cost);
+    switch (curve.leaf_reason) {
+      case BvhLeafReason::few_primitives:
+        std::printf("  at most --bvh-leaf %d primitives: a leaf without a search, so no rows\n",
+                    options.leaf_size);
+        break;
+      case BvhLeafReason::max_depth:
+        std::printf(
+            "  the depth limit %d: a leaf without a search, so no rows (--max-depth sets the limit)\n",
+            options.max_depth);
+        break;
+      case BvhLeafReason::no_cheaper_split:
+        std::printf("  no candidate costs less than N*t_i (and N <= --bvh-max-leaf %d)\n",
+                    options.max_leaf_size);
+        break;
+      case BvhLeafReason::no_candidate:
+        std::printf("  every centroid is the same point: no plane separates them\n");
+        break;
+    }
+  } else if (curve.chosen >= 0) {
+    const BvhCandidate& c = curve.candidates[size_t(curve.chosen)];
+    std::printf(
+        "decision: split %c after %s %d (plane %.9g): %u left, %u right, cost %g against leaf cost N*t_i = "
+        "%g\n",
+        "xyz"[c.axis], options.builder == BvhBuilder::binned ? "bin" : "position", c.bin, c.position,
+        c.n_left, c.n_right, c.cost, curve.leaf_cost);
+    if (!(c.cost < curve.leaf_cost))
+      std::printf("  (not cheaper than a leaf, but N > --bvh-max-leaf %d forces a split)\n",
+                  options.max_leaf_size);
+  }
+  std::printf("candidates: %zu (%s, t_i %g, t_t %g, %d bins); wrote %s\n", curve.candidates.size(),
+              a.structure.accel.c_str(), options.t_i, options.t_t, options.bins, a.output.c_str());
+  return 0;
+}
+
+int run_bvh_stats(const KdStatsArgs& a) {
+  if (a.lines < 1 || a.lines > (uint64_t(1) << 26)) throw InputError("", 0, "--lines must be 1..67108864");
+  if (!a.csv.empty()) check_output_folder(a.csv);
+  BvhOptions options = bvh_options(a.structure);
+  options.builder = builder_of(a.structure.accel);
+  Scene scene = load_scene(a.scene);
+  Bvh bvh(options);
+  auto t0 = Clock::now();
+  bvh.build(scene.geometry);
+  double build_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  const BvhData& d = bvh.data();
+  BvhStats st = bvh_stats(d, options);
+  size_t rays_cast = 0;
+  std::vector<BvhNodeEntry> entry = measure_bvh_entry_probability(bvh, a.lines, a.seed, &rays_cast);
+
+  size_t prims = scene.geometry.size();
+  double leaf_depth = 0;
+  for (size_t i = 0; i < d.nodes.size(); ++i)
+    if (d.nodes[i].is_leaf()) leaf_depth += d.info[i].depth;
+  std::printf("scene: %s (%zu primitives), %s, built in %.1f ms\n", scene.path.c_str(), prims,
+              bvh.name().c_str(), build_ms);
+  std::printf("nodes: %zu (%zu inner, %zu leaves), %zu bytes\n", st.nodes, st.nodes - st.leaves, st.leaves,
+              bvh.memory_bytes());
+  std::printf("depth: max %d (limit %d), mean leaf depth %.2f\n", st.max_depth, options.max_depth,
+              st.leaves ? leaf_depth / double(st.leaves) : 0.0);
+  std::printf(
+      "primitives per leaf: mean %.2f, max %zu (leaf size %d, max leaf size %d); each primitive in one "
+      "leaf\n",
+      st.mean_leaf_prims, st.max_leaf_prims, options.leaf_size, options.max_leaf_size);
+  std::printf(
+      "SAH cost of the tree: %.3f (t_i %g, t_t %g%s); a single leaf would cost %.1f\n", st.sah_cost,
+      options.t_i, options.t_t,
+      options.builder == BvhBuilder::binned ? (", " + std::to_string(options.bins) + " bins").c_str() : "",
+      double(prims) * options.t_i);
+  std::printf(
+      "sibling overlap: %.4f (sum over inner nodes of S(left box ∩ right box) / S(node), weighted by "
+      "S(node) / S(root))\n",
+      st.overlap);
+
+  std::printf(
+      "\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
+      static_cast<unsigned long long>(a.lines));
+  if (rays_cast < a.lines)
+    std::printf(
+        "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
+        rays_cast, static_cast<unsigned long long>(kMaxEntryRayTests));
+  std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
+  std::vector<std::string> paths(d.nodes.size());
+  for (size_t i = 0; i < d.nodes.size(); ++i) {
+    const BvhNode& n = d.nodes[i];
+    if (!n.is_leaf()) {
+      paths[i + 1] = paths[i] + "L";
+      paths[n.second_child()] = paths[i] + "R";
+    }
+    if (d.info[i].depth <= 3)
+      std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, d.info[i].depth,
+                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines,
+                  entry[i].rays);
+  }
+  double sum_abs = 0, worst = 0, sum_over = 0;
+  size_t compared = 0;
+  for (const BvhNodeEntry& e : entry) {
+    if (std::isnan(e.predicted)) continue;
+    sum_abs += std::fabs(e.predicted - e.lines);
+    worst = std::max(worst, std::fabs(e.predicted - e.lines));
+    sum_over += e.predicted - e.rays;
+    ++compared;
+  }
+  double n = double(std::max<size_t>(compared, 1));
+  std::printf(
+      "all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
+      "(rays stop at their first hit and skip boxes beyond it)\n",
+      compared, sum_abs / n, worst, sum_over / n);
+  if (compared < entry.size())
+    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n",
+                entry.size() - compared);
+  if (!a.csv.empty()) {
+    write_file_atomically(a.csv, [&](std::ostream& out) {
+      out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
+      char buf[160];
+      for (size_t i = 0; i < d.nodes.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, d.info[i].depth,
+                      d.info[i].parent, d.nodes[i].is_leaf() ? 1 : 0, d.info[i].prims, entry[i].predicted,
+                      entry[i].lines, entry[i].rays);
+        out << buf;
+      }
+    });
+    std::printf("wrote %s\n", a.csv.c_str());
+  }
+  return 0;
+}
+
+}  // namespace raystep::cli
