@@ -347,7 +347,9 @@ int run_trace(const TraceArgs& a) {
   const uint64_t seed = a.seed ? *a.seed : scene.render.seed;
   auto accel = build_structure(a.structure);
   if (!records_events(*accel))
-    throw InputError("", 0, "trace: --accel " + a.structure.accel + " records no events (use grid, kd or kd-median)");
+    throw InputError("", 0,
+                     "trace: --accel " + a.structure.accel +
+                         " records no events (use grid, kd, kd-median, bvh, bvh-sweep or bvh-median)");
   auto* kd = dynamic_cast<KdTree*>(accel.get());
   if (a.build_events && !kd) throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");
 

@@ -214,8 +214,9 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
 // ---- version 3: a bounding volume hierarchy's trace ----
 
 // A two-leaf BVH's trace made by hand (bvh_trace_test.cpp records real ones): the root's children are two
-// leaves with a triangle each, at x = 2 and x = 3. The first ray tests both boxes, enters the nearer leaf,
-// hits triangle 0, pops the other leaf and skips it; the second misses leaf 1's box and ends in a miss.
+// leaves with a triangle each, at x = 2 and x = 3. The first ray tests the root's box (parent -1), then both
+// children's, enters the nearer leaf, hits triangle 0, pops the other leaf and skips it; the second misses
+// leaf 1's box and ends in a miss.
 Trace bvh_trace_by_hand() {
   Trace t;
   t.scene_path = "two.obj";
@@ -239,7 +240,7 @@ Trace bvh_trace_by_hand() {
     e.type = EventType::box_test;
     e.parent = parent;
     e.node = child;
-    e.depth = 1;
+    e.depth = parent < 0 ? 0 : 1;  // parent -1: the root's own box, tested first
     e.hit = hit;
     e.t_min_node = hit ? t_near : 0.f;
     e.t_max_node = hit ? t_far : 0.f;
@@ -259,6 +260,7 @@ Trace bvh_trace_by_hand() {
   a.ray.origin = glm::vec3(0.f, 0.5f, 0.25f);
   a.ray.direction = glm::vec3(1.f, 0.f, 0.f);
   a.events = {event(E::ray_begin, -1, 0, 0.f, 0.f),
+              box(-1, 0, true, 2.f, 3.f),
               event(E::node, 0, 0, 2.f, 3.f),
               box(0, 1, true, 2.f, 2.f),
               box(0, 2, true, 3.f, 3.f),
@@ -276,10 +278,15 @@ Trace bvh_trace_by_hand() {
   b.ray.origin = glm::vec3(3.f, 0.9f, -1.f);
   b.ray.direction = glm::vec3(0.f, 0.f, 1.f);
   b.ray.tmax = 5.f;
-  b.events = {event(E::ray_begin, -1, 0, 0.f, 0.f), event(E::node, 0, 0, 1.f, 2.f),
-              box(0, 1, false, 0.f, 0.f),           box(0, 2, true, 1.f, 2.f),
-              event(E::node, 2, 1, 1.f, 2.f),       event(E::leaf, 2, 1, 1.f, 2.f),
-              prim(E::prim_test, 1, false, 0.f),    prim(E::ray_end, -1, false, kInfinity)};
+  b.events = {event(E::ray_begin, -1, 0, 0.f, 0.f),
+              box(-1, 0, true, 1.f, 2.f),
+              event(E::node, 0, 0, 1.f, 2.f),
+              box(0, 1, false, 0.f, 0.f),
+              box(0, 2, true, 1.f, 2.f),
+              event(E::node, 2, 1, 1.f, 2.f),
+              event(E::leaf, 2, 1, 1.f, 2.f),
+              prim(E::prim_test, 1, false, 0.f),
+              prim(E::ray_end, -1, false, kInfinity)};
   for (TracedRay* r : {&a, &b})
     for (size_t i = 0; i < r->events.size(); ++i) r->events[i].seq = uint32_t(i);
   t.rays = {a, b};
@@ -317,26 +324,26 @@ TEST(TraceFile, Version3BvhTraceRoundTripsWithBoxTestsSkipsAndChildren) {
   const Trace back = parse_trace_json(once, "bvh.json");
   EXPECT_EQ(trace_to_json(back), once);
   EXPECT_EQ(back.version, 3);
-  EXPECT_NE(once.find("{\"seq\":2,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,"
+  EXPECT_NE(once.find("{\"seq\":3,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,"
                       "\"t_near\":2.0,\"t_far\":2.0}"),
             std::string::npos)
       << once;
   // A missed box has no interval.
-  EXPECT_NE(once.find("{\"seq\":2,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":false}"),
+  EXPECT_NE(once.find("{\"seq\":3,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":false}"),
             std::string::npos);
-  EXPECT_NE(once.find("{\"seq\":9,\"type\":\"skip\",\"node\":2,\"depth\":1,\"t_min\":3.0,\"t_max\":3.0}"),
+  EXPECT_NE(once.find("{\"seq\":10,\"type\":\"skip\",\"node\":2,\"depth\":1,\"t_min\":3.0,\"t_max\":3.0}"),
             std::string::npos);
   EXPECT_NE(once.find("\"leaf\":false,\"axis\":\"x\",\"children\":[1,2]}"), std::string::npos) << once;
-  EXPECT_NE(once.find("\"pops\":1,\"box_tests\":2}"), std::string::npos);
+  EXPECT_NE(once.find("\"pops\":1,\"box_tests\":3}"), std::string::npos);
   ASSERT_EQ(back.rays.size(), 2u);
-  const Event& box = back.rays[0].events[3];
+  const Event& box = back.rays[0].events[4];
   EXPECT_EQ(box.type, EventType::box_test);
   EXPECT_EQ(box.parent, 0);
   EXPECT_EQ(box.node, 2);
   EXPECT_TRUE(box.hit);
   EXPECT_EQ(box.t_min_node, 3.f);
-  EXPECT_EQ(back.rays[0].events[9].type, EventType::skip);
-  EXPECT_FALSE(back.rays[1].events[2].hit);
+  EXPECT_EQ(back.rays[0].events[10].type, EventType::skip);
+  EXPECT_FALSE(back.rays[1].events[3].hit);
   ASSERT_EQ(back.nodes.size(), 3u);
   EXPECT_EQ(back.nodes[0].children, (std::vector<int32_t>{1, 2}));
   EXPECT_TRUE(back.nodes[1].children.empty());
@@ -349,8 +356,8 @@ TEST(TraceFile, Version3BvhTraceRoundTripsWithBoxTestsSkipsAndChildren) {
   EXPECT_EQ(parse_trace_json(wide_text, "wide.json").nodes[0].axis, -1);
   // The summary counts box tests and skips.
   const std::string summary = trace_summary(back);
-  EXPECT_NE(summary.find("2 box tests, 1 skips"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("box_test=4"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("3 box tests, 1 skips"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("box_test=6"), std::string::npos) << summary;
 }
 
 TEST(TraceFile, Version3CsvAppendsTheParentColumn) {
@@ -367,9 +374,10 @@ TEST(TraceFile, Version3CsvAppendsTheParentColumn) {
   std::vector<std::string> rows;
   while (std::getline(csv, line)) rows.push_back(line);
   ASSERT_EQ(rows.size(), t.rays[0].events.size() + t.rays[1].events.size());
-  EXPECT_EQ(rows[2], "0,2,box_test,,,,,,,,,,,,,1,1,2,2,,1,,,,0");
-  EXPECT_EQ(rows[9], "0,9,skip,,,,,,,,,,,,,2,1,3,3,,,,,,");
-  EXPECT_EQ(rows[12 + 2], "1,2,box_test,,,,,,,,,,,,,1,1,,,,0,,,,0");
+  EXPECT_EQ(rows[1], "0,1,box_test,,,,,,,,,,,,,0,0,2,3,,1,,,,-1");  // the root's box
+  EXPECT_EQ(rows[3], "0,3,box_test,,,,,,,,,,,,,1,1,2,2,,1,,,,0");
+  EXPECT_EQ(rows[10], "0,10,skip,,,,,,,,,,,,,2,1,3,3,,,,,,");
+  EXPECT_EQ(rows[13 + 3], "1,3,box_test,,,,,,,,,,,,,1,1,,,,0,,,,0");
 }
 
 TEST(TraceFile, DamagedVersion3TracesAreRefusedWithLineAndPath) {
@@ -378,35 +386,41 @@ TEST(TraceFile, DamagedVersion3TracesAreRefusedWithLineAndPath) {
   const int box_line = line_of(text, hit_box);
   expect_rejected(text, hit_box,
                   "\"parent\":7,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
-                  "rays[0].events[2].parent: value 7 out of range 0..2", box_line);
+                  "rays[0].events[3].parent: value 7 out of range -1..2", box_line);
   expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_far\":2.0",
-                  "rays[0].events[2]: missing \"t_near\"", box_line);
+                  "rays[0].events[3]: missing \"t_near\"", box_line);
   expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0",
-                  "rays[0].events[2]: missing \"t_far\"", box_line);
+                  "rays[0].events[3]: missing \"t_far\"", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":null,\"t_far\":2.0",
                   "t_near: expected a number, found null", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":\"-inf\",\"t_far\":2.0",
-                  "rays[0].events[2].t_near: expected a finite number", box_line);
+                  "rays[0].events[3].t_near: expected a finite number", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":1.0",
-                  "rays[0].events[2].t_far: below t_near", box_line);
+                  "rays[0].events[3].t_far: below t_near", box_line);
   expect_rejected(text, hit_box, "\"parent\":0,\"node\":1,\"depth\":1,\"hit\":1,\"t_near\":2.0,\"t_far\":2.0",
-                  "rays[0].events[2].hit: expected true or false", box_line);
+                  "rays[0].events[3].hit: expected true or false", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":0,\"node\":1,\"depth\":0,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
-                  "rays[0].events[2].depth: value 0 out of range 1..", box_line);
+                  "rays[0].events[3].depth: expected 1, the depth of node 1 in geometry.nodes", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":1,\"node\":1,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
-                  "rays[0].events[2].node: a node is not its own child", box_line);
+                  "rays[0].events[3].node: a node is not its own child", box_line);
   expect_rejected(text, hit_box,
                   "\"parent\":1,\"node\":2,\"depth\":1,\"hit\":true,\"t_near\":2.0,\"t_far\":2.0",
-                  "rays[0].events[2].node: node 2 is not a child of node 1", box_line);
+                  "rays[0].events[3].node: node 2 is not a child of node 1", box_line);
+  // The root's own box test names no parent.
+  const std::string root_box = "\"parent\":-1,\"node\":0,\"depth\":0";
+  expect_rejected(text, root_box, "\"parent\":-1,\"node\":1,\"depth\":1",
+                  "rays[0].events[1].parent: only the root's box (node 0) is tested without a parent");
+  expect_rejected(text, root_box, "\"parent\":-1,\"node\":0,\"depth\":1",
+                  "rays[0].events[1].depth: expected 0, the depth of node 0 in geometry.nodes");
   expect_rejected(text, "\"type\":\"skip\",\"node\":2", "\"type\":\"skip\",\"node\":3",
-                  "rays[0].events[9].node: value 3 out of range 0..2");
+                  "rays[0].events[10].node: value 3 out of range 0..2");
   expect_rejected(text, "\"type\":\"skip\",\"node\":2,\"depth\":1,\"t_min\":3.0",
-                  "\"type\":\"skip\",\"node\":2,\"depth\":1", "rays[0].events[9]: missing \"t_min\"");
+                  "\"type\":\"skip\",\"node\":2,\"depth\":1", "rays[0].events[10]: missing \"t_min\"");
   // The nodes: children in range, distinct, present on every inner node; the parent chain consistent.
   const int root_line = line_of(text, "\"children\":[1,2]");
   expect_rejected(text, "\"children\":[1,2]", "\"children\":[1,9]",
@@ -430,7 +444,8 @@ TEST(TraceFile, DamagedVersion3TracesAreRefusedWithLineAndPath) {
                   "geometry.nodes[2].children: a leaf has no children");
   // Box tests and skips are version 3's: a version 2 document with one is refused.
   expect_rejected(text, "\"version\": 3", "\"version\": 2",
-                  "rays[0].events[2].type: event type \"box_test\" needs version 3", box_line);
+                  "rays[0].events[1].type: event type \"box_test\" needs version 3",
+                  line_of(text, "\"type\":\"box_test\""));
 }
 
 // ---- the reader on damaged traces ----

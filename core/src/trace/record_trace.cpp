@@ -1,6 +1,7 @@
 #include "raystep/trace/record_trace.h"
 
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/bvh_trace.h"
 #include "raystep/trace/grid_trace.h"
 #include "raystep/trace/kd_trace.h"
 #include "raystep/trace/pixel_rays.h"
@@ -8,8 +9,13 @@
 
 namespace raystep {
 
+namespace {
+const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep or bvh-median";
+}  // namespace
+
 bool records_events(const Accelerator& accel) {
-  return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel);
+  return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel) ||
+         dynamic_cast<const Bvh*>(&accel);
 }
 
 Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std::vector<RayRequest>& rays,
@@ -18,15 +24,16 @@ Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std
     return record_grid_trace(geometry, *grid, rays, scene_path, scene_hash);
   if (auto* kd = dynamic_cast<const KdTree*>(&accel))
     return record_kd_trace(geometry, *kd, rays, scene_path, scene_hash);
-  throw InputError("", 0, "the " + accel.name() + " structure records no events (use grid, kd or kd-median)");
+  if (auto* bvh = dynamic_cast<const Bvh*>(&accel))
+    return record_bvh_trace(geometry, *bvh, rays, scene_path, scene_hash);
+  throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
 }
 
 Trace record_pixel_trace(const Scene& scene, const Accelerator& accel, int width, int height, int px, int py,
                          const AntiAliasing& aa, uint64_t seed, bool secondary, const std::string& scene_path,
                          const std::string& scene_hash) {
   if (!records_events(accel))
-    throw InputError("", 0,
-                     "the " + accel.name() + " structure records no events (use grid, kd or kd-median)");
+    throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
   if (width <= 0 || height <= 0 || px < 0 || py < 0 || px >= width || py >= height)
     throw InputError("", 0,
                      "pixel " + std::to_string(px) + "," + std::to_string(py) + " is outside the " +

@@ -875,11 +875,12 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
           e.t_max_node = rd.real_at(je, ep, "t_max");
           break;
         case EventType::box_test: {
-          // A child's box tested from its parent: [t_near, t_far] on a hit, finite (boxes are) and in order.
-          e.parent = int32_t(rd.integer_at(je, ep, "parent", 0, max_node));
+          // A child's box tested from its parent (-1: the root's box, tested first): [t_near, t_far] on a
+          // hit, finite (boxes are) and in order.
+          e.parent = int32_t(rd.integer_at(je, ep, "parent", -1, max_node));
           e.node = int32_t(rd.integer_at(je, ep, "node", 0, max_node));
           if (e.node == e.parent) rd.fail(ep.key("node"), "a node is not its own child");
-          e.depth = int32_t(rd.integer_at(je, ep, "depth", 1, 1 << 16));
+          e.depth = int32_t(rd.integer_at(je, ep, "depth", 0, 1 << 16));
           const Value h = rd.member(je, ep, "hit");
           if (!h.is_boolean()) rd.fail(ep.key("hit"), "expected true or false");
           e.hit = h.get_bool();
@@ -1036,13 +1037,22 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         if (tree_event && !listed.count(e.node))
           rd.fail(ep.key("node"), "node " + std::to_string(e.node) + " is not in geometry.nodes");
         if (e.type == EventType::box_test) {
-          auto p = node_at.find(e.parent);
-          if (p == node_at.end())
-            rd.fail(ep.key("parent"), "node " + std::to_string(e.parent) + " is not in geometry.nodes");
-          const std::vector<int32_t>& children = t.nodes[p->second].children;
-          if (std::find(children.begin(), children.end(), e.node) == children.end())
-            rd.fail(ep.key("node"), "node " + std::to_string(e.node) + " is not a child of node " +
-                                        std::to_string(e.parent));
+          const TraceNode& child = t.nodes[node_at.at(e.node)];
+          if (e.parent < 0) {
+            if (child.parent >= 0)
+              rd.fail(ep.key("parent"), "only the root's box (node 0) is tested without a parent");
+          } else {
+            auto p = node_at.find(e.parent);
+            if (p == node_at.end())
+              rd.fail(ep.key("parent"), "node " + std::to_string(e.parent) + " is not in geometry.nodes");
+            const std::vector<int32_t>& children = t.nodes[p->second].children;
+            if (std::find(children.begin(), children.end(), e.node) == children.end())
+              rd.fail(ep.key("node"), "node " + std::to_string(e.node) + " is not a child of node " +
+                                          std::to_string(e.parent));
+          }
+          if (e.depth != child.depth)
+            rd.fail(ep.key("depth"), "expected " + std::to_string(child.depth) + ", the depth of node " +
+                                         std::to_string(e.node) + " in geometry.nodes");
         }
       }
   }
@@ -1214,12 +1224,15 @@ std::string trace_summary(const Trace& t) {
     out << ", " << tr.events.size() << " events, ";
     if (t.structure.kind == "grid") out << c.cells << " cells, ";
     else out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";
-    if (t.structure.kind.rfind("bvh", 0) == 0) {  // version 3: the boxes tested and the entries skipped
+    const bool bvh = t.structure.kind.rfind("bvh", 0) == 0;
+    if (bvh) {  // version 3: the boxes tested and the entries skipped
       size_t skips = 0;
       for (const Event& e : tr.events) skips += e.type == EventType::skip;
       out << c.box_tests << " box tests, " << skips << " skips, ";
     }
-    out << c.prim_tests << " tests (" << c.prim_hits << " hits), " << c.mailbox_hits << " mailbox hits; ";
+    out << c.prim_tests << " tests (" << c.prim_hits << " hits)";
+    if (!bvh) out << ", " << c.mailbox_hits << " mailbox hits";  // a BVH has none: a primitive is in one leaf
+    out << "; ";
     if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
     else out << "miss\n";
     for (const Event& e : tr.events) ++totals[event_type_name(e.type)];

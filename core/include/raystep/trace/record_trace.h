@@ -1,5 +1,5 @@
-// Recording rays through whichever structure records events (the grid, the kd-trees): the one entry point for
-// the command line and the debugger, so that a new structure is added in one place.
+// Recording rays through whichever structure records events (the grid, the kd-trees, the BVHs): the one entry
+// point for the command line and the debugger, so that a new structure is added in one place.
 #pragma once
 
 #include <string>

@@ -1,0 +1,113 @@
+#include "raystep/trace/bvh_trace.h"
+
+#include <set>
+
+#include "trace_recording.h"
+
+namespace raystep {
+
+namespace {
+
+const char* builder_name(BvhBuilder b) {
+  return b == BvhBuilder::sweep ? "sweep" : b == BvhBuilder::median ? "median" : "binned";
+}
+
+// The build options every BVH trace states (bvh_build.h's BvhOptions).
+void bvh_params(const BvhOptions& o, TraceStructure* s) {
+  auto param = [&](const char* key, double number) { s->params.push_back({key, false, number, ""}); };
+  s->params.push_back({"builder", true, 0.0, builder_name(o.builder)});
+  param("t_i", o.t_i);
+  param("t_t", o.t_t);
+  param("bins", o.bins);
+  param("leaf_size", o.leaf_size);
+  param("max_leaf_size", o.max_leaf_size);
+  param("max_depth", o.max_depth);
+}
+
+// The ids the events of every ray name: nodes visited, pushed, popped, skipped, and both ends of a box test.
+std::set<int32_t> named_nodes(const Trace& t) {
+  std::set<int32_t> named;
+  for (const TracedRay& tr : t.rays) {
+    for (const Event& e : tr.events) {
+      switch (e.type) {
+        case EventType::box_test:
+          if (e.parent >= 0) named.insert(e.parent);
+          [[fallthrough]];
+        case EventType::node:
+        case EventType::push:
+        case EventType::pop:
+        case EventType::leaf:
+        case EventType::skip:
+          named.insert(e.node);
+          break;
+        default:
+          break;
+      }
+    }
+  }
+  return named;
+}
+
+// The named nodes and their parents up to the root, in id order: parent(id) gives -1 at the root.
+template <class Parent>
+std::set<int32_t> with_parent_chains(std::set<int32_t> ids, Parent parent) {
+  std::vector<int32_t> todo(ids.begin(), ids.end());
+  while (!todo.empty()) {
+    int32_t p = parent(todo.back());
+    todo.pop_back();
+    if (p >= 0 && ids.insert(p).second) todo.push_back(p);
+  }
+  return ids;
+}
+
+}  // namespace
+
+Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vector<RayRequest>& rays,
+                       const std::string& scene_path, const std::string& scene_hash) {
+  const BvhData& data = bvh.data();
+  Trace t;
+  t.scene_path = scene_path;
+  t.scene_hash = scene_hash;
+  t.scene_primitives = geometry.size();
+  t.structure.kind = bvh.name();
+  if (!data.nodes.empty()) t.structure.bounds = data.nodes[0].box;
+  size_t leaves = 0;
+  for (const BvhNode& n : data.nodes) leaves += n.is_leaf();
+  bvh_params(bvh.options(), &t.structure);
+  t.structure.params.push_back(
+      {"order", true, 0.0, bvh.order() == BvhOrder::split_axis ? "split_axis" : "entry_distance"});
+  t.structure.params.push_back({"nodes", false, double(data.nodes.size()), ""});
+  t.structure.params.push_back({"leaves", false, double(leaves), ""});
+  detail::sort_params(&t.structure);
+
+  detail::record_rays(
+      geometry, rays,
+      [&](const RayRequest& req, EventRecorder& rec) {
+        Hit hit;
+        bvh.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
+      },
+      &t);
+  const std::set<int32_t> ids =
+      with_parent_chains(named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
+  for (int32_t id : ids) {
+    const BvhNode& n = data.nodes[size_t(id)];
+    const BvhNodeInfo& info = data.info[size_t(id)];
+    TraceNode tn;
+    tn.id = id;
+    tn.parent = info.parent;
+    tn.depth = info.depth;
+    tn.box = n.box;
+    tn.leaf = n.is_leaf();
+    if (tn.leaf) {
+      for (uint32_t i = 0; i < n.prim_count(); ++i)
+        tn.prims.push_back(int32_t(data.prim_index[n.first_prim() + i]));
+    } else {
+      tn.axis = n.axis();
+      tn.children = {id + 1, int32_t(n.second_child())};  // the first child follows its parent
+    }
+    t.nodes.push_back(std::move(tn));
+  }
+  return t;
+}
+
+}  // namespace raystep

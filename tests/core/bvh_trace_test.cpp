@@ -1,0 +1,298 @@
+// BVH traces (format version 3): the recorded walk against the kernel's own answer on hundreds of random
+// rays, the events against the rules of the walk (box tests name the current node's children, every push is
+// popped or the walk ends, a skip only beyond the nearest hit, a leaf's tests are its primitives), the nodes
+// the trace lists (every named node and its parents up to the root), and the JSON round trip.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <string>
+
+#include "raystep/accel/bvh.h"
+#include "raystep/accel/structure_options.h"
+#include "raystep/scene/ray_sets.h"
+#include "raystep/trace/bvh_trace.h"
+#include "raystep/trace/record_trace.h"
+#include "test_scenes.h"
+
+namespace raystep {
+namespace {
+
+// Random rays through the soup's box, every fourth a shadow ray with a finite tmax, plus rays aimed at
+// triangle edges (where neighbouring boxes meet).
+std::vector<RayRequest> requests(const Geometry& g, size_t count, uint64_t seed) {
+  std::vector<RayRequest> out;
+  for (const Ray& r : random_rays(g.bounds(), count, seed)) out.push_back(RayRequest{r, RayKind::primary, 0});
+  for (const Ray& r : edge_rays(g, count / 4, seed + 1)) out.push_back(RayRequest{r, RayKind::primary, 0});
+  for (size_t i = 0; i < out.size(); i += 4) {
+    out[i].kind = RayKind::shadow;
+    out[i].ray.tmax = 3.f;
+  }
+  return out;
+}
+
+// Checks one recorded ray against the rules of the BVH's walk; counts its skips into *skips.
+void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, int* skips) {
+  SCOPED_TRACE(where);
+  const BvhData& d = bvh.data();
+  const std::vector<Event>& ev = tr.events;
+  struct Entry {
+    int32_t node;
+    float t_near, t_far;
+  };
+  std::vector<Entry> stack;
+  std::map<int32_t, Event> tested;  // the current node's box tests, by child
+  int32_t current = -1;             // the node being visited
+  int32_t leaf = -1;                // the leaf whose primitives are being tested
+  std::set<int32_t> prims_tested;
+  float nearest = kInfinity;
+  bool accepted = false;
+  for (size_t i = 0; i < ev.size(); ++i) {
+    const Event& e = ev[i];
+    SCOPED_TRACE("event " + std::to_string(i) + " " + event_type_name(e.type));
+    switch (e.type) {
+      case EventType::box_test:
+        if (e.parent < 0) {  // the root's box, before anything else
+          EXPECT_EQ(i, 1u);
+          EXPECT_EQ(e.node, 0);
+          tested.clear();
+          tested[0] = e;
+        } else {
+          EXPECT_EQ(e.parent, current) << "a box test from another node than the current one";
+          const BvhNode& n = d.nodes[size_t(current)];
+          ASSERT_FALSE(n.is_leaf());
+          EXPECT_TRUE(e.node == current + 1 || e.node == int32_t(n.second_child())) << e.node;
+          EXPECT_EQ(e.depth, d.info[size_t(e.node)].depth);
+          tested[e.node] = e;
+        }
+        if (e.hit) EXPECT_LE(e.t_min_node, e.t_max_node);
+        break;
+      case EventType::node: {
+        // Entered: the root or a child just box-tested with a hit, or the entry just popped (not skipped).
+        const bool from_pop = i > 0 && ev[i - 1].type == EventType::pop;
+        if (from_pop) {
+          EXPECT_EQ(e.node, ev[i - 1].node);
+        } else {
+          ASSERT_TRUE(tested.count(e.node)) << "node " << e.node << " entered without a box test";
+          EXPECT_TRUE(tested[e.node].hit);
+          EXPECT_EQ(e.t_min_node, tested[e.node].t_min_node);
+          EXPECT_EQ(e.t_max_node, tested[e.node].t_max_node);
+        }
+        current = e.node;
+        leaf = -1;
+        tested.clear();
+        break;
+      }
+      case EventType::push:
+        // A child of the current node whose box was hit, with that box's interval.
+        ASSERT_TRUE(tested.count(e.node)) << "pushed " << e.node << " without a box test";
+        EXPECT_TRUE(tested[e.node].hit);
+        EXPECT_EQ(e.t_min_node, tested[e.node].t_min_node);
+        EXPECT_EQ(e.t_max_node, tested[e.node].t_max_node);
+        stack.push_back({e.node, e.t_min_node, e.t_max_node});
+        break;
+      case EventType::pop:
+        ASSERT_FALSE(stack.empty()) << "a pop from an empty stack";
+        EXPECT_EQ(e.node, stack.back().node);
+        EXPECT_EQ(e.t_min_node, stack.back().t_near);
+        stack.pop_back();
+        break;
+      case EventType::skip:
+        // Right after the pop of the same entry, and only when it starts beyond the nearest hit.
+        ASSERT_GT(i, 0u);
+        EXPECT_EQ(ev[i - 1].type, EventType::pop);
+        EXPECT_EQ(e.node, ev[i - 1].node);
+        EXPECT_GT(e.t_min_node, nearest);
+        ++*skips;
+        break;
+      case EventType::leaf:
+        EXPECT_EQ(e.node, current);
+        EXPECT_TRUE(d.nodes[size_t(e.node)].is_leaf());
+        leaf = e.node;
+        break;
+      case EventType::prim_test: {
+        ASSERT_GE(leaf, 0) << "a primitive tested outside a leaf";
+        const BvhNode& n = d.nodes[size_t(leaf)];
+        const uint32_t* first = d.prim_index.data() + n.first_prim();
+        EXPECT_NE(std::find(first, first + n.prim_count(), uint32_t(e.prim)), first + n.prim_count());
+        EXPECT_TRUE(prims_tested.insert(e.prim).second) << "primitive " << e.prim << " tested twice";
+        if (e.hit) nearest = std::min(nearest, e.t);
+        break;
+      }
+      case EventType::hit_accepted:
+        EXPECT_EQ(e.prim, ev.back().prim);
+        EXPECT_EQ(e.t, ev.back().t);
+        accepted = true;
+        if (e.reason == AcceptReason::structure_done)
+          EXPECT_TRUE(stack.empty());
+        else
+          EXPECT_EQ(e.reason, AcceptReason::any_hit);
+        break;
+      case EventType::ray_begin:
+      case EventType::ray_end:
+        break;
+      default:
+        ADD_FAILURE() << "unexpected event";
+    }
+  }
+  // Every push is popped, or the walk ended at a shadow ray's first hit.
+  if (!stack.empty()) {
+    EXPECT_TRUE(accepted);
+    EXPECT_EQ(tr.kind, RayKind::shadow);
+  }
+  EXPECT_EQ(accepted, ev.back().prim >= 0);
+}
+
+TEST(BvhTrace, RecordedWalkEqualsTheKernelAndObeysTheRules) {
+  const Geometry g = test::make_soup(11, 400, 6);
+  const std::vector<RayRequest> rays = requests(g, 400, 5);
+  for (BvhBuilder builder : {BvhBuilder::binned, BvhBuilder::median})
+    for (BvhOrder order : {BvhOrder::entry_distance, BvhOrder::split_axis}) {
+      BvhOptions o;
+      o.builder = builder;
+      o.leaf_size = builder == BvhBuilder::median ? 3 : 1;
+      Bvh bvh(o, order);
+      bvh.build(g);
+      const std::string name =
+          bvh.name() + (order == BvhOrder::split_axis ? " split_axis" : " entry_distance");
+      SCOPED_TRACE(name);
+      const Trace t = record_trace(g, bvh, rays, "soup", "fnv1a64:0000000000000000");
+      EXPECT_EQ(t.structure.kind, bvh.name());
+      ASSERT_EQ(t.rays.size(), rays.size());
+      int hits = 0, skips = 0, pushes = 0;
+      for (size_t r = 0; r < rays.size(); ++r) {
+        // The trace's answer is the kernel's: the same primitive and the same t, bit for bit.
+        const Event& end = t.rays[r].events.back();
+        ASSERT_EQ(end.type, EventType::ray_end);
+        if (rays[r].kind == RayKind::shadow) {
+          EXPECT_EQ(end.prim >= 0, bvh.occluded(rays[r].ray)) << r;
+        } else {
+          Hit hit;
+          bvh.intersect(rays[r].ray, &hit);
+          EXPECT_EQ(end.prim, hit.prim) << r;
+          if (hit.found()) EXPECT_EQ(end.t, hit.t) << r;
+          hits += hit.found();
+        }
+        // Counted like the counting recorder counts.
+        CountingRecorder counted;
+        Hit h;
+        if (rays[r].kind == RayKind::shadow)
+          bvh.occluded_counted(rays[r].ray, counted);
+        else
+          bvh.intersect_counted(rays[r].ray, &h, counted);
+        size_t box_tests = 0, nodes = 0;
+        for (const Event& e : t.rays[r].events) {
+          box_tests += e.type == EventType::box_test;
+          nodes += e.type == EventType::node;
+          pushes += e.type == EventType::push;
+        }
+        // (The kernel tells a counting recorder of the root's box test only when it is hit: a ray that misses
+        // the root records one box test and counts none.)
+        const Event& root = t.rays[r].events[1];
+        const bool missed_root = root.type == EventType::box_test && !root.hit;
+        EXPECT_EQ(box_tests - (missed_root ? 1 : 0), counted.box_tests) << r;
+        EXPECT_EQ(nodes, counted.nodes) << r;
+        check_walk(bvh, t.rays[r], name + " ray " + std::to_string(r), &skips);
+        if (HasFatalFailure()) return;
+      }
+      // The rays exercise what the rules are about.
+      EXPECT_GT(hits, 50);
+      EXPECT_GT(pushes, 200);
+      EXPECT_GT(skips, 10);
+    }
+}
+
+TEST(BvhTrace, ListsEveryNamedNodeWithItsParentsAndRoundTrips) {
+  const Geometry g = test::make_soup(4, 200, 2);
+  Bvh bvh;
+  bvh.build(g);
+  const std::vector<RayRequest> rays = requests(g, 40, 9);
+  const Trace t = record_bvh_trace(g, bvh, rays, "soup", "fnv1a64:0000000000000000");
+  const BvhData& d = bvh.data();
+  std::map<std::string, std::string> text;
+  std::map<std::string, double> number;
+  for (const TraceParam& p : t.structure.params)
+    if (p.is_text)
+      text[p.key] = p.text;
+    else
+      number[p.key] = p.number;
+  EXPECT_EQ(text["builder"], "binned");
+  EXPECT_EQ(text["order"], "entry_distance");
+  EXPECT_EQ(number["nodes"], double(d.nodes.size()));
+  for (const char* k : {"t_i", "t_t", "bins", "leaf_size", "max_leaf_size", "max_depth", "leaves"})
+    EXPECT_TRUE(number.count(k)) << k;
+  std::set<int32_t> listed;
+  for (const TraceNode& n : t.nodes) {
+    EXPECT_TRUE(listed.insert(n.id).second);
+    const BvhNode& b = d.nodes[size_t(n.id)];
+    EXPECT_EQ(n.parent, d.info[size_t(n.id)].parent);
+    EXPECT_EQ(n.depth, d.info[size_t(n.id)].depth);
+    EXPECT_EQ(n.box.lo, b.box.lo);
+    EXPECT_EQ(n.box.hi, b.box.hi);
+    EXPECT_EQ(n.leaf, b.is_leaf());
+    if (n.leaf) {
+      EXPECT_EQ(n.prims.size(), b.prim_count());
+      EXPECT_TRUE(n.children.empty());
+    } else {
+      EXPECT_EQ(n.children, (std::vector<int32_t>{n.id + 1, int32_t(b.second_child())}));
+      EXPECT_EQ(n.axis, b.axis());
+    }
+  }
+  for (const TraceNode& n : t.nodes)
+    if (n.parent >= 0) EXPECT_TRUE(listed.count(n.parent)) << "the parent of " << n.id << " is not listed";
+  for (const TracedRay& r : t.rays)
+    for (const Event& e : r.events) {
+      if (e.node >= 0) EXPECT_TRUE(listed.count(e.node)) << e.node;
+      if (e.type == EventType::box_test && e.parent >= 0) EXPECT_TRUE(listed.count(e.parent));
+    }
+  // The trace reads back (the validating reader checks ids, children and parents) and writes the same bytes.
+  const std::string once = trace_to_json(t);
+  const Trace back = parse_trace_json(once, "bvh.json");
+  EXPECT_EQ(trace_to_json(back), once);
+  EXPECT_EQ(back.version, kTraceVersion);
+  EXPECT_NE(trace_summary(back).find(" box tests, "), std::string::npos);
+}
+
+TEST(BvhTrace, RaysThatMissTheRootAndAnEmptySceneRecordOneBoxTest) {
+  const Geometry g = test::make_soup(2, 20, 0);
+  Bvh bvh;
+  bvh.build(g);
+  RayRequest away;
+  away.ray.origin = glm::vec3(10.f, 10.f, 10.f);
+  away.ray.direction = glm::vec3(1.f, 0.f, 0.f);
+  RayRequest nan = away;
+  nan.ray.direction = glm::vec3(std::nanf(""), 0.f, 1.f);
+  const Trace t = record_trace(g, bvh, {away, nan}, "soup", "fnv1a64:0000000000000000");
+  for (const TracedRay& r : t.rays) {
+    ASSERT_EQ(r.events.size(), 3u);
+    EXPECT_EQ(r.events[1].type, EventType::box_test);
+    EXPECT_EQ(r.events[1].parent, -1);
+    EXPECT_FALSE(r.events[1].hit);
+    EXPECT_EQ(r.events[2].prim, -1);
+  }
+  ASSERT_EQ(t.nodes.size(), 1u);  // the root, which the box test names
+  // (A NaN ray has no JSON form: only the other one is written.)
+  const Trace miss = record_trace(g, bvh, {away}, "soup", "fnv1a64:0000000000000000");
+  EXPECT_EQ(trace_to_json(parse_trace_json(trace_to_json(miss), "miss.json")), trace_to_json(miss));
+
+  Geometry empty;
+  Bvh none;
+  none.build(empty);
+  const Trace e = record_trace(empty, none, {away}, "empty", "fnv1a64:0000000000000000");
+  EXPECT_EQ(trace_to_json(parse_trace_json(trace_to_json(e), "empty.json")), trace_to_json(e));
+}
+
+TEST(BvhTrace, EveryBvhNameFromTheFactoryRecords) {
+  const Geometry g = test::make_soup(3, 60, 1);
+  for (const char* name : {"bvh", "bvh-sweep", "bvh-median"}) {
+    auto accel = make_accelerator(name, StructureOptions{});
+    accel->build(g);
+    EXPECT_TRUE(records_events(*accel)) << name;
+    const Trace t = record_trace(g, *accel, requests(g, 8, 1), "soup", "fnv1a64:0000000000000000");
+    EXPECT_EQ(t.structure.kind, name);
+  }
+}
+
+}  // namespace
+}  // namespace raystep
