@@ -32,6 +32,7 @@
 #include "lesson_pane.h"
 #include "pixel_inspector.h"
 #include "presenter.h"
+#include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -410,8 +411,34 @@ void MainWindow::ensureHeat() {
   if (heatKey_ != heatKeyNow()) computeHeat();
 }
 
+void MainWindow::showBvhSahCurve() {
+  auto structure = session_->structureShared();
+  const Bvh* bvh = structure->bvh();
+  int node = session_->selectedNode();
+  if (node < 0) {
+    sahChart_->showMessage(tr("Select a node in the tree to see its binned SAH cost curve."));
+    return;
+  }
+  sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
+  BvhOptions options = bvh->options();
+  QString path = QString::fromStdString(bvhNodePath(bvh->data(), uint32_t(node)));
+  runTask("sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
+    auto t0 = std::chrono::steady_clock::now();
+    auto curve = std::make_shared<const BvhSahCurve>(
+        record_bvh_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return std::function<void()>([this, structure, options, node, path, curve, ms] {
+      if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
+      sahChart_->setBvhCurve(curve, path, options.t_i, options.t_t);
+      statusBar()->showMessage(tr("SAH curve of BVH node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
+                               took(tr(", recorded"), ms));
+    });
+  });
+}
+
 void MainWindow::showSahCurve() {
   auto structure = session_->structureShared();
+  if (structure && structure->bvh()) return showBvhSahCurve();
   const KdTree* kd = structure ? structure->kdTree() : nullptr;
   int node = session_->selectedNode();
   if (!kd || node < 0) {
@@ -443,8 +470,11 @@ void MainWindow::showSahCurve() {
 
 void MainWindow::exportSahCsv(const QString& path) {
   try {
-    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree node first");
-    write_sah_csv(path.toStdString(), *sahChart_->curve());
+    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree or BVH node first");
+    if (sahChart_->bvhCurve())
+      write_bvh_sah_csv(path.toStdString(), *sahChart_->bvhCurve());  // the columns of raystep sah --accel bvh
+    else
+      write_sah_csv(path.toStdString(), *sahChart_->curve());
     statusBar()->showMessage(tr("wrote %1").arg(path));
   } catch (const std::exception& e) {
     if (scripted_) throw;

@@ -315,7 +315,8 @@ std::string describeEvent(const Event& e) {
            std::to_string(e.depth) + "  t " + num(e.t_min_node) + ".." + num(e.t_max_node);
       break;
     case EventType::box_test:
-      s += "  child " + std::to_string(e.node) + " of " + std::to_string(e.parent) +
+      s += (e.parent < 0 ? "  root " + std::to_string(e.node)
+                         : "  child " + std::to_string(e.node) + " of " + std::to_string(e.parent)) +
            (e.hit ? ": hit [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]" : ": miss");
       break;
     case EventType::skip:
@@ -683,12 +684,19 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
              "sibling's, so the ray may have to enter more than one.";
     }
     case EventType::box_test: {
+      if (e.parent < 0)  // the root's own box, before the walk starts
+        return e.hit ? "Slab test: the ray meets the root's box over [t_near, t_far] = [" + num(e.t_min_node) +
+                           ", " + num(e.t_max_node) + "]; the walk starts at the root."
+                     : std::string("The ray misses the root's box (slab test): nothing in the scene can be hit.");
       std::string text = "Child " + std::to_string(e.node) + " of node " + std::to_string(e.parent) + ": ";
       if (e.hit)
         text += "its box is hit over [t_near, t_far] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].";
       else
-        text += "its box is missed (the slab intervals do not overlap within the ray's [tmin, tmax]): "
-                "nothing under it can be hit.";
+        text += s.nearestPrim >= 0
+                    ? "its box is missed: the ray does not enter it before the nearest hit so far, t = " +
+                          num(s.nearestT) + ", so nothing under it can give a nearer hit."
+                    : std::string("its box is missed (the slab intervals do not overlap): nothing under it can "
+                                  "be hit.");
       BvhChoice c = bvhChoice(ray, s);
       if (c.valid && c.decided) text += "\n" + bvhDecision(c);
       return text;

@@ -762,7 +762,9 @@ void SceneView::updateStep() {
         glm::vec3 inset = 0.02f * (n->box.hi - n->box.lo);
         addBoxEdges(stpts, stlines, n->box.lo + inset, n->box.hi - inset);
       }
-    if (const TraceNode* n = d.node(d.currentNode)) {
+    // BVH: a popped node that is skipped is drawn as skipped (sage), not as the node the walk is in.
+    const bool skippedNow = std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
+    if (const TraceNode* n = skippedNow ? nullptr : d.node(d.currentNode)) {
       addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
       if (!n->leaf && n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
         int a = n->axis, b = (a + 1) % 3, c = (a + 2) % 3;
