@@ -18,8 +18,10 @@ HeatQuantity parse_heat_quantity(const std::string& name) {
   if (name == "mailbox") return HeatQuantity::mailbox;
   if (name == "samples") return HeatQuantity::samples;
   if (name == "error") return HeatQuantity::error;
+  if (name == "boxes") return HeatQuantity::boxes;
   throw InputError("", 0,
-                   "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox, samples, error)");
+                   "unknown heat map quantity '" + name +
+                       "' (cells or nodes, tests, mailbox, boxes, samples, error)");
 }
 
 const char* heat_quantity_label(HeatQuantity q) {
@@ -29,6 +31,7 @@ const char* heat_quantity_label(HeatQuantity q) {
     case HeatQuantity::mailbox: return "mailbox hits (tests skipped)";
     case HeatQuantity::samples: return "samples (primary rays) per pixel";
     case HeatQuantity::error: return "error against the reference (thousandths)";
+    case HeatQuantity::boxes: return "bounding-box tests";
   }
   return "";
 }
@@ -65,7 +68,10 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
         CountingRecorder c;
         Hit hit;
         accel.intersect_counted(cam.generate(float(x) + 0.5f, float(y) + 0.5f), &hit, c);
-        uint64_t v = q == HeatQuantity::cells ? c.cells + c.nodes : q == HeatQuantity::tests ? c.prim_tests : c.mailbox_hits;
+        uint64_t v = q == HeatQuantity::cells   ? c.cells + c.nodes
+                     : q == HeatQuantity::tests ? c.prim_tests
+                     : q == HeatQuantity::boxes ? c.box_tests
+                                                : c.mailbox_hits;
         heat.values[size_t(y) * width + x] = uint32_t(std::min<uint64_t>(v, UINT32_MAX));
       }
   };

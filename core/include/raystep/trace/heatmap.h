@@ -1,7 +1,7 @@
 // Heat maps of traversal work: one primary ray through each pixel's centre, counted by a CountingRecorder
-// (cells or nodes visited, primitive tests, or mailbox hits), shown on a perceptual colour ramp with a colour
-// bar beside the image. The picture of where a structure spends its effort; and, from a render, where
-// anti-aliasing spent its samples (adaptive sampling's rays per pixel).
+// (cells or nodes visited, primitive tests, mailbox hits, or BVH box tests), shown on a perceptual colour ramp
+// with a colour bar beside the image. The picture of where a structure spends its effort; and, from a render,
+// where anti-aliasing spent its samples (adaptive sampling's rays per pixel).
 #pragma once
 
 #include <cstdint>
@@ -14,10 +14,11 @@
 
 namespace raystep {
 
-enum class HeatQuantity { cells, tests, mailbox, samples, error };
+enum class HeatQuantity { cells, tests, mailbox, samples, error, boxes };
 
-// "cells" (cells or tree nodes visited), "tests" (ray-primitive tests), "mailbox" (tests skipped by mailboxes),
-// "samples" (primary rays per pixel under the picture's anti-aliasing: from a render, not a traversal).
+// "cells" (cells or tree nodes visited, BVH nodes included), "tests" (ray-primitive tests), "mailbox" (tests
+// skipped by mailboxes), "boxes" (bounding-box tests: a BVH's child boxes, its root's included), "samples"
+// (primary rays per pixel under the picture's anti-aliasing: from a render, not a traversal), "error".
 HeatQuantity parse_heat_quantity(const std::string& name);  // throws InputError for another name
 const char* heat_quantity_label(HeatQuantity q);
 
