@@ -7,6 +7,7 @@
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -124,7 +125,8 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 
 // ---- Factory ----
 
-std::vector<std::string> accelerator_names() { return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median"};
+std::vector<std::string> accelerator_names() {
+  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -145,6 +147,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     bvh.builder = name == "bvh-sweep" ? BvhBuilder::sweep : name == "bvh-median" ? BvhBuilder::median : BvhBuilder::binned;
     return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
+  if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

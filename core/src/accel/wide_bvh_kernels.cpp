@@ -1,0 +1,278 @@
+// The wide BVH's kernels: one walk (wide_bvh_kernel.inc) compiled three times, with scalar lanes, with SSE
+// and with AVX2 (the last under `#pragma GCC target`, so that only these functions use AVX2 and the program
+// runs on any x86-64; the choice is made at run time, wide_bvh.cpp). Every version computes the box test of
+// intersect_slabs (geometry/bounds.h) lane by lane with the same roundings, and the triangle filter the
+// watertight test's own first steps (geometry/triangle.h) with the same roundings, so that the answers do not
+// depend on the instruction set. No FMA: a fused multiply-add rounds once where the scalar code rounds twice.
+#include <cmath>
+#include <limits>
+#include <new>
+#include <type_traits>
+
+#include "raystep/trace/event_recorder.h"
+#include "wide_bvh_impl.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace raystep {
+
+namespace {
+constexpr float kMaxFloat = std::numeric_limits<float>::max();
+// Ize's widening of the slab distances (bounds.h): down by 2 gamma(3) on one side of 0, up on the other.
+constexpr float kDown = 1.f - 2.f * gamma(3);
+constexpr float kUp = 1.f + 2.f * gamma(3);
+
+// SlabRay (bounds.h) computed here, so that it is inlined into every kernel (a function of the default
+// target is not inlined into the AVX2 one unless it must be): the same reciprocal, the same validity.
+struct RayPrep {
+  float origin[3], inv_dir[3];
+  float tmin, tmax;
+  bool valid;
+};
+[[gnu::always_inline]] inline RayPrep prepare(const Ray& r) {
+  RayPrep p;
+  const glm::vec3& d = r.direction;
+  for (int a = 0; a < 3; ++a) {
+    p.origin[a] = r.origin[a];
+    p.inv_dir[a] = 1.f / d[a];
+  }
+  p.tmin = r.tmin;
+  p.tmax = r.tmax;
+  bool finite_dir = std::isfinite(d.x) & std::isfinite(d.y) & std::isfinite(d.z);
+  bool nonzero_dir = (d.x != 0.f) | (d.y != 0.f) | (d.z != 0.f);
+  bool finite_origin = std::isfinite(r.origin.x) & std::isfinite(r.origin.y) & std::isfinite(r.origin.z);
+  p.valid = finite_origin & finite_dir & nonzero_dir & !std::isnan(r.tmin) & !std::isnan(r.tmax) &
+            (r.tmin < r.tmax);
+  return p;
+}
+
+// What the SIMD part of the watertight test found for a packet: `candidates` are the lanes not rejected;
+// among them, `decided` are hits it proved (beyond tmin, before the packet's tmax), with their det, scaled t,
+// t and barycentrics, computed with the scalar test's operations; the others go to the scalar test.
+struct PacketResult {
+  uint32_t candidates, decided;
+  alignas(16) float det[kWidePacket], t_scaled[kWidePacket], t[kWidePacket], b1[kWidePacket], b2[kWidePacket];
+};
+
+// The watertight test of one triangle of a packet (triangle.h's intersect_triangle, with the vertices from
+// the packet: the same floats as the geometry's).
+[[gnu::always_inline]] inline bool packet_triangle(const WatertightRay& w, const TriPacket& p, int lane,
+                                                   float tmax, TriangleHit* th) {
+  glm::vec3 v0(p.v[0][lane], p.v[1][lane], p.v[2][lane]);
+  glm::vec3 v1(p.v[3][lane], p.v[4][lane], p.v[5][lane]);
+  glm::vec3 v2(p.v[6][lane], p.v[7][lane], p.v[8][lane]);
+  switch (w.kz) {
+    case 0:
+      return detail::intersect_triangle_permuted<1, 2, 0>(w, v0, v1, v2, tmax, th);
+    case 1:
+      return detail::intersect_triangle_permuted<2, 0, 1>(w, v0, v1, v2, tmax, th);
+    default:
+      return detail::intersect_triangle_permuted<0, 1, 2>(w, v0, v1, v2, tmax, th);
+  }
+}
+}  // namespace
+
+// ---- Scalar lanes: any architecture ----
+namespace wide_scalar {
+namespace {
+
+struct BoxRay {
+  float origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = r.origin[a];
+      inv_dir[a] = r.inv_dir[a];
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+inline float max_nan_first(float a, float b) {
+  return a > b ? a : b;
+}  // as maxps: b when either is NaN
+inline float min_nan_first(float a, float b) {
+  return a < b ? a : b;
+}
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  uint32_t mask = 0;
+  for (int i = 0; i < W; ++i) {
+    float t_near = -kInfinity, t_far = kInfinity;
+    for (int a = 0; a < 3; ++a) {
+      t_near = max_nan_first((n.box[r.near_row[a]][i] - r.origin[a]) * r.inv_dir[a], t_near);
+      t_far = min_nan_first((n.box[r.far_row[a]][i] - r.origin[a]) * r.inv_dir[a], t_far);
+    }
+    // Ize's factor, after the max: it is monotonic, so widening the largest is widening each.
+    float t0 = max_nan_first(min_nan_first(t_near * kDown, t_near * kUp), tmin);
+    float t1 = min_nan_first(max_nan_first(t_far * kUp, t_far * kDown), tmax);
+    t_near_out[i] = t0;
+    if (t_far_out) t_far_out[i] = t1;
+    mask |= uint32_t(t0 <= t1) << i;
+  }
+  return mask;
+}
+
+struct TriRay {
+  void init(const WatertightRay&) {}
+};
+// No filter: every triangle goes to the watertight test.
+inline void tri_filter(const TriPacket&, const TriRay&, float, PacketResult* out) {
+  out->candidates = (1u << kWidePacket) - 1;
+  out->decided = 0;
+}
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_scalar
+
+#if defined(__x86_64__)
+
+// ---- SSE: 4 lanes (8-wide nodes as two halves); also the triangle filter of the AVX2 kernel ----
+namespace wide_sse {
+namespace {
+
+struct BoxRay {
+  __m128 origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = _mm_set1_ps(r.origin[a]);
+      inv_dir[a] = _mm_set1_ps(r.inv_dir[a]);
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+// Four lanes of intersect_slabs. maxps/minps return their second operand when either is NaN, so a NaN
+// distance (0 * inf: the ray in a slab's plane) leaves the accumulated one unchanged, as in bounds.h.
+template <int W>
+inline uint32_t box_test4(const WideNode<W>& n, int off, const BoxRay& r, __m128 tmin, __m128 tmax,
+                          float* t_near_out, float* t_far_out) {
+  __m128 t_near = _mm_set1_ps(-kInfinity), t_far = _mm_set1_ps(kInfinity);
+  for (int a = 0; a < 3; ++a) {
+    __m128 dn = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[r.near_row[a]][off]), r.origin[a]), r.inv_dir[a]);
+    __m128 df = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(&n.box[r.far_row[a]][off]), r.origin[a]), r.inv_dir[a]);
+    t_near = _mm_max_ps(dn, t_near);
+    t_far = _mm_min_ps(df, t_far);
+  }
+  __m128 t0 = _mm_max_ps(
+      _mm_min_ps(_mm_mul_ps(t_near, _mm_set1_ps(kDown)), _mm_mul_ps(t_near, _mm_set1_ps(kUp))), tmin);
+  __m128 t1 = _mm_min_ps(
+      _mm_max_ps(_mm_mul_ps(t_far, _mm_set1_ps(kUp)), _mm_mul_ps(t_far, _mm_set1_ps(kDown))), tmax);
+  _mm_store_ps(t_near_out + off, t0);
+  if (t_far_out) _mm_store_ps(t_far_out + off, t1);
+  return uint32_t(_mm_movemask_ps(_mm_cmple_ps(t0, t1)));
+}
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  __m128 lo = _mm_set1_ps(tmin), hi = _mm_set1_ps(tmax);
+  uint32_t mask = box_test4<W>(n, 0, r, lo, hi, t_near_out, t_far_out);
+  if constexpr (W == 8) mask |= box_test4<W>(n, 4, r, lo, hi, t_near_out, t_far_out) << 4;
+  return mask;
+}
+
+#include "wide_bvh_filter.inc"
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_sse
+
+// ---- AVX2: 8 lanes (4-wide nodes use the SSE box test) ----
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace wide_avx2 {
+namespace {
+
+struct BoxRay {
+  __m256 origin[3], inv_dir[3];
+  int near_row[3], far_row[3];
+  wide_sse::BoxRay sse;
+  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) : sse(r) {
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = _mm256_set1_ps(r.origin[a]);
+      inv_dir[a] = _mm256_set1_ps(r.inv_dir[a]);
+      bool negative = std::signbit(r.inv_dir[a]);
+      near_row[a] = 2 * a + (negative ? 1 : 0);
+      far_row[a] = 2 * a + (negative ? 0 : 1);
+    }
+  }
+};
+
+template <int W>
+inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
+                         float* t_far_out) {
+  if constexpr (W == 4) {
+    return wide_sse::box_test4<4>(n, 0, r.sse, _mm_set1_ps(tmin), _mm_set1_ps(tmax), t_near_out, t_far_out);
+  } else {
+    __m256 t_near = _mm256_set1_ps(-kInfinity), t_far = _mm256_set1_ps(kInfinity);
+    for (int a = 0; a < 3; ++a) {
+      __m256 dn =
+          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.near_row[a]]), r.origin[a]), r.inv_dir[a]);
+      __m256 df =
+          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.far_row[a]]), r.origin[a]), r.inv_dir[a]);
+      t_near = _mm256_max_ps(dn, t_near);
+      t_far = _mm256_min_ps(df, t_far);
+    }
+    __m256 t0 = _mm256_max_ps(_mm256_min_ps(_mm256_mul_ps(t_near, _mm256_set1_ps(kDown)),
+                                            _mm256_mul_ps(t_near, _mm256_set1_ps(kUp))),
+                              _mm256_set1_ps(tmin));
+    __m256 t1 = _mm256_min_ps(
+        _mm256_max_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kUp)), _mm256_mul_ps(t_far, _mm256_set1_ps(kDown))),
+        _mm256_set1_ps(tmax));
+    _mm256_store_ps(t_near_out, t0);
+    if (t_far_out) _mm256_store_ps(t_far_out, t1);
+    return uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)));
+  }
+}
+
+#include "wide_bvh_filter.inc"
+
+#include "wide_bvh_kernel.inc"
+
+}  // namespace
+}  // namespace wide_avx2
+#pragma GCC pop_options
+
+#endif  // __x86_64__
+
+template <class Recorder>
+bool WideBvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+  const Impl& m = *impl_;
+  bool wide8 = width_ == 8;
+  switch (wide_simd_in_use()) {
+#if defined(__x86_64__)
+    case WideSimd::avx2:
+      return wide8 ? wide_avx2::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_avx2::walk<4>(m, ray, hit, any_hit, rec);
+    case WideSimd::sse:
+      return wide8 ? wide_sse::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_sse::walk<4>(m, ray, hit, any_hit, rec);
+#endif
+    default:
+      return wide8 ? wide_scalar::walk<8>(m, ray, hit, any_hit, rec)
+                   : wide_scalar::walk<4>(m, ray, hit, any_hit, rec);
+  }
+}
+
+bool WideBvh::record(const Ray& ray, Hit* hit, bool any_hit, EventRecorder& rec) const {
+  return traverse(ray, hit, any_hit, rec);
+}
+
+template bool WideBvh::traverse<NullRecorder>(const Ray&, Hit*, bool, NullRecorder&) const;
+template bool WideBvh::traverse<CountingRecorder>(const Ray&, Hit*, bool, CountingRecorder&) const;
+template bool WideBvh::traverse<EventRecorder>(const Ray&, Hit*, bool, EventRecorder&) const;
+
+}  // namespace raystep
