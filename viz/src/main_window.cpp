@@ -445,7 +445,7 @@ void MainWindow::showSahCurve() {
     sahChart_->showMessage(
         kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
                 "cost curve.")
-           : tr("The SAH inspector shows kd-tree nodes: build a kd-tree."));
+           : tr("The SAH inspector shows kd-tree and binary BVH nodes: build a kd-tree or a BVH."));
     return;
   }
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));

@@ -643,7 +643,11 @@ std::string bvhDecision(const BvhChoice& c) {
   bool byDistance = true;
   for (const BoxTestMark* m : hits) byDistance &= first->tNear <= m->tNear;
   text += ".\nNearer first: enter child " + std::to_string(first->child) + " (t_near = " + num(first->tNear) + ")";
-  text += byDistance ? "" : " (chosen by the ray's direction on the split axis, not by t_near)";
+  bool tie = false;
+  for (const BoxTestMark* m : hits) tie |= m != first && m->tNear == first->tNear;
+  text += !byDistance ? " (chosen by the ray's direction on the split axis, not by t_near)"
+          : tie       ? " (a tie: the same t_near, so the child tested first goes first)"
+                      : "";
   if (!c.pushed.empty()) {
     text += "; push ";
     for (size_t k = 0; k < c.pushed.size(); ++k) {
