@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
       wide.intersect_counted(r, &hit, c);
     }
     double k = 1.0 / double(rays.size());
+    std::printf("memory: %.2f MB\n", double(wide.memory_bytes()) / 1e6);
     std::printf(
         "%s %s %s: %zu rays, %zu hits, hits checksum %016llx; per ray: %.2f nodes, %.2f box tests, %.2f "
         "leaves, "

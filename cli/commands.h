@@ -38,7 +38,7 @@ struct RenderArgs {
   std::string scene;  // scene JSON or bare OBJ mesh
   std::string output;  // .png or .pfm
   StructureArgs structure;
-  std::string heatmap;  // cells | tests | mailbox: write a heat map of per-pixel work instead of the picture
+  std::string heatmap;  // cells | tests | mailbox | boxes: a heat map of per-pixel work instead of the picture
   std::optional<std::string> aa;  // overrides the scene's anti-aliasing
   std::optional<std::string> size;  // "WxH", overrides the scene's size
   int threads = 0;  // 0: all cores

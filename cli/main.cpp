@@ -79,8 +79,9 @@ int main(int argc, char** argv) {
   render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
   add_structure_options(render_cmd, render.structure, "grid");
   render_cmd->add_option("--heatmap", render.heatmap,
-                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox")
-      ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox"}));
+                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox"
+                         " | boxes (bvh: bounding-box tests)")
+      ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox", "boxes"}));
   render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")

@@ -541,3 +541,47 @@ TEST_F(LessonCli, AnswersPrintsEachQuestion) {
   EXPECT_EQ(r.out.rfind("step 2 'Two' (dda-axis, line 18): ", 0), 0u) << r.out;
   EXPECT_NE(r.out.find("\n  tMax = ("), std::string::npos) << r.out;
 }
+
+// Bounding volume hierarchies (trace format version 3): `raystep trace --accel bvh` writes a trace with box
+// tests and the nodes' children that `trace-info` reads back; the CSV has the parent column; the boxes heat
+// map; lesson steps on a BVH.
+TEST_F(Cli, TraceThroughABvhReadsBackWithTraceInfo) {
+  const std::string cornell = scene("cornell.json");
+  for (const char* accel : {"bvh", "bvh-median"}) {
+    SCOPED_TRACE(accel);
+    Outcome r = run("trace " + cornell + " --accel " + accel + " --bvh-order axis --pixel 160,200 -o " +
+                    path("b.json"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string text = slurp(path("b.json"));
+    EXPECT_NE(text.find("\"kind\":\"" + std::string(accel) + "\""), std::string::npos);
+    EXPECT_NE(text.find("\"order\":\"split_axis\""), std::string::npos);
+    EXPECT_NE(text.find("\"type\":\"box_test\",\"parent\":-1,\"node\":0,\"depth\":0,\"hit\":true"),
+              std::string::npos);
+    EXPECT_NE(text.find("\"children\":[1,"), std::string::npos);
+    Outcome info = run("trace-info " + path("b.json"));
+    ASSERT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find("valid raystep trace, version 3"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find(" box tests, "), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("hit primitive"), std::string::npos) << info.out;
+  }
+  // An anti-aliased pixel's samples, each ray through the BVH.
+  ASSERT_EQ(run("trace " + cornell + " --accel bvh --pixel 160,200 --aa jitter:2 -o " + path("p.json")).code,
+            0);
+  EXPECT_EQ(run("trace-info " + path("p.json")).code, 0);
+  // CSV: the box tests' parent in the last column.
+  ASSERT_EQ(run("trace " + cornell + " --accel bvh --pixel 160,200 --format csv -o " + path("b.csv")).code,
+            0);
+  const std::string csv = slurp(path("b.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')).substr(csv.find('\n') - 7), ",parent");
+  EXPECT_NE(csv.find(",box_test,"), std::string::npos);
+  // A damaged trace: one line, exit code 2.
+  std::string bad = slurp(path("b.json"));
+  bad.replace(bad.find("\"parent\":-1,\"node\":0"), 20, "\"parent\":-1,\"node\":1");
+  const std::string bad_path = write("bad.json", bad);
+  expect_error(run("trace-info " + bad_path), bad_path + ":");
+  // Heat maps of box tests.
+  Outcome heat = run("render " + cornell + " --accel bvh --heatmap boxes --size 40x40 -o " + path("h.png"));
+  ASSERT_EQ(heat.code, 0) << heat.err;
+  EXPECT_NE(heat.out.find("bounding-box tests"), std::string::npos) << heat.out;
+  expect_error(run("render " + cornell + " --heatmap box --size 40x40 -o " + path("h.png")), "--heatmap");
+}

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "raystep/accel/structure_options.h"
+#include "raystep/render/camera.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
@@ -20,7 +21,36 @@ TEST(Heatmap, QuantitiesByName) {
   EXPECT_EQ(parse_heat_quantity("tests"), HeatQuantity::tests);
   EXPECT_EQ(parse_heat_quantity("mailbox"), HeatQuantity::mailbox);
   EXPECT_EQ(parse_heat_quantity("samples"), HeatQuantity::samples);
+  EXPECT_EQ(parse_heat_quantity("boxes"), HeatQuantity::boxes);
+  EXPECT_STREQ(heat_quantity_label(HeatQuantity::boxes), "bounding-box tests");
   EXPECT_THROW(parse_heat_quantity("rays"), InputError);
+}
+
+// A BVH's maps: boxes counts its box tests, cells its nodes visited, pixel by pixel as the counting recorder
+// counts the centre ray; a structure without boxes (the grid) has none.
+TEST(Heatmap, BoxesAndNodesOfABvh) {
+  Scene scene = load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json");
+  std::unique_ptr<Accelerator> bvh = make_accelerator("bvh", StructureOptions{});
+  bvh->build(scene.geometry);
+  const int w = 40, h = 30;
+  const HeatMap boxes = compute_heatmap(scene.camera, *bvh, w, h, HeatQuantity::boxes, 2);
+  const HeatMap nodes = compute_heatmap(scene.camera, *bvh, w, h, HeatQuantity::cells, 1);
+  EXPECT_EQ(boxes.quantity, HeatQuantity::boxes);
+  ProjectiveCamera cam(scene.camera, w, h);
+  for (int y = 0; y < h; y += 7)
+    for (int x = 0; x < w; x += 3) {
+      CountingRecorder c;
+      Hit hit;
+      bvh->intersect_counted(cam.generate(float(x) + 0.5f, float(y) + 0.5f), &hit, c);
+      EXPECT_EQ(boxes.values[size_t(y) * w + x], c.box_tests) << x << "," << y;
+      EXPECT_EQ(nodes.values[size_t(y) * w + x], c.nodes) << x << "," << y;
+    }
+  // Every visited inner node tests two boxes, and the walk starts with the root's: more boxes than nodes.
+  EXPECT_GT(boxes.mean_value, nodes.mean_value);
+  EXPECT_GT(nodes.max_value, 2u);
+  std::unique_ptr<Accelerator> grid = make_accelerator("grid", StructureOptions{});
+  grid->build(scene.geometry);
+  EXPECT_EQ(compute_heatmap(scene.camera, *grid, w, h, HeatQuantity::boxes, 1).max_value, 0u);
 }
 
 TEST(Heatmap, SamplesMapHoldsTheValuesAndTheirStatistics) {

@@ -64,16 +64,17 @@ TEST(Lesson, EveryKeyCarriesOver) {
   Lesson l =
       parse_lesson_text(lesson_with("accel: kd-median\ngrid-res: 4,5,6\ngrid-density: 2.5\n"
                                     "grid-insert: bbox\nti: 40\ntt: 2\nempty-bonus: 0.5\nmax-depth: 12\n"
-                                    "leaf-size: 3\nmailbox: off\naa: adaptive:0.1:2\nsize: 64x48\n"
+                                    "leaf-size: 3\nmailbox: off\nbins: 8\nbvh-leaf: 2\nbvh-max-leaf: 6\n"
+                                    "bvh-order: axis\naa: adaptive:0.1:2\nsize: 64x48\n"
                                     "heat: tests\npixel: 10,20\nsecondary: on\nray: 1\nstep-to: leaf:2\n"
                                     "panel: sah\nnode-path: LR\ninspect: on\nsquare: 2\nfollow: on\n"
                                     "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n") +
                             "\n## Two\n\nNothing changes.\n",
                         kLesson);
   ASSERT_EQ(l.steps.size(), 2u);
-  EXPECT_EQ(l.steps[0].changes.size(), 27u);
+  EXPECT_EQ(l.steps[0].changes.size(), 31u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 30u);  // + step, node and sample, tested below
+  EXPECT_EQ(lesson_setting_keys().size(), 34u);  // + step, node and sample, tested below
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");
@@ -87,6 +88,14 @@ TEST(Lesson, EveryKeyCarriesOver) {
   EXPECT_EQ(s.structure.kd.max_depth, 12);
   EXPECT_EQ(s.structure.kd.leaf_size, 3);
   EXPECT_FALSE(s.structure.kd_mailboxes);
+  // The BVH takes the kd-tree's t_i, t_t and depth limit (as raystep's --ti, --tt, --max-depth), and its own.
+  EXPECT_FLOAT_EQ(s.structure.bvh.t_i, 40.f);
+  EXPECT_FLOAT_EQ(s.structure.bvh.t_t, 2.f);
+  EXPECT_EQ(s.structure.bvh.max_depth, 12);
+  EXPECT_EQ(s.structure.bvh.bins, 8);
+  EXPECT_EQ(s.structure.bvh.leaf_size, 2);
+  EXPECT_EQ(s.structure.bvh.max_leaf_size, 6);
+  EXPECT_EQ(s.structure.bvh_order, BvhOrder::split_axis);
   EXPECT_EQ(s.aa, "adaptive:0.1:2");
   EXPECT_EQ(s.size, (std::array<int, 2>{64, 48}));
   EXPECT_EQ(s.heat, "tests");
@@ -106,6 +115,36 @@ TEST(Lesson, EveryKeyCarriesOver) {
   EXPECT_TRUE(s.inspect);
   EXPECT_EQ(s.square, 2);
   EXPECT_TRUE(s.sample_overlay);
+}
+
+// The bounding volume hierarchies: every BVH name, its options on the GUI's command line (defaults left out),
+// box tests and skips as step kinds, the boxes heat map, and bad values refused.
+TEST(Lesson, BvhSettings) {
+  for (const char* name : {"bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"})
+    EXPECT_EQ(
+        parse_lesson_text(lesson_with(std::string("accel: ") + name + "\n"), kLesson).steps[0].state.accel,
+        name);
+  Lesson l =
+      parse_lesson_text(lesson_with("accel: bvh\nbins: 32\nbvh-order: axis\nheat: boxes\nmax-depth: 0\n"
+                                    "pixel: 1,2\nstep-to: box_test:3\n") +
+                            "## B\n```raystep\nstep-to: skip:1\nbvh-order: entry\nbins: 16\n```\n",
+                        kLesson);
+  const LessonState& a = l.steps[0].state;
+  EXPECT_EQ(a.structure.bvh.max_depth, kBvhMaxDepth);  // 0: the BVH's own limit
+  EXPECT_EQ(a.event.type, EventType::box_test);
+  EXPECT_EQ(a.heat, "boxes");
+  const std::vector<std::string> args = a.scripted_args();
+  const std::vector<std::string> expected = {"--accel",     "bvh",  "--bins",    "32",
+                                             "--bvh-order", "axis", "--heat",    "boxes",
+                                             "--pixel",     "1,2",  "--step-to", "box_test:3"};
+  EXPECT_EQ(std::vector<std::string>(args.begin() + 1, args.end()), expected);
+  EXPECT_EQ(l.steps[1].state.event.type, EventType::skip);
+  const std::vector<std::string> b = l.steps[1].state.scripted_args();
+  EXPECT_EQ(std::find(b.begin(), b.end(), "--bins"), b.end());  // back to the default
+  EXPECT_EQ(std::find(b.begin(), b.end(), "--bvh-order"), b.end());
+  for (const char* bad : {"accel: bvh2\n", "bins: 1\n", "bins: 257\n", "bvh-leaf: 0\n", "bvh-max-leaf: x\n",
+                          "bvh-order: nearest\n", "heat: box\n", "max-depth: 65\n", "step-to: box:1\n"})
+    EXPECT_THROW(parse_lesson_text(lesson_with(bad), kLesson), InputError) << bad;
 }
 
 // A sample names a ray of the pixel's trace: it and `ray` replace each other, and a new pixel clears both it
@@ -209,7 +248,8 @@ TEST(Lesson, ErrorsNameFileAndLine) {
             f + "7: pixel '3,x': expected X,Y whole numbers >= 0, or none");
   EXPECT_EQ(error_of(lesson_with("pixel: -1,2\n")),
             f + "7: pixel '-1,2': expected X,Y whole numbers >= 0, or none");
-  EXPECT_EQ(error_of(lesson_with("accel: bvh\n")), f + "7: accel 'bvh': expected grid, kd or kd-median");
+  EXPECT_EQ(error_of(lesson_with("accel: bvh2\n")),
+            f + "7: accel 'bvh2': expected grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2\n")),
             f + "7: grid-res '1,2': expected NX,NY,NZ, each a whole number 1..4096, or none");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2,4097\n")).rfind(f + "7: grid-res '1,2,4097'", 0), 0u);
@@ -232,7 +272,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("size: 0x10\n")),
             f + "7: size '0x10': expected WxH with 1 <= W, H <= 16384, or scene");
   EXPECT_EQ(error_of(lesson_with("heat: nodes\n")),
-            f + "7: heat 'nodes': expected cells, tests, mailbox, samples, error or none");
+            f + "7: heat 'nodes': expected cells, tests, mailbox, boxes, samples, error or none");
   EXPECT_EQ(error_of(lesson_with("ray: -1\n")), f + "7: ray '-1': expected a whole number >= 0");
   EXPECT_EQ(error_of(lesson_with("step: 1.5\n")),
             f + "7: step '1.5': expected an event index, a whole number >= 0");

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -388,7 +389,7 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
                 .rfind(f + "6: step 'S': step 100000: the ray has ", 0),
             0u);
   EXPECT_EQ(check_error(head + "node: 3\n```\n"),
-            f + "5: step 'S': node: no kd-tree (accel: kd or kd-median)");
+            f + "5: step 'S': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or bvh-median)");
   EXPECT_EQ(check_error(head + "accel: kd\nnode-path: LLLLLLLLLLLLLLLLLLLLLLLLLL\n```\n")
                 .rfind(f + "6: step 'S': node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLL': ", 0),
             0u);
@@ -399,7 +400,7 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
             f + "5: step 'S': step-to cell:2: no traced pixel (pixel: X,Y)");
   // A later step without the setting in it: the step's heading.
   EXPECT_EQ(check_error(head + "accel: kd\nnode: 1\n```\n## B\n```raystep\naccel: grid\n```\n"),
-            f + "10: step 'B': node: no kd-tree (accel: kd or kd-median)");
+            f + "10: step 'B': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or bvh-median)");
   EXPECT_EQ(check_error(head + "pixel: 160,200\n```\n## B\n\nask\n\n```raystep\nask: next-pop\n```\n"),
             f + "12: step 'B': next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
 }
@@ -445,6 +446,57 @@ TEST(LessonRunner, AnAntiAliasedPixelIsTracedSampleBySample) {
             f + "7: step 'S': square 0: the pixel is not sampled adaptively (aa: adaptive:T[:D])");
   EXPECT_EQ(check_error(head + "aa: adaptive:0.1:1\nsquare: 99\n```\n"),
             f + "7: step 'S': square 99: the pixel's subdivision has 5 squares (0..4)");
+}
+
+// A lesson on the BVH: the runner records the pixel's walk through the BVH the state names (its builder,
+// order and bins as the trace's parameters), steps to its box tests, selects a node by id, and says what does
+// not apply (an L/R path, an id beyond the tree, bad options) with the responsible line.
+TEST(LessonRunner, RecordsBvhTraces) {
+  LessonRunner runner;
+  Lesson l = parse_lesson_text(
+      "# T\n## A\n```raystep\nscene: ../scenes/cornell.json\naccel: bvh\npixel: 160,200\n"
+      "step-to: box_test:3\nnode: 2\n```\n## B\n```raystep\naccel: bvh-median\nbvh-order: axis\nbins: 8\n"
+      "step-to: push:1\nheat: boxes\n```\n",
+      kSource + "/lessons/t.md");
+  EXPECT_EQ(check_lesson(l), 0);
+  StepWorld a = runner.enter(l.steps[0].state);
+  ASSERT_TRUE(a.trace);
+  EXPECT_EQ(a.trace->structure.kind, "bvh");
+  EXPECT_EQ(a.trace->version, kTraceVersion);
+  const Event& box = a.trace->rays[0].events[size_t(a.step)];
+  EXPECT_EQ(box.type, EventType::box_test);
+  EXPECT_EQ(a.node, 2);
+  // The recorded walk ends where the structure's own kernel does.
+  Hit hit;
+  a.accel->intersect(a.trace->rays[0].ray, &hit);
+  EXPECT_EQ(a.trace->rays[0].events.back().prim, hit.prim);
+  EXPECT_TRUE(hit.found());
+
+  StepWorld b = runner.enter(l.steps[1].state);
+  ASSERT_TRUE(b.trace);
+  EXPECT_EQ(b.trace->structure.kind, "bvh-median");
+  std::map<std::string, std::string> text;
+  std::map<std::string, double> number;
+  for (const TraceParam& p : b.trace->structure.params)
+    if (p.is_text)
+      text[p.key] = p.text;
+    else
+      number[p.key] = p.number;
+  EXPECT_EQ(text["order"], "split_axis");
+  EXPECT_EQ(number["bins"], 8.0);
+  EXPECT_EQ(b.trace->rays[0].events[size_t(b.step)].type, EventType::push);
+  EXPECT_NE(a.accel, b.accel);  // another structure, built for the new options
+
+  const std::string f = kSource + "/lessons/t.md:";
+  const std::string head = "# T\n## S\n```raystep\nscene: ../scenes/cornell.json\naccel: bvh\n";
+  EXPECT_EQ(check_error(head + "node: 99999\n```\n").rfind(f + "6: step 'S': node 99999: the BVH has ", 0),
+            0u);
+  EXPECT_EQ(
+      check_error(head + "node-path: LR\n```\n"),
+      f + "6: step 'S': node-path: a path of L (below) and R (above) names a kd-tree's node; give a BVH's "
+          "node by id (node: ID)");
+  EXPECT_EQ(check_error(head + "bvh-leaf: 4\nbvh-max-leaf: 2\n```\n"),
+            f + "7: step 'S': building the bvh: bvh: max_leaf_size must be at least leaf_size");
 }
 
 TEST(LessonRunner, AnswersEveryKindOnTheCornellBox) {

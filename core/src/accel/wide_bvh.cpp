@@ -43,6 +43,7 @@ class Collapser {
     m_.node_id.push_back(0);  // the root wide node is id 0
     m_.id_count = 1;
     emit(0, 0, 0);
+    while (m_.prims.size() % kWidePacket) m_.prims.push_back(kWideEmpty);
   }
 
  private:
@@ -105,13 +106,18 @@ class Collapser {
           wn.box[2 * a + 1][i] = k.box.hi[a];
         }
       if (leaf_like(kids[i])) {
+        // Leaves share packets: a leaf starts where the previous one ended, unless that would make it span
+        // more packets than it needs (then it starts a packet). The lanes of other leaves are masked off.
+        const uint32_t count = subtree_[kids[i]], P = uint32_t(kWidePacket);
+        const uint32_t lane = uint32_t(m_.prims.size()) % P;
+        if (lane != 0 && (lane + count + P - 1) / P > (count + P - 1) / P)
+          while (m_.prims.size() % P) m_.prims.push_back(kWideEmpty);
         uint32_t first = uint32_t(m_.prims.size());
         if (first >= kWideLeaf) throw InputError("", 0, "bvh: too many primitives for the wide BVH");
         gather(kids[i]);
         std::sort(m_.prims.begin() + first, m_.prims.end());  // a leaf's primitives in id order
         wn.child[i] = kWideLeaf | first;
         wn.count[i] = uint32_t(m_.prims.size()) - first;
-        while (m_.prims.size() % kWidePacket) m_.prims.push_back(kWideEmpty);
         m_.max_depth = std::max(m_.max_depth, depth + 1);
       } else {
         wn.child[i] = emit(kids[i], child_id, depth + 1);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -35,13 +36,16 @@ class StepError : public InputError {
 
 // Every build option, as text: equal keys build equal structures.
 std::string structure_key(const std::string& accel, const StructureOptions& o) {
-  char buf[256];
+  char buf[384];
   const GridOptions& g = o.grid;
-  std::snprintf(buf, sizeof buf, "%s|%.9g|%d,%d,%d|%d|%.9g|%.9g|%.9g|%d|%d|%.9g|%d", accel.c_str(),
-                double(g.density), g.resolution ? (*g.resolution)[0] : 0,
+  const BvhOptions& b = o.bvh;
+  std::snprintf(buf, sizeof buf, "%s|%.9g|%d,%d,%d|%d|%.9g|%.9g|%.9g|%d|%d|%.9g|%d|%.9g|%.9g|%d|%d|%d|%d|%d",
+                accel.c_str(), double(g.density), g.resolution ? (*g.resolution)[0] : 0,
                 g.resolution ? (*g.resolution)[1] : 0, g.resolution ? (*g.resolution)[2] : 0,
                 int(g.exact_insert), double(o.kd.t_i), double(o.kd.t_t), double(o.kd.empty_bonus),
-                o.kd.max_depth, o.kd.leaf_size, double(o.kd.reference_budget), int(o.kd_mailboxes));
+                o.kd.max_depth, o.kd.leaf_size, double(o.kd.reference_budget), int(o.kd_mailboxes),
+                double(b.t_i), double(b.t_t), b.bins, b.leaf_size, b.max_leaf_size, b.max_depth,
+                int(o.bvh_order));
   return buf;
 }
 
@@ -110,7 +114,7 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
       built->accel->build(cache.scene->geometry);
     } catch (const InputError& e) {
       fail({"accel", "grid-res", "grid-density", "grid-insert", "ti", "tt", "empty-bonus", "max-depth",
-            "leaf-size", "mailbox"},
+            "leaf-size", "mailbox", "bins", "bvh-leaf", "bvh-max-leaf", "bvh-order"},
            std::string("building the ") + state.accel + ": " + e.detail());
     }
     cache.accel = std::shared_ptr<const Accelerator>(built, built->accel.get());
@@ -220,18 +224,28 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
     }
   }
 
-  // The kd-tree's selected node: by id, by path, or the root for the SAH panel.
+  // The tree's selected node: by id, by path (kd-trees: L below, R above), or the root for the SAH panel. A
+  // BVH's ids are its traces' ids.
   const KdTree* kd = dynamic_cast<const KdTree*>(cache.accel.get());
+  const Bvh* bvh = dynamic_cast<const Bvh*>(cache.accel.get());
   if (state.node.by != NodeSpec::By::none || state.panel == "sah" || state.panel == "kd") {
     const char* what = state.node.by == NodeSpec::By::id     ? "node"
                        : state.node.by == NodeSpec::By::path ? "node-path"
                                                              : "panel";
-    if (!kd) fail({what, "accel"}, std::string(what) + ": no kd-tree (accel: kd or kd-median)");
-    const size_t count = kd->data().nodes.size();
+    if (!kd && !bvh)
+      fail({what, "accel"}, std::string(what) +
+                                ": no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or "
+                                "bvh-median)");
+    if (!kd && state.node.by == NodeSpec::By::path)
+      fail({"node-path", "accel"},
+           "node-path: a path of L (below) and R (above) names a kd-tree's node; give a "
+           "BVH's node by id (node: ID)");
+    const size_t count = kd ? kd->data().nodes.size() : bvh->data().nodes.size();
+    const char* tree = kd ? "kd-tree" : "BVH";
     w.node = state.panel == "sah" ? 0 : -1;
     if (state.node.by == NodeSpec::By::id) {
       if (size_t(state.node.id) >= count)
-        fail({"node"}, "node " + std::to_string(state.node.id) + ": the kd-tree has " +
+        fail({"node"}, "node " + std::to_string(state.node.id) + ": the " + tree + " has " +
                            std::to_string(count) + " nodes (0.." + std::to_string(count - 1) + ")");
       w.node = state.node.id;
     }

@@ -3,6 +3,7 @@
 // so a value a lesson accepts is one the GUI accepts too.
 #include "raystep/lesson/lesson_state.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -106,7 +107,9 @@ bool parse_step_kind(const std::string& name, EventType* type) {
                                                          {"node", EventType::node},
                                                          {"push", EventType::push},
                                                          {"pop", EventType::pop},
-                                                         {"leaf", EventType::leaf}};
+                                                         {"leaf", EventType::leaf},
+                                                         {"box_test", EventType::box_test},
+                                                         {"skip", EventType::skip}};
   auto it = kinds.find(name);
   if (it == kinds.end()) return false;
   *type = it->second;
@@ -137,7 +140,9 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"scene", set_scene},
                   {"accel",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
-                     if (v != "grid" && v != "kd" && v != "kd-median") bad(k, v, "grid, kd or kd-median");
+                     if (v != "grid" && v != "kd" && v != "kd-median" && v != "bvh" && v != "bvh-sweep" &&
+                         v != "bvh-median" && v != "bvh4" && v != "bvh8")
+                       bad(k, v, "grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8");
                      s.accel = v;
                    }},
                   {"grid-res",
@@ -163,13 +168,15 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      double d;
                      if (!parse_number(v, &d) || !(d > 0.0 && d <= 1e4)) bad(k, v, "a number in (0, 10000]");
-                     s.structure.kd.t_i = float(d);
+                     s.structure.kd.t_i = float(d);  // the BVH's SAH takes the kd-tree's constants
+                     s.structure.bvh.t_i = float(d);
                    }},
                   {"tt",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      double d;
                      if (!parse_number(v, &d) || !(d >= 0.0 && d <= 1e4)) bad(k, v, "a number in [0, 10000]");
                      s.structure.kd.t_t = float(d);
+                     s.structure.bvh.t_t = float(d);
                    }},
                   {"empty-bonus",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -179,8 +186,13 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    }},
                   {"max-depth",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
-                     if (!parse_int(v, 0, kKdMaxDepth, &s.structure.kd.max_depth))
-                       bad(k, v, "a whole number 0.." + std::to_string(kKdMaxDepth) + " (0: by the rule)");
+                     if (!parse_int(v, 0, std::min(kKdMaxDepth, kBvhMaxDepth), &s.structure.kd.max_depth))
+                       bad(k, v,
+                           "a whole number 0.." + std::to_string(std::min(kKdMaxDepth, kBvhMaxDepth)) +
+                               " (0: by the rule)");
+                     // The BVH's limit, as raystep --max-depth sets it (0: kBvhMaxDepth).
+                     const int depth = s.structure.kd.max_depth;
+                     s.structure.bvh.max_depth = depth == 0 ? kBvhMaxDepth : depth;
                    }},
                   {"leaf-size",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -189,6 +201,26 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    }},
                   {"mailbox", [](LessonState& s, const std::string& k, const std::string& v,
                                  const std::string&) { s.structure.kd_mailboxes = parse_on_off(k, v); }},
+                  // The BVH's own options, named as raystep's --bins, --bvh-leaf, --bvh-max-leaf, --bvh-order.
+                  {"bins",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (!parse_int(v, 2, 256, &s.structure.bvh.bins)) bad(k, v, "a whole number 2..256");
+                   }},
+                  {"bvh-leaf",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (!parse_int(v, 1, 1000000, &s.structure.bvh.leaf_size)) bad(k, v, "a whole number >= 1");
+                   }},
+                  {"bvh-max-leaf",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     // At least bvh-leaf: checked when the structure is built (the order of the keys is free).
+                     if (!parse_int(v, 1, 1000000, &s.structure.bvh.max_leaf_size))
+                       bad(k, v, "a whole number >= 1");
+                   }},
+                  {"bvh-order",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (v != "entry" && v != "axis") bad(k, v, "entry or axis");
+                     s.structure.bvh_order = v == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+                   }},
                   {"aa",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v == "scene") return void(s.aa.clear());
@@ -212,8 +244,9 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"heat",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v == "none") return void(s.heat.clear());
-                     if (v != "cells" && v != "tests" && v != "mailbox" && v != "samples" && v != "error")
-                       bad(k, v, "cells, tests, mailbox, samples, error or none");
+                     if (v != "cells" && v != "tests" && v != "mailbox" && v != "boxes" && v != "samples" &&
+                         v != "error")
+                       bad(k, v, "cells, tests, mailbox, boxes, samples, error or none");
                      s.heat = v;
                    }},
                   {"pixel",
@@ -267,7 +300,7 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                        bad(k, v,
                            "KIND:K with K >= 1 and KIND one of cell, prim_test, mailbox_hit, hit_deferred, "
                            "hit, ray_end, "
-                           "node, push, pop, leaf");
+                           "node, push, pop, leaf, box_test, skip");
                      e.text = v;
                      s.event = e;
                    }},
@@ -378,6 +411,12 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (kd.max_depth != defaults.kd.max_depth) opt("max-depth", std::to_string(kd.max_depth));
   if (kd.leaf_size != defaults.kd.leaf_size) opt("leaf-size", std::to_string(kd.leaf_size));
   if (structure.kd_mailboxes != defaults.kd_mailboxes) opt("mailbox", structure.kd_mailboxes ? "on" : "off");
+  const BvhOptions& bvh = structure.bvh;
+  if (bvh.bins != defaults.bvh.bins) opt("bins", std::to_string(bvh.bins));
+  if (bvh.leaf_size != defaults.bvh.leaf_size) opt("bvh-leaf", std::to_string(bvh.leaf_size));
+  if (bvh.max_leaf_size != defaults.bvh.max_leaf_size) opt("bvh-max-leaf", std::to_string(bvh.max_leaf_size));
+  if (structure.bvh_order != defaults.bvh_order)
+    opt("bvh-order", structure.bvh_order == BvhOrder::split_axis ? "axis" : "entry");
   if (!aa.empty()) opt("aa", aa);
   if (size) opt("size", std::to_string((*size)[0]) + "x" + std::to_string((*size)[1]));
   if (!heat.empty()) opt("heat", heat);

@@ -32,10 +32,10 @@ struct NodeSpec {
 struct LessonState {
   std::string scene;  // the path as resolved against the lesson file's folder ("" before the first scene)
   std::string accel = "grid";
-  StructureOptions structure;  // grid and kd-tree options, as the command line sets them
+  StructureOptions structure;  // grid, kd-tree and BVH options, as the command line sets them
   std::string aa;              // "" : the scene's anti-aliasing
   std::optional<std::array<int, 2>> size;   // none: the scene's
-  std::string heat;                         // "": no overlay; else cells | tests | mailbox | samples | error
+  std::string heat;  // "": no overlay; else cells | tests | mailbox | boxes | samples | error
   std::optional<std::array<int, 2>> pixel;  // none: no traced pixel
   bool secondary = false;
   int ray = 0;
