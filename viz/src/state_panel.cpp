@@ -192,6 +192,11 @@ void StatePanel::refresh() {
     stack_->setRowCount(0);
     // Before a ray, the boxes of the structure that is built.
     const bool tree = session_->structure() && session_->structure()->kind != "grid";
+    const bool bvh = session_->structure() && isBvhKind(session_->structure()->kind);
+    treeBox_->setTitle(bvh ? tr("BVH: stack traversal, front to back") : tr("Tree: stack traversal"));
+    crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
+    mailBoxGroup_->setTitle(bvh ? tr("Primitives tested for this ray (no mailbox: each is in one leaf)")
+                                : tr("Mailbox: primitives tested for this ray"));
     treeBox_->setVisible(tree);
     gridBox_->setVisible(!tree);
     return;
