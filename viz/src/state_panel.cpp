@@ -193,9 +193,9 @@ void StatePanel::refresh() {
     // Before a ray, the boxes of the structure that is built.
     const bool tree = session_->structure() && session_->structure()->kind != "grid";
     const bool bvh = session_->structure() && isBvhKind(session_->structure()->kind);
-    treeBox_->setTitle(bvh ? tr("BVH: stack traversal, front to back") : tr("Tree: stack traversal"));
+    treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
     crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
-    mailBoxGroup_->setTitle(bvh ? tr("Primitives tested for this ray (no mailbox: each is in one leaf)")
+    mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
                                 : tr("Mailbox: primitives tested for this ray"));
     treeBox_->setVisible(tree);
     gridBox_->setVisible(!tree);
@@ -204,9 +204,9 @@ void StatePanel::refresh() {
   const bool tree = isTreeRay(*r);
   const bool bvh = isBvhRay(session_->trace(), *r);
   treeBox_->setVisible(tree || bvh);
-  treeBox_->setTitle(bvh ? tr("BVH: stack traversal, front to back") : tr("Tree: stack traversal"));
+  treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
   crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
-  mailBoxGroup_->setTitle(bvh ? tr("Primitives tested for this ray (no mailbox: each is in one leaf)")
+  mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
                               : tr("Mailbox: primitives tested for this ray"));
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
   if (tree || bvh) refreshTree(*r, s);
