@@ -386,8 +386,8 @@ TEST(Replay, ASecondTestOfTheNearestPrimitiveIsNotANewHit) {
   EXPECT_NE(second.find("already the nearest hit"), std::string::npos) << second;
 }
 
-// A BVH walk as the trace contract (version 3) writes it: root 0 with two overlapping leaves, 1 (prim 0) and 2
-// (prim 1). Both boxes are hit; the nearer, 1, is entered and 2 pushed; prim 0 hits at t = 1.2, so popped 2
+// A BVH walk as the trace contract (version 3) writes it: root 0 with two overlapping leaves, 1 (prim 0) and
+// 2 (prim 1). Both boxes are hit; the nearer, 1, is entered and 2 pushed; prim 0 hits at t = 1.2, so popped 2
 // (t_near = 1.5) is skipped and the hit is final.
 TracedRay bvhRay() {
   TracedRay r;
@@ -416,29 +416,29 @@ TracedRay bvhRay() {
     e.t_min_node = a;
     e.t_max_node = b;
   };
-  ev(EventType::ray_begin);                   // 0
-  tree(EventType::node, 0, 0, 1.f, 4.f);      // 1
-  box(1, true, 1.f, 3.f);                     // 2
-  box(2, true, 1.5f, 4.f);                    // 3: overlaps [1, 3]
-  tree(EventType::push, 2, 1, 1.5f, 4.f);     // 4
-  tree(EventType::node, 1, 1, 1.f, 3.f);      // 5
-  tree(EventType::leaf, 1, 1, 1.f, 3.f);      // 6
+  ev(EventType::ray_begin);                // 0
+  tree(EventType::node, 0, 0, 1.f, 4.f);   // 1
+  box(1, true, 1.f, 3.f);                  // 2
+  box(2, true, 1.5f, 4.f);                 // 3: overlaps [1, 3]
+  tree(EventType::push, 2, 1, 1.5f, 4.f);  // 4
+  tree(EventType::node, 1, 1, 1.f, 3.f);   // 5
+  tree(EventType::leaf, 1, 1, 1.f, 3.f);   // 6
   {
-    Event& e = ev(EventType::prim_test);      // 7
+    Event& e = ev(EventType::prim_test);  // 7
     e.prim = 0;
     e.hit = true;
     e.t = 1.2f;
   }
-  tree(EventType::pop, 2, 1, 1.5f, 4.f);      // 8
-  tree(EventType::skip, 2, 1, 1.5f, 4.f);     // 9
+  tree(EventType::pop, 2, 1, 1.5f, 4.f);   // 8
+  tree(EventType::skip, 2, 1, 1.5f, 4.f);  // 9
   {
-    Event& e = ev(EventType::hit_accepted);   // 10
+    Event& e = ev(EventType::hit_accepted);  // 10
     e.prim = 0;
     e.t = 1.2f;
     e.reason = AcceptReason::structure_done;
   }
   {
-    Event& e = ev(EventType::ray_end);        // 11
+    Event& e = ev(EventType::ray_end);  // 11
     e.prim = 0;
     e.t = 1.2f;
   }

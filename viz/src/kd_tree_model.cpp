@@ -101,8 +101,10 @@ class BvhShape final : public TreeShape {
 }  // namespace
 
 std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
-  if (const KdTree* kd = s.kdTree(); kd && !kd->data().nodes.empty()) return std::make_unique<KdShape>(kd->data());
-  if (const Bvh* bvh = s.bvh(); bvh && !bvh->data().nodes.empty()) return std::make_unique<BvhShape>(bvh->data());
+  if (const KdTree* kd = s.kdTree(); kd && !kd->data().nodes.empty())
+    return std::make_unique<KdShape>(kd->data());
+  if (const Bvh* bvh = s.bvh(); bvh && !bvh->data().nodes.empty())
+    return std::make_unique<BvhShape>(bvh->data());
   return nullptr;
 }
 
@@ -160,7 +162,9 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   if (role == Qt::DisplayRole) {
     switch (index.column()) {
       case SideColumn:
-        return tree_->parent(id) < 0 ? tr("root") : index.row() == 0 ? QStringLiteral("L") : QStringLiteral("R");
+        return tree_->parent(id) < 0 ? tr("root")
+               : index.row() == 0    ? QStringLiteral("L")
+                                     : QStringLiteral("R");
       case NodeColumn:
         return id;
       case DepthColumn:
@@ -168,7 +172,8 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
       case WhatColumn:
         return tree_->what(id);
       case CostColumn:
-        return QString::number(double(tree_->cost(id)), 'g', 5);  // 3.6298e+06 fits the column; 3629800.0 did not
+        return QString::number(double(tree_->cost(id)), 'g',
+                               5);  // 3.6298e+06 fits the column; 3629800.0 did not
     }
   } else if (role == Qt::ToolTipRole) {
     const Bounds3 box = tree_->box(id);

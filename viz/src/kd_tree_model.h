@@ -39,7 +39,7 @@ class TreeShape {
   virtual int32_t depth(uint32_t node) const = 0;
   virtual bool leaf(uint32_t node) const = 0;
   virtual uint32_t child(uint32_t node, int row) const = 0;  // row 0 or 1 of an inner node
-  virtual QString what(uint32_t node) const = 0;              // "split x = 0.5", "leaf, 3 primitives"
+  virtual QString what(uint32_t node) const = 0;             // "split x = 0.5", "leaf, 3 primitives"
   virtual QString whatHeader() const = 0;
   virtual float cost(uint32_t node) const = 0;
   virtual Bounds3 box(uint32_t node) const = 0;

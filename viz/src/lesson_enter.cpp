@@ -158,8 +158,9 @@ void enterState(MainWindow& w, const LessonState& st) {
                        : st.node.by == NodeSpec::By::path ? "--node-path"
                                                           : "--panel";
     if (!kd && !bvh)
-      fail(std::string(what) + ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
-                               "bvh-sweep or bvh-median)");
+      fail(std::string(what) +
+           ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
+           "bvh-sweep or bvh-median)");
     const size_t count = kd ? kd->data().nodes.size() : bvh->data().nodes.size();
     const std::string name = kd ? "kd-tree" : "BVH";
     if (st.node.by == NodeSpec::By::id) {
@@ -170,7 +171,8 @@ void enterState(MainWindow& w, const LessonState& st) {
     }
     if (st.node.by == NodeSpec::By::path) {
       try {
-        node = int(kd ? kd_node_by_path(kd->data(), st.node.path) : bvh_node_by_path(bvh->data(), st.node.path));
+        node =
+            int(kd ? kd_node_by_path(kd->data(), st.node.path) : bvh_node_by_path(bvh->data(), st.node.path));
       } catch (const InputError& e) {
         std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
         if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)

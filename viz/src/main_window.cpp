@@ -156,7 +156,8 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
     const bool kd = session_->structure() && treeShapeOf(*session_->structure());
     const bool isBvh = session_->structure() && session_->structure()->bvh();
-    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector") : tr("kd-tree: nodes and SAH inspector"));
+    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector")
+                                  : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
@@ -422,18 +423,20 @@ void MainWindow::showBvhSahCurve() {
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
   BvhOptions options = bvh->options();
   QString path = QString::fromStdString(bvhNodePath(bvh->data(), uint32_t(node)));
-  runTask("sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
-    auto t0 = std::chrono::steady_clock::now();
-    auto curve = std::make_shared<const BvhSahCurve>(
-        record_bvh_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
-    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    return std::function<void()>([this, structure, options, node, path, curve, ms] {
-      if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
-      sahChart_->setBvhCurve(curve, path, options.t_i, options.t_t);
-      statusBar()->showMessage(tr("SAH curve of BVH node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
-                               took(tr(", recorded"), ms));
-    });
-  });
+  runTask(
+      "sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
+        auto t0 = std::chrono::steady_clock::now();
+        auto curve = std::make_shared<const BvhSahCurve>(
+            record_bvh_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        return std::function<void()>([this, structure, options, node, path, curve, ms] {
+          if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
+          sahChart_->setBvhCurve(curve, path, options.t_i, options.t_t);
+          statusBar()->showMessage(
+              tr("SAH curve of BVH node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
+              took(tr(", recorded"), ms));
+        });
+      });
 }
 
 void MainWindow::showSahCurve() {
@@ -472,7 +475,8 @@ void MainWindow::exportSahCsv(const QString& path) {
   try {
     if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree or BVH node first");
     if (sahChart_->bvhCurve())
-      write_bvh_sah_csv(path.toStdString(), *sahChart_->bvhCurve());  // the columns of raystep sah --accel bvh
+      write_bvh_sah_csv(path.toStdString(),
+                        *sahChart_->bvhCurve());  // the columns of raystep sah --accel bvh
     else
       write_sah_csv(path.toStdString(), *sahChart_->curve());
     statusBar()->showMessage(tr("wrote %1").arg(path));

@@ -256,7 +256,9 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   return c;
 }
 
-bool isBvhKind(const std::string& kind) { return kind.rfind("bvh", 0) == 0; }
+bool isBvhKind(const std::string& kind) {
+  return kind.rfind("bvh", 0) == 0;
+}
 
 bool isBvhRay(const Trace* trace, const TracedRay& ray) {
   if (trace && isBvhKind(trace->structure.kind)) return true;
@@ -638,11 +640,13 @@ std::string bvhDecision(const BvhChoice& c) {
   for (size_t a = 0; a < hits.size(); ++a)
     for (size_t b = a + 1; b < hits.size(); ++b)
       overlap |= hits[a]->tNear <= hits[b]->tFar && hits[b]->tNear <= hits[a]->tFar;
-  if (overlap) text += ", and their intervals overlap: the boxes overlap along the ray (bounding volumes can overlap)";
+  if (overlap)
+    text += ", and their intervals overlap: the boxes overlap along the ray (bounding volumes can overlap)";
   if (!first) return text + ".";
   bool byDistance = true;
   for (const BoxTestMark* m : hits) byDistance &= first->tNear <= m->tNear;
-  text += ".\nNearer first: enter child " + std::to_string(first->child) + " (t_near = " + num(first->tNear) + ")";
+  text += ".\nNearer first: enter child " + std::to_string(first->child) + " (t_near = " + num(first->tNear) +
+          ")";
   bool tie = false;
   for (const BoxTestMark* m : hits) tie |= m != first && m->tNear == first->tNear;
   text += !byDistance ? " (chosen by the ray's direction on the split axis, not by t_near)"
@@ -674,8 +678,8 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
       int first = findEvent(ray, 0, EventType::node, true);
       if (first < 0) return "The ray misses the root's box (slab test): no node to visit.";
       const Event& root = ev[size_t(first)];
-      return "Slab test: the ray meets the root's box over [t_near, t_far] = [" + num(root.t_min_node) + ", " +
-             num(root.t_max_node) + "]; the walk starts at the root.";
+      return "Slab test: the ray meets the root's box over [t_near, t_far] = [" + num(root.t_min_node) +
+             ", " + num(root.t_max_node) + "]; the walk starts at the root.";
     }
     case EventType::node: {
       if (after && after->type == EventType::leaf)
@@ -689,18 +693,21 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
     }
     case EventType::box_test: {
       if (e.parent < 0)  // the root's own box, before the walk starts
-        return e.hit ? "Slab test: the ray meets the root's box over [t_near, t_far] = [" + num(e.t_min_node) +
-                           ", " + num(e.t_max_node) + "]; the walk starts at the root."
-                     : std::string("The ray misses the root's box (slab test): nothing in the scene can be hit.");
+        return e.hit ? "Slab test: the ray meets the root's box over [t_near, t_far] = [" +
+                           num(e.t_min_node) + ", " + num(e.t_max_node) + "]; the walk starts at the root."
+                     : std::string(
+                           "The ray misses the root's box (slab test): nothing in the scene can be hit.");
       std::string text = "Child " + std::to_string(e.node) + " of node " + std::to_string(e.parent) + ": ";
       if (e.hit)
-        text += "its box is hit over [t_near, t_far] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].";
+        text +=
+            "its box is hit over [t_near, t_far] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].";
       else
         text += s.nearestPrim >= 0
                     ? "its box is missed: the ray does not enter it before the nearest hit so far, t = " +
                           num(s.nearestT) + ", so nothing under it can give a nearer hit."
-                    : std::string("its box is missed (the slab intervals do not overlap): nothing under it can "
-                                  "be hit.");
+                    : std::string(
+                          "its box is missed (the slab intervals do not overlap): nothing under it can "
+                          "be hit.");
       BvhChoice c = bvhChoice(ray, s);
       if (c.valid && c.decided) text += "\n" + bvhDecision(c);
       return text;
@@ -711,8 +718,8 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
              std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
     case EventType::leaf: {
       size_t k = s.prims.size();
-      std::string head = "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " +
-                         num(e.t_max_node) + "]";
+      std::string head =
+          "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
       if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
       return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
              ". No mailbox: in a BVH each primitive is in exactly one leaf, so no primitive is tested twice "
@@ -724,7 +731,8 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
       if (after && after->type == EventType::skip) return head + "Is its box beyond the nearest hit?";
       if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
       return head + "The nearest hit so far, t = " + num(s.nearestT) +
-             ", is not before its t_near: a nearer hit may lie in its box (the boxes overlap, or the hit lies "
+             ", is not before its t_near: a nearer hit may lie in its box (the boxes overlap, or the hit "
+             "lies "
              "beyond it), so visit it.";
     }
     case EventType::skip:
@@ -745,7 +753,8 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
                ", and every node below it on the stack was skipped or starts later  =>  stop, the hit is "
                "final.";
       }
-      return "The stack is empty: every box the ray entered has been walked or skipped. The nearest hit, t = " +
+      return "The stack is empty: every box the ray entered has been walked or skipped. The nearest hit, t "
+             "= " +
              num(e.t) + ", is final.";
     }
     case EventType::ray_end:

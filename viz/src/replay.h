@@ -61,8 +61,8 @@ struct NodeCrossing {
   int32_t nearChild = -1, farChild = -1;  // -1: not visited from this node
 };
 
-// BVH: one child's box tested from the current inner node (lecture: "bounding volumes can overlap", so the ray
-// may enter more than one child). done: the test is at or before the current event.
+// BVH: one child's box tested from the current inner node (lecture: "bounding volumes can overlap", so the
+// ray may enter more than one child). done: the test is at or before the current event.
 struct BoxTestMark {
   int32_t child = -1;
   bool hit = false;

@@ -356,7 +356,8 @@ LeafReason kdReasonOf(BvhLeafReason r) {
 
 }  // namespace
 
-void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i, float t_t) {
+void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i,
+                           float t_t) {
   // The chart draws candidates against their plane's position across the node's box: a BVH candidate is the
   // plane between two bins of centroids, N left and right its sides' counts (no planar primitives: each
   // primitive goes to one side by its centroid).

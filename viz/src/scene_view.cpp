@@ -79,7 +79,8 @@ int addBoxFaces(vtkPoints* pts, vtkCellArray* polys, const glm::vec3& lo, const 
   vtkIdType base = pts->GetNumberOfPoints();
   for (int c = 0; c < 8; ++c)
     pts->InsertNextPoint(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
-  static const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  static const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                  {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
   for (auto& f : faces) {
     vtkIdType ids[4] = {base + f[0], base + f[1], base + f[2], base + f[3]};
     polys->InsertNextCell(4, ids);
@@ -361,7 +362,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.childEdgesActor = cellColoredActor(d.childEdgesData, 2.f);
   d.overlapActor = unlitActor(d.overlapData, palette::bvhOverlap, 3.f);
   d.skippedActor = unlitActor(d.skippedData, palette::bvhSkipped, 2.f);
-  for (vtkActor* a : {d.childEdgesActor.Get(), d.overlapActor.Get(), d.skippedActor.Get()}) d.overlay->AddActor(a);
+  for (vtkActor* a : {d.childEdgesActor.Get(), d.overlapActor.Get(), d.skippedActor.Get()})
+    d.overlay->AddActor(a);
   // A click without a drag picks the scene (a drag still turns the camera).
   d.picker->SetTolerance(0.0005);
   d.picker->PickFromListOn();
@@ -557,17 +559,18 @@ void SceneView::rebuildGeometry() {
   const bool bvhLegend = (session_->structure() && isBvhKind(session_->structure()->kind)) ||
                          (session_->trace() && isBvhKind(session_->trace()->structure.kind));
   if (d.haveTree && bvhLegend)
-    d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
-                      swatch(palette::bvhChildFirst, tr("first child tested")) +
-                      swatch(palette::bvhChildOther, tr("other child")) +
-                      swatch(palette::bvhOverlap, tr("children overlap")) +
-                      swatch(palette::stackNode, tr("on the stack")) + swatch(palette::visitedCell, tr("visited")) +
-                      swatch(palette::bvhSkipped, tr("skipped (beyond the hit)")) + hits +
-                      (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
-                      "<br>" + tr("Primitives of the current leaf (each in exactly one leaf: no mailbox): ") +
-                      swatch(palette::primPending, tr("not reached")) +
-                      swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
-                      swatch(palette::primMissed, tr("missed")));
+    d.legend->setText(
+        walk + swatch(palette::currentCell, tr("current node")) +
+        swatch(palette::bvhChildFirst, tr("first child tested")) +
+        swatch(palette::bvhChildOther, tr("other child")) +
+        swatch(palette::bvhOverlap, tr("children overlap")) + swatch(palette::stackNode, tr("on the stack")) +
+        swatch(palette::visitedCell, tr("visited")) +
+        swatch(palette::bvhSkipped, tr("skipped (beyond the hit)")) + hits +
+        (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
+        "<br>" + tr("Primitives of the current leaf (each in exactly one leaf: no mailbox): ") +
+        swatch(palette::primPending, tr("not reached")) +
+        swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
+        swatch(palette::primMissed, tr("missed")));
   else if (d.haveTree)
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
@@ -763,7 +766,8 @@ void SceneView::updateStep() {
         addBoxEdges(stpts, stlines, n->box.lo + inset, n->box.hi - inset);
       }
     // BVH: a popped node that is skipped is drawn as skipped (sage), not as the node the walk is in.
-    const bool skippedNow = std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
+    const bool skippedNow =
+        std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
     if (const TraceNode* n = skippedNow ? nullptr : d.node(d.currentNode)) {
       addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
       if (!n->leaf && n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
@@ -1142,7 +1146,8 @@ QJsonObject SceneView::dumpState() const {
     for (size_t k = 0; k + 1 < d.overlapsDrawn.size(); k += 2)
       overlaps.append(QJsonArray{d.overlapsDrawn[k], d.overlapsDrawn[k + 1]});
     for (int32_t id : s.skippedNodes) skipped.append(id);
-    o["bvh"] = QJsonObject{{"children_drawn", drawn}, {"overlaps_drawn", overlaps}, {"skipped_nodes", skipped}};
+    o["bvh"] =
+        QJsonObject{{"children_drawn", drawn}, {"overlaps_drawn", overlaps}, {"skipped_nodes", skipped}};
   }
   QJsonArray visited;
   for (int i : s.visitedCellEvents) {

@@ -2,8 +2,9 @@
 // it the replayed walk: the ray with its current [tmin, tmax] interval, the hit point, the current cell,
 // the cells already visited, and the current cell's primitives coloured by state; the kd-tree node selected
 // in the tree view. BVH: the current node's children's boxes, translucent in two colours with their overlap
-// outlined ("bounding volumes can overlap"), the stack, the visited and the skipped nodes. A click on the scene picks a point (the main window selects the leaf holding it). VTK stays inside
-// scene_view.cpp; actors are made once per scene or trace and only their data changes per step.
+// outlined ("bounding volumes can overlap"), the stack, the visited and the skipped nodes. A click on the
+// scene picks a point (the main window selects the leaf holding it). VTK stays inside scene_view.cpp; actors
+// are made once per scene or trace and only their data changes per step.
 #pragma once
 
 #include <memory>

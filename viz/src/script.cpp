@@ -171,7 +171,8 @@ void defineOptions(QCommandLineParser& p) {
   opt("tt", "kd and BVH: t_t, the cost of a traversal step (default 1).", "T");
   opt("empty-bonus", "kd: bonus in [0,1) for splits that cut off empty space (default 0).", "B");
   opt("max-depth",
-      "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); BVH: depth limit (0: 64).",
+      "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); BVH: depth limit (0: "
+      "64).",
       "D");
   opt("leaf-size", "kd: a node with at most this many primitives is a leaf (default 1).", "N");
   opt("mailbox", "kd: mailboxes on | off (default on).", "MODE");

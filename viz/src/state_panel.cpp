@@ -260,8 +260,9 @@ void StatePanel::refresh() {
                            .arg(k.pushes)
                            .arg(k.pops)
                            .arg(s.skippedNodes.size())
-                 : tree ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
-                        : tr("cells %1").arg(k.cells);
+                 : tree
+                     ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
+                     : tr("cells %1").arg(k.cells);
   counters_->setText(walk + tr("<br>primitive tests %1 &nbsp; hits %2 &nbsp; mailbox hits %3")
                                 .arg(k.prim_tests)
                                 .arg(k.prim_hits)
@@ -274,10 +275,11 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     const Event& n = r.events[size_t(s.nodeEvent)];
     const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
     const bool bvh = isBvhRay(session_->trace(), r);
-    QString what = !tn       ? QString(event_type_name(n.type))
-                   : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
-                   : bvh      ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
-                              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+    QString what =
+        !tn        ? QString(event_type_name(n.type))
+        : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
+        : bvh ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
+              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)

@@ -152,18 +152,19 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   bvhBuilder_->addItem(tr("object median"), "bvh-median");
   bvhBuilder_->addItem(tr("4-wide (SIMD)"), "bvh4");
   bvhBuilder_->addItem(tr("8-wide (SIMD)"), "bvh8");
-  bvhBuilder_->setToolTip(
-      tr("binned SAH: centroids in equal bins per axis (Wald 2007); full sweep: every centroid (the reference); "
-         "object median: the longest axis's median centroid; 4- and 8-wide: the binned tree collapsed into wide "
-         "nodes tested with SIMD (the fast one)"));
+  bvhBuilder_->setToolTip(tr(
+      "binned SAH: centroids in equal bins per axis (Wald 2007); full sweep: every centroid (the reference); "
+      "object median: the longest axis's median centroid; 4- and 8-wide: the binned tree collapsed into wide "
+      "nodes tested with SIMD (the fast one)"));
   b->addWidget(new QLabel(tr("builder")), 0, 0);
   b->addWidget(bvhBuilder_, 0, 1, 1, 3);
   bvhOrder_ = new QComboBox;
   bvhOrder_->setObjectName("bvhOrder");
   bvhOrder_->addItem(tr("entry distance"), "entry_distance");
   bvhOrder_->addItem(tr("split axis"), "split_axis");
-  bvhOrder_->setToolTip(tr("Which child is walked first (the nearer): the smaller t_near, or by the sign of the "
-                           "ray's direction on the node's split axis (binary BVH)"));
+  bvhOrder_->setToolTip(
+      tr("Which child is walked first (the nearer): the smaller t_near, or by the sign of the "
+         "ray's direction on the node's split axis (binary BVH)"));
   b->addWidget(new QLabel(tr("order")), 0, 4);
   b->addWidget(bvhOrder_, 0, 5);
   bvhTi_ = spin("bvhTi", 0.01, 10000.0, 1.0, 2, bdef.t_i);
@@ -263,13 +264,16 @@ StructureOptions StructurePanel::options() const {
   so.kd.leaf_size = leafSize_->value();
   so.kd_mailboxes = mailboxes_->isChecked();
   const QString bb = bvhBuilder_->currentData().toString();
-  so.bvh.builder = bb == "bvh-sweep" ? BvhBuilder::sweep : bb == "bvh-median" ? BvhBuilder::median : BvhBuilder::binned;
+  so.bvh.builder = bb == "bvh-sweep"    ? BvhBuilder::sweep
+                   : bb == "bvh-median" ? BvhBuilder::median
+                                        : BvhBuilder::binned;
   so.bvh.t_i = float(bvhTi_->value());
   so.bvh.t_t = float(bvhTt_->value());
   so.bvh.bins = bvhBins_->value();
   so.bvh.leaf_size = bvhLeafSize_->value();
   so.bvh.max_depth = bvhMaxDepth_->value();
-  so.bvh_order = bvhOrder_->currentData().toString() == "split_axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  so.bvh_order =
+      bvhOrder_->currentData().toString() == "split_axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
   return so;
 }
 

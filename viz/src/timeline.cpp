@@ -222,7 +222,8 @@ bool Timeline::playing() const { return timer_->isActive(); }
 void Timeline::offerUnit(bool tree) {
   QString k = kind_->currentData().toString();
   if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
-  if (!tree && (k == "node" || k == "leaf" || k == "pushpop" || k == "box_test" || k == "skip")) kind_->setCurrentIndex(kind_->findData("cell"));
+  if (!tree && (k == "node" || k == "leaf" || k == "pushpop" || k == "box_test" || k == "skip"))
+    kind_->setCurrentIndex(kind_->findData("cell"));
 }
 
 void Timeline::refresh() {
