@@ -1,4 +1,4 @@
-// raystep_wide_instructions primary|random MESH [N] [4|8]: traces N primary rays (a sqrt(N) x sqrt(N) image
+// raystep_wide_instructions primary|random MESH [N] [4|8] [scalar|sse|avx2]: traces N primary rays (a sqrt(N) x sqrt(N) image
 // of the mesh's camera) or N random rays through the wide BVH (8-wide unless told) with the null recorder,
 // counting instructions only around the traversal (callgrind client requests), and prints the walk's counters
 // per ray (nodes, box tests, leaves, pushes, skips, primitive tests), the kernel level, and a checksum of the
@@ -24,12 +24,20 @@ using namespace raystep;
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: raystep_wide_instructions primary|random MESH.obj [N] [4|8]\n");
+    std::fprintf(stderr, "usage: raystep_wide_instructions primary|random MESH.obj [N] [4|8] [scalar|sse|avx2]\n");
     return 2;
   }
   std::string kind = argv[1];
   size_t n = argc > 3 ? std::stoul(argv[3]) : 16384;
   int width = argc > 4 ? std::stoi(argv[4]) : 8;
+  if (argc > 5) {
+    std::string level = argv[5];
+    WideSimd simd = level == "scalar" ? WideSimd::scalar : level == "sse" ? WideSimd::sse : WideSimd::avx2;
+    if (!WideBvh::force_simd(simd)) {
+      std::fprintf(stderr, "error: this CPU cannot run the %s kernel\n", level.c_str());
+      return 2;
+    }
+  }
   try {
     Scene scene = load_scene(argv[2]);
     WideBvh wide(width);

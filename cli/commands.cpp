@@ -122,8 +122,11 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   }
   options.kd = kd_options(s);
   options.kd_mailboxes = s.kd_mailbox != "off";
-  options.bvh = bvh_options(s);
-  options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  // The BVH's options are checked only for a BVH (the kd-tree's --max-depth keeps its own message).
+  if (s.accel.rfind("bvh", 0) == 0) {
+    options.bvh = bvh_options(s);
+    options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  }
   try {
     return make_accelerator(s.accel, options);
   } catch (const InputError& e) {
@@ -349,7 +352,7 @@ int run_trace(const TraceArgs& a) {
   if (!records_events(*accel))
     throw InputError("", 0,
                      "trace: --accel " + a.structure.accel +
-                         " records no events (use grid, kd, kd-median, bvh, bvh-sweep or bvh-median)");
+                         " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
   auto* kd = dynamic_cast<KdTree*>(accel.get());
   if (a.build_events && !kd) throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");
 

@@ -564,6 +564,15 @@ TEST_F(Cli, TraceThroughABvhReadsBackWithTraceInfo) {
     EXPECT_NE(info.out.find(" box tests, "), std::string::npos) << info.out;
     EXPECT_NE(info.out.find("hit primitive"), std::string::npos) << info.out;
   }
+  // The wide BVH: its nodes have no split axis.
+  for (const char* accel : {"bvh4", "bvh8"}) {
+    ASSERT_EQ(run("trace " + cornell + " --accel " + accel + " --pixel 160,200 -o " + path("w.json")).code,
+              0);
+    EXPECT_NE(slurp(path("w.json")).find("\"axis\":null,\"children\":["), std::string::npos);
+    Outcome info = run("trace-info " + path("w.json"));
+    ASSERT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find("structure " + std::string(accel)), std::string::npos) << info.out;
+  }
   // An anti-aliased pixel's samples, each ray through the BVH.
   ASSERT_EQ(run("trace " + cornell + " --accel bvh --pixel 160,200 --aa jitter:2 -o " + path("p.json")).code,
             0);

@@ -110,17 +110,17 @@ TEST_F(StructureReports, CostNeverExceedsTheBoundOnTheCornellBox) {
                   "/scenes/cornell.json --size 20x20 --aa jitter:2 -o " + path("cost"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::vector<CsvRow> rows = read_csv(path("cost/report.csv"));
-  ASSERT_EQ(rows.size(), 7u);  // brute twice, four structures, adaptive sampling
+  ASSERT_EQ(rows.size(), 10u);  // brute twice, seven structures (bvol, grid, kd, kd-median, 3 BVHs), adaptive
   const double bound = num(rows[0], "bound");
   EXPECT_EQ(bound, 20.0 * 20 * 4 * 23 * 63 * 2);  // m^2 k^2 n (2^6 - 1)(1 + 1 light)
   for (const CsvRow& row : rows) EXPECT_LE(num(row, "tests"), bound) << row.at("render");
   // Every structure tests fewer primitives than brute force.
-  for (size_t i = 2; i < 6; ++i)
+  for (size_t i = 2; i < 9; ++i)
     EXPECT_LT(num(rows[i], "tests"), num(rows[1], "tests")) << rows[i].at("render");
   std::vector<CsvRow> factors = read_csv(path("cost/factors.csv"));
-  ASSERT_EQ(factors.size(), 6u);
+  ASSERT_EQ(factors.size(), 9u);
   EXPECT_EQ(factors[0]["factor"], "2^d");
-  EXPECT_EQ(factors[5]["factor"], "k^2");
+  EXPECT_EQ(factors[8]["factor"], "k^2");
   // Without -o: the table on stdout only.
   Outcome plain =
       run("cost " + std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json --size 8x8 --accel grid");
@@ -183,7 +183,7 @@ TEST_F(StructureReports, BadInputExitsTwoWithOneLine) {
   expect_error(run("grid-sweep " + scene + " --densities 65" + out), "--densities");
   expect_error(run("grid-sweep " + scene + " --densities nan" + out), "--densities");
   expect_error(run("grid-sweep " + scene + " --densities 1," + out), "--densities");
-  expect_error(run("cost " + scene + " --accel bvh" + out), "--accel: unknown accelerator 'bvh'");
+  expect_error(run("cost " + scene + " --accel octree" + out), "--accel: unknown accelerator 'octree'");
   expect_error(run("cost " + scene + " --aa jitter:0" + out), "");
   expect_error(run("cost " + scene + " --threads -1"), "--threads");
   std::ofstream(path("bad.json")) << "{ \"objects\": 3 }";

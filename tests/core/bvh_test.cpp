@@ -217,5 +217,158 @@ TEST(Bvh, EmptySceneAndFactory) {
   EXPECT_EQ(bvh->options().bins, 32);
 }
 
+// Collects a walk's events, as the trace recorder would.
+struct WalkLog {
+  static constexpr bool enabled = true;
+  enum class Kind { node, box, push, pop, skip, leaf, test, accepted, end };
+  struct Entry {
+    Kind kind;
+    TreeStep step{};
+    BoxTest box{};
+    uint32_t prim = 0;
+    bool hit = false;
+    float t = 0.f;
+  };
+  std::vector<Entry> log;
+  void ray_begin(const Ray&) { log.clear(); }
+  void cell(const GridCellStep&) {}
+  void box_entered(uint32_t, float) {}
+  void node(const TreeStep& s) { log.push_back({Kind::node, s}); }
+  void push(const TreeStep& s) { log.push_back({Kind::push, s}); }
+  void pop(const TreeStep& s) { log.push_back({Kind::pop, s}); }
+  void leaf(const TreeStep& s) { log.push_back({Kind::leaf, s}); }
+  void box_test(const BoxTest& b) { log.push_back({Kind::box, {}, b}); }
+  void skip(const TreeStep& s) { log.push_back({Kind::skip, s}); }
+  void prim_test(uint32_t p, bool h, float t) { log.push_back({Kind::test, {}, {}, p, h, t}); }
+  void mailbox_hit(uint32_t) {}
+  void hit_deferred(uint32_t, float, float) {}
+  void hit_accepted(uint32_t p, float t, AcceptReason) {
+    log.push_back({Kind::accepted, {}, {}, p, true, t});
+  }
+  void ray_end(const Hit& h) { log.push_back({Kind::end, {}, {}, uint32_t(h.prim), h.found(), h.t}); }
+};
+
+// The recorded walk of hundreds of random rays against the kernel's own answer and the rules of the walk:
+// pushes and pops balance (a nearest-hit walk empties its stack), a pop is the last push, a skip follows the
+// pop of an entry whose t_near lies beyond the final hit, a visited child had a box hit, each primitive is
+// tested once (no mailboxes needed), and the accepted hit is the nearest of the tests.
+TEST(Bvh, RecordedWalkAgreesWithTheKernel) {
+  Geometry g = make_soup(9, 300, 4);
+  for (BvhBuilder builder : kBuilders)
+    for (BvhOrder order : kOrders) {
+      auto bvh = make_bvh(g, builder, order);
+      const BvhData& d = bvh->data();
+      std::vector<Ray> rays = random_rays(g.bounds(), 600, 15);
+      WalkLog rec;
+      int pushes = 0, skips = 0;
+      for (const Ray& r : rays) {
+        Hit plain, recorded;
+        bvh->intersect(r, &plain);
+        bool found = bvh->traverse(r, &recorded, false, rec);
+        ASSERT_EQ(plain.prim, recorded.prim);
+        ASSERT_EQ(plain.t, recorded.t);
+        std::vector<WalkLog::Entry> stack;
+        std::map<uint32_t, int> tested;
+        std::map<int32_t, bool> box_hit;  // child -> its box was hit, since its parent's visit
+        float best = kInfinity;
+        int32_t best_prim = -1;
+        const WalkLog::Entry* last_pop = nullptr;
+        for (const WalkLog::Entry& e : rec.log) {
+          switch (e.kind) {
+            case WalkLog::Kind::box:
+              box_hit[e.box.child] = e.box.hit;
+              if (e.box.parent >= 0) {
+                EXPECT_EQ(d.info[size_t(e.box.child)].parent, e.box.parent);
+                EXPECT_EQ(e.box.depth, d.info[size_t(e.box.child)].depth);
+              }
+              if (e.box.hit) EXPECT_LE(e.box.t_near, e.box.t_far);
+              break;
+            case WalkLog::Kind::node:
+              EXPECT_TRUE(box_hit[e.step.node]) << "node " << e.step.node << " visited without a box hit";
+              EXPECT_EQ(e.step.depth, d.info[size_t(e.step.node)].depth);
+              break;
+            case WalkLog::Kind::push:
+              EXPECT_TRUE(box_hit[e.step.node]);
+              stack.push_back(e);
+              ++pushes;
+              break;
+            case WalkLog::Kind::pop:
+              ASSERT_FALSE(stack.empty());
+              EXPECT_EQ(stack.back().step.node, e.step.node);
+              EXPECT_EQ(stack.back().step.t_min, e.step.t_min);
+              stack.pop_back();
+              last_pop = &e;
+              break;
+            case WalkLog::Kind::skip:
+              ASSERT_NE(last_pop, nullptr);
+              EXPECT_EQ(last_pop->step.node, e.step.node);
+              EXPECT_TRUE(found);
+              EXPECT_GT(e.step.t_min, recorded.t) << "a skip only beyond the nearest hit";
+              ++skips;
+              break;
+            case WalkLog::Kind::leaf:
+              EXPECT_TRUE(d.nodes[size_t(e.step.node)].is_leaf());
+              break;
+            case WalkLog::Kind::test:
+              EXPECT_EQ(++tested[e.prim], 1) << "primitive " << e.prim << " tested twice";
+              if (e.hit && (e.t < best || (e.t == best && int32_t(e.prim) < best_prim))) {
+                best = e.t;
+                best_prim = int32_t(e.prim);
+              }
+              break;
+            case WalkLog::Kind::accepted:
+              EXPECT_EQ(int32_t(e.prim), recorded.prim);
+              break;
+            case WalkLog::Kind::end:
+              break;
+          }
+        }
+        EXPECT_TRUE(stack.empty()) << "a nearest-hit walk pops every push";
+        EXPECT_EQ(best_prim, recorded.prim);
+        ASSERT_EQ(rec.log.back().kind, WalkLog::Kind::end);
+      }
+      EXPECT_GT(pushes, 100);
+      EXPECT_GT(skips, 10) << "front-to-back walks skip boxes beyond the hit";
+    }
+}
+
+TEST(Bvh, CountedQueriesGiveTheSameHitsAndShadowRaysStopEarly) {
+  Geometry g = make_soup(10, 300, 2);
+  auto bvh = make_bvh(g, BvhBuilder::binned);
+  std::vector<Ray> rays = random_rays(g.bounds(), 2000, 16);
+  CountingRecorder nearest, any;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    bvh->intersect(r, &a);
+    bvh->intersect_counted(r, &b, nearest);
+    EXPECT_EQ(a.prim, b.prim);
+    EXPECT_EQ(a.t, b.t);
+    EXPECT_EQ(bvh->occluded_counted(r, any), a.found());
+  }
+  EXPECT_EQ(nearest.rays, rays.size());
+  EXPECT_EQ(nearest.pushes, nearest.pops);
+  EXPECT_EQ(nearest.box_tests, 2 * (nearest.nodes - nearest.leaves) + nearest.rays);
+  EXPECT_LT(any.prim_tests, nearest.prim_tests);
+  EXPECT_GT(bvh->memory_bytes(), bvh->data().nodes.size() * sizeof(BvhNode));
+}
+
+// The whole tracer (shadow, mirror and glass rays) gives the same picture, bit for bit, as with brute force.
+TEST(Bvh, RendersTheSamePictureAsBruteForce) {
+  for (const char* name : {"spheres.json", "cornell.json"}) {
+    Scene scene = load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name);
+    RenderOptions opt = render_options(scene.render);
+    opt.width = 48;
+    opt.height = 36;
+    BruteForce brute;
+    brute.build(scene.geometry);
+    Image reference = render_image(scene, brute, opt).image;
+    for (BvhBuilder builder : kBuilders) {
+      auto bvh = make_bvh(scene.geometry, builder);
+      EXPECT_TRUE(render_image(scene, *bvh, opt).image.pixels == reference.pixels)
+          << name << " " << int(builder);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace raystep

@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 #include <string>
 
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/trace/bvh_trace.h"
 #include "raystep/trace/record_trace.h"
@@ -32,10 +34,45 @@ std::vector<RayRequest> requests(const Geometry& g, size_t count, uint64_t seed)
   return out;
 }
 
-// Checks one recorded ray against the rules of the BVH's walk; counts its skips into *skips.
-void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, int* skips) {
-  SCOPED_TRACE(where);
+// A hierarchy as the walk's rules need it: each node's children, primitives and depth.
+struct TreeView {
+  std::vector<std::vector<int32_t>> children;
+  std::vector<std::vector<uint32_t>> prims;  // leaves
+  std::vector<int32_t> depth;
+  bool leaf(int32_t id) const { return children[size_t(id)].empty(); }
+};
+
+TreeView view_of(const Bvh& bvh) {
   const BvhData& d = bvh.data();
+  TreeView v;
+  for (size_t id = 0; id < d.nodes.size(); ++id) {
+    const BvhNode& n = d.nodes[id];
+    v.children.push_back(n.is_leaf() ? std::vector<int32_t>{}
+                                     : std::vector<int32_t>{int32_t(id) + 1, int32_t(n.second_child())});
+    v.prims.emplace_back();
+    if (n.is_leaf())
+      v.prims.back().assign(d.prim_index.begin() + n.first_prim(),
+                            d.prim_index.begin() + n.first_prim() + n.prim_count());
+    v.depth.push_back(d.info[id].depth);
+  }
+  return v;
+}
+
+TreeView view_of(const WideBvh& bvh) {
+  TreeView v;
+  for (const WideBvhView::Node& n : bvh.describe().nodes) {
+    v.children.push_back(n.children);
+    v.prims.push_back(n.prims);
+    v.depth.push_back(n.depth);
+  }
+  return v;
+}
+
+// Checks one recorded ray against the rules of a BVH's walk (binary or wide); counts its skips into *skips.
+// A node is entered (node, or for the wide BVH's leaves directly leaf) as the root, as a child just
+// box-tested with a hit, or as the entry just popped and not skipped.
+void check_walk(const TreeView& v, const TracedRay& tr, const std::string& where, int* skips) {
+  SCOPED_TRACE(where);
   const std::vector<Event>& ev = tr.events;
   struct Entry {
     int32_t node;
@@ -45,9 +82,28 @@ void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, i
   std::map<int32_t, Event> tested;  // the current node's box tests, by child
   int32_t current = -1;             // the node being visited
   int32_t leaf = -1;                // the leaf whose primitives are being tested
+  bool entered_any = false;
   std::set<int32_t> prims_tested;
   float nearest = kInfinity;
   bool accepted = false;
+  auto enter = [&](const Event& e, size_t i) {
+    const bool from_pop = i > 0 && ev[i - 1].type == EventType::pop;
+    if (from_pop) {
+      EXPECT_EQ(e.node, ev[i - 1].node);
+    } else if (!entered_any && e.node == 0 && !tested.count(0)) {
+      // The root, entered without a box test (the wide BVH's walk).
+    } else {
+      ASSERT_TRUE(tested.count(e.node)) << "node " << e.node << " entered without a box test";
+      EXPECT_TRUE(tested[e.node].hit);
+      EXPECT_EQ(e.t_min_node, tested[e.node].t_min_node);
+      EXPECT_EQ(e.t_max_node, tested[e.node].t_max_node);
+    }
+    EXPECT_EQ(e.depth, v.depth[size_t(e.node)]);
+    entered_any = true;
+    current = e.node;
+    leaf = -1;
+    tested.clear();
+  };
   for (size_t i = 0; i < ev.size(); ++i) {
     const Event& e = ev[i];
     SCOPED_TRACE("event " + std::to_string(i) + " " + event_type_name(e.type));
@@ -60,30 +116,16 @@ void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, i
           tested[0] = e;
         } else {
           EXPECT_EQ(e.parent, current) << "a box test from another node than the current one";
-          const BvhNode& n = d.nodes[size_t(current)];
-          ASSERT_FALSE(n.is_leaf());
-          EXPECT_TRUE(e.node == current + 1 || e.node == int32_t(n.second_child())) << e.node;
-          EXPECT_EQ(e.depth, d.info[size_t(e.node)].depth);
+          const std::vector<int32_t>& children = v.children[size_t(current)];
+          EXPECT_NE(std::find(children.begin(), children.end(), e.node), children.end()) << e.node;
+          EXPECT_EQ(e.depth, v.depth[size_t(e.node)]);
           tested[e.node] = e;
         }
         if (e.hit) EXPECT_LE(e.t_min_node, e.t_max_node);
         break;
-      case EventType::node: {
-        // Entered: the root or a child just box-tested with a hit, or the entry just popped (not skipped).
-        const bool from_pop = i > 0 && ev[i - 1].type == EventType::pop;
-        if (from_pop) {
-          EXPECT_EQ(e.node, ev[i - 1].node);
-        } else {
-          ASSERT_TRUE(tested.count(e.node)) << "node " << e.node << " entered without a box test";
-          EXPECT_TRUE(tested[e.node].hit);
-          EXPECT_EQ(e.t_min_node, tested[e.node].t_min_node);
-          EXPECT_EQ(e.t_max_node, tested[e.node].t_max_node);
-        }
-        current = e.node;
-        leaf = -1;
-        tested.clear();
+      case EventType::node:
+        enter(e, i);
         break;
-      }
       case EventType::push:
         // A child of the current node whose box was hit, with that box's interval.
         ASSERT_TRUE(tested.count(e.node)) << "pushed " << e.node << " without a box test";
@@ -107,15 +149,15 @@ void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, i
         ++*skips;
         break;
       case EventType::leaf:
-        EXPECT_EQ(e.node, current);
-        EXPECT_TRUE(d.nodes[size_t(e.node)].is_leaf());
+        EXPECT_TRUE(v.leaf(e.node));
+        // The binary BVH visits the leaf (node), then reaches it; the wide one enters a leaf directly.
+        if (!(i > 0 && ev[i - 1].type == EventType::node && ev[i - 1].node == e.node)) enter(e, i);
         leaf = e.node;
         break;
       case EventType::prim_test: {
         ASSERT_GE(leaf, 0) << "a primitive tested outside a leaf";
-        const BvhNode& n = d.nodes[size_t(leaf)];
-        const uint32_t* first = d.prim_index.data() + n.first_prim();
-        EXPECT_NE(std::find(first, first + n.prim_count(), uint32_t(e.prim)), first + n.prim_count());
+        const std::vector<uint32_t>& prims = v.prims[size_t(leaf)];
+        EXPECT_NE(std::find(prims.begin(), prims.end(), uint32_t(e.prim)), prims.end()) << e.prim;
         EXPECT_TRUE(prims_tested.insert(e.prim).second) << "primitive " << e.prim << " tested twice";
         if (e.hit) nearest = std::min(nearest, e.t);
         break;
@@ -144,6 +186,46 @@ void check_walk(const Bvh& bvh, const TracedRay& tr, const std::string& where, i
   EXPECT_EQ(accepted, ev.back().prim >= 0);
 }
 
+// The trace's answers are the kernel's: the same primitive and the same t, bit for bit (shadow rays: occluded
+// or not), its box tests and nodes counted as the counting recorder counts them, and its events obey the
+// rules. Returns {hits, pushes, skips} over the rays.
+std::array<int, 3> check_trace(const Accelerator& accel, const TreeView& v, const Trace& t,
+                               const std::vector<RayRequest>& rays, const std::string& name) {
+  std::array<int, 3> seen{0, 0, 0};
+  EXPECT_EQ(t.rays.size(), rays.size());
+  for (size_t r = 0; r < rays.size() && r < t.rays.size(); ++r) {
+    const Event& end = t.rays[r].events.back();
+    EXPECT_EQ(end.type, EventType::ray_end);
+    CountingRecorder counted;
+    Hit hit;
+    if (rays[r].kind == RayKind::shadow) {
+      EXPECT_EQ(end.prim >= 0, accel.occluded(rays[r].ray)) << r;
+      accel.occluded_counted(rays[r].ray, counted);
+    } else {
+      accel.intersect(rays[r].ray, &hit);
+      EXPECT_EQ(end.prim, hit.prim) << r;
+      if (hit.found()) EXPECT_EQ(end.t, hit.t) << r;
+      seen[0] += hit.found();
+      accel.intersect_counted(rays[r].ray, &hit, counted);
+    }
+    size_t box_tests = 0, nodes = 0;
+    for (const Event& e : t.rays[r].events) {
+      box_tests += e.type == EventType::box_test;
+      nodes += e.type == EventType::node;
+      seen[1] += e.type == EventType::push;
+    }
+    // (The binary kernel tells a counting recorder of the root's box test only when it is hit: a ray that
+    // misses the root records one box test and counts none.)
+    const Event& root = t.rays[r].events[1];
+    const bool missed_root = root.type == EventType::box_test && root.parent < 0 && !root.hit;
+    EXPECT_EQ(box_tests - (missed_root ? 1 : 0), counted.box_tests) << r;
+    EXPECT_EQ(nodes, counted.nodes) << r;
+    check_walk(v, t.rays[r], name + " ray " + std::to_string(r), &seen[2]);
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  return seen;
+}
+
 TEST(BvhTrace, RecordedWalkEqualsTheKernelAndObeysTheRules) {
   const Geometry g = test::make_soup(11, 400, 6);
   const std::vector<RayRequest> rays = requests(g, 400, 5);
@@ -159,48 +241,48 @@ TEST(BvhTrace, RecordedWalkEqualsTheKernelAndObeysTheRules) {
       SCOPED_TRACE(name);
       const Trace t = record_trace(g, bvh, rays, "soup", "fnv1a64:0000000000000000");
       EXPECT_EQ(t.structure.kind, bvh.name());
-      ASSERT_EQ(t.rays.size(), rays.size());
-      int hits = 0, skips = 0, pushes = 0;
-      for (size_t r = 0; r < rays.size(); ++r) {
-        // The trace's answer is the kernel's: the same primitive and the same t, bit for bit.
-        const Event& end = t.rays[r].events.back();
-        ASSERT_EQ(end.type, EventType::ray_end);
-        if (rays[r].kind == RayKind::shadow) {
-          EXPECT_EQ(end.prim >= 0, bvh.occluded(rays[r].ray)) << r;
-        } else {
-          Hit hit;
-          bvh.intersect(rays[r].ray, &hit);
-          EXPECT_EQ(end.prim, hit.prim) << r;
-          if (hit.found()) EXPECT_EQ(end.t, hit.t) << r;
-          hits += hit.found();
-        }
-        // Counted like the counting recorder counts.
-        CountingRecorder counted;
-        Hit h;
-        if (rays[r].kind == RayKind::shadow)
-          bvh.occluded_counted(rays[r].ray, counted);
-        else
-          bvh.intersect_counted(rays[r].ray, &h, counted);
-        size_t box_tests = 0, nodes = 0;
-        for (const Event& e : t.rays[r].events) {
-          box_tests += e.type == EventType::box_test;
-          nodes += e.type == EventType::node;
-          pushes += e.type == EventType::push;
-        }
-        // (The kernel tells a counting recorder of the root's box test only when it is hit: a ray that misses
-        // the root records one box test and counts none.)
-        const Event& root = t.rays[r].events[1];
-        const bool missed_root = root.type == EventType::box_test && !root.hit;
-        EXPECT_EQ(box_tests - (missed_root ? 1 : 0), counted.box_tests) << r;
-        EXPECT_EQ(nodes, counted.nodes) << r;
-        check_walk(bvh, t.rays[r], name + " ray " + std::to_string(r), &skips);
-        if (HasFatalFailure()) return;
-      }
+      const std::array<int, 3> seen = check_trace(bvh, view_of(bvh), t, rays, name);
       // The rays exercise what the rules are about.
-      EXPECT_GT(hits, 50);
-      EXPECT_GT(pushes, 200);
-      EXPECT_GT(skips, 10);
+      EXPECT_GT(seen[0], 50);
+      EXPECT_GT(seen[1], 200);
+      EXPECT_GT(seen[2], 10);
     }
+}
+
+TEST(BvhTrace, RecordedWideWalkEqualsTheKernelAndObeysTheRules) {
+  const Geometry g = test::make_soup(12, 600, 6);
+  const std::vector<RayRequest> rays = requests(g, 400, 6);
+  for (int width : {4, 8}) {
+    WideBvh wide(width);
+    wide.build(g);
+    const std::string name = wide.name() + " (" + WideBvh::simd_level() + ")";
+    SCOPED_TRACE(name);
+    const Trace t = record_trace(g, wide, rays, "soup", "fnv1a64:0000000000000000");
+    EXPECT_EQ(t.structure.kind, wide.name());
+    const TreeView v = view_of(wide);
+    const std::array<int, 3> seen = check_trace(wide, v, t, rays, name);
+    EXPECT_GT(seen[0], 50);
+    EXPECT_GT(seen[1], 100);
+    EXPECT_GT(seen[2], 5);
+    // The nodes: every named one with its parents, as describe() has them; wide nodes have no split axis.
+    const WideBvhView view = wide.describe();
+    std::set<int32_t> listed;
+    for (const TraceNode& n : t.nodes) {
+      listed.insert(n.id);
+      const WideBvhView::Node& d = view.nodes[size_t(n.id)];
+      EXPECT_EQ(n.parent, d.parent);
+      EXPECT_EQ(n.children, d.children);
+      EXPECT_EQ(n.leaf, d.leaf);
+      EXPECT_EQ(n.box.lo, d.box.lo);
+      if (!n.leaf) EXPECT_EQ(n.axis, -1);
+    }
+    for (const TraceNode& n : t.nodes)
+      if (n.parent >= 0) EXPECT_TRUE(listed.count(n.parent));
+    const std::string once = trace_to_json(t);
+    EXPECT_NE(once.find("\"axis\":null,\"children\":["), std::string::npos);
+    EXPECT_NE(once.find("\"width\":" + std::to_string(width)), std::string::npos);
+    EXPECT_EQ(trace_to_json(parse_trace_json(once, "wide.json")), once);
+  }
 }
 
 TEST(BvhTrace, ListsEveryNamedNodeWithItsParentsAndRoundTrips) {
@@ -285,7 +367,7 @@ TEST(BvhTrace, RaysThatMissTheRootAndAnEmptySceneRecordOneBoxTest) {
 
 TEST(BvhTrace, EveryBvhNameFromTheFactoryRecords) {
   const Geometry g = test::make_soup(3, 60, 1);
-  for (const char* name : {"bvh", "bvh-sweep", "bvh-median"}) {
+  for (const char* name : {"bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"}) {
     auto accel = make_accelerator(name, StructureOptions{});
     accel->build(g);
     EXPECT_TRUE(records_events(*accel)) << name;

@@ -388,8 +388,8 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
   EXPECT_EQ(check_error(head + "pixel: 160,200\nstep: 100000\n```\n")
                 .rfind(f + "6: step 'S': step 100000: the ray has ", 0),
             0u);
-  EXPECT_EQ(check_error(head + "node: 3\n```\n"),
-            f + "5: step 'S': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or bvh-median)");
+  EXPECT_EQ(check_error(head + "node: 3\n```\n"), f + "5: step 'S': node: no kd-tree or BVH (accel: kd, "
+                                                      "kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
   EXPECT_EQ(check_error(head + "accel: kd\nnode-path: LLLLLLLLLLLLLLLLLLLLLLLLLL\n```\n")
                 .rfind(f + "6: step 'S': node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLL': ", 0),
             0u);
@@ -400,7 +400,8 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
             f + "5: step 'S': step-to cell:2: no traced pixel (pixel: X,Y)");
   // A later step without the setting in it: the step's heading.
   EXPECT_EQ(check_error(head + "accel: kd\nnode: 1\n```\n## B\n```raystep\naccel: grid\n```\n"),
-            f + "10: step 'B': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or bvh-median)");
+            f + "10: step 'B': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, "
+                "bvh4 or bvh8)");
   EXPECT_EQ(check_error(head + "pixel: 160,200\n```\n## B\n\nask\n\n```raystep\nask: next-pop\n```\n"),
             f + "12: step 'B': next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
 }
@@ -456,7 +457,7 @@ TEST(LessonRunner, RecordsBvhTraces) {
   Lesson l = parse_lesson_text(
       "# T\n## A\n```raystep\nscene: ../scenes/cornell.json\naccel: bvh\npixel: 160,200\n"
       "step-to: box_test:3\nnode: 2\n```\n## B\n```raystep\naccel: bvh-median\nbvh-order: axis\nbins: 8\n"
-      "step-to: push:1\nheat: boxes\n```\n",
+      "step-to: push:1\nheat: boxes\n```\n## C\n```raystep\naccel: bvh8\nstep-to: leaf:1\nnode: 5\n```\n",
       kSource + "/lessons/t.md");
   EXPECT_EQ(check_lesson(l), 0);
   StepWorld a = runner.enter(l.steps[0].state);
@@ -486,6 +487,14 @@ TEST(LessonRunner, RecordsBvhTraces) {
   EXPECT_EQ(number["bins"], 8.0);
   EXPECT_EQ(b.trace->rays[0].events[size_t(b.step)].type, EventType::push);
   EXPECT_NE(a.accel, b.accel);  // another structure, built for the new options
+
+  StepWorld c = runner.enter(l.steps[2].state);  // the wide BVH, its ids as describe() numbers them
+  ASSERT_TRUE(c.trace);
+  EXPECT_EQ(c.trace->structure.kind, "bvh8");
+  EXPECT_EQ(c.trace->rays[0].events[size_t(c.step)].type, EventType::leaf);
+  EXPECT_EQ(c.node, 5);
+  c.accel->intersect(c.trace->rays[0].ray, &hit);
+  EXPECT_EQ(c.trace->rays[0].events.back().prim, hit.prim);
 
   const std::string f = kSource + "/lessons/t.md:";
   const std::string head = "# T\n## S\n```raystep\nscene: ../scenes/cornell.json\naccel: bvh\n";

@@ -37,12 +37,24 @@ struct BinMap {
   }
 };
 
-// Per-bin boxes and counts for three axes; combined by union and sum, exact whatever the order.
+// Per-bin boxes and counts for three axes; combined by union and sum, exact whatever the order. In place (no
+// allocation per node): only the first 3 * bins slots are used, initialised and copied.
+constexpr int kMaxBins = 256;
 struct BinSet {
   int bins;
-  std::vector<Bounds3> box;     // [axis * bins + slot]
-  std::vector<uint32_t> count;  // [axis * bins + slot]
-  explicit BinSet(int b) : bins(b), box(size_t(3 * b)), count(size_t(3 * b), 0) {}
+  Bounds3 box[3 * kMaxBins];     // [axis * bins + slot]
+  uint32_t count[3 * kMaxBins];  // [axis * bins + slot]
+  explicit BinSet(int b) : bins(b) { std::fill(count, count + 3 * b, 0u); }
+  BinSet(const BinSet& o) : bins(o.bins) {
+    std::copy(o.box, o.box + 3 * bins, box);
+    std::copy(o.count, o.count + 3 * bins, count);
+  }
+  BinSet& operator=(const BinSet& o) {
+    bins = o.bins;
+    std::copy(o.box, o.box + 3 * bins, box);
+    std::copy(o.count, o.count + 3 * bins, count);
+    return *this;
+  }
   void add(const PrimRef* refs, size_t begin, size_t end, const BinMap& map) {
     for (size_t i = begin; i < end; ++i)
       for (int a = 0; a < 3; ++a) {
@@ -53,7 +65,7 @@ struct BinSet {
       }
   }
   void merge(const BinSet& o) {
-    for (size_t k = 0; k < box.size(); ++k) {
+    for (int k = 0; k < 3 * bins; ++k) {
       box[k].extend(o.box[k]);
       count[k] += o.count[k];
     }
@@ -66,10 +78,11 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
                  const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
   const int bins = o.bins;
   BinMap map(centroids, bins);
+  // The bins live on the stack (about 20 kB; the recursion does not hold them); big nodes are binned in parallel chunks, each with its own.
   BinSet set(bins);
   if (n >= kParallelPrims) {
     set = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, n, 1024), BinSet(bins),
+        tbb::blocked_range<size_t>(0, n, 8192), BinSet(bins),
         [&](const tbb::blocked_range<size_t>& r, BinSet s) {
           s.add(refs, r.begin(), r.end(), map);
           return s;
@@ -87,8 +100,8 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
   uint32_t right_count[256];
   for (int a = 0; a < 3; ++a) {
     if (!map.usable[a]) continue;
-    const Bounds3* bb = &set.box[size_t(a * bins)];
-    const uint32_t* bc = &set.count[size_t(a * bins)];
+    const Bounds3* bb = &set.box[a * bins];
+    const uint32_t* bc = &set.count[a * bins];
     // Sweep from the right: what lies in slots b+1.. .
     Bounds3 acc;
     uint32_t cnt = 0;

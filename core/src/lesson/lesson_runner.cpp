@@ -10,6 +10,7 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
@@ -228,19 +229,22 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
   // BVH's ids are its traces' ids.
   const KdTree* kd = dynamic_cast<const KdTree*>(cache.accel.get());
   const Bvh* bvh = dynamic_cast<const Bvh*>(cache.accel.get());
+  const WideBvh* wide = dynamic_cast<const WideBvh*>(cache.accel.get());
   if (state.node.by != NodeSpec::By::none || state.panel == "sah" || state.panel == "kd") {
     const char* what = state.node.by == NodeSpec::By::id     ? "node"
                        : state.node.by == NodeSpec::By::path ? "node-path"
                                                              : "panel";
-    if (!kd && !bvh)
+    if (!kd && !bvh && !wide)
       fail({what, "accel"}, std::string(what) +
-                                ": no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep or "
-                                "bvh-median)");
+                                ": no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, "
+                                "bvh4 or bvh8)");
     if (!kd && state.node.by == NodeSpec::By::path)
       fail({"node-path", "accel"},
            "node-path: a path of L (below) and R (above) names a kd-tree's node; give a "
            "BVH's node by id (node: ID)");
-    const size_t count = kd ? kd->data().nodes.size() : bvh->data().nodes.size();
+    const size_t count = kd    ? kd->data().nodes.size()
+                         : bvh ? bvh->data().nodes.size()
+                               : wide->describe().nodes.size();
     const char* tree = kd ? "kd-tree" : "BVH";
     w.node = state.panel == "sah" ? 0 : -1;
     if (state.node.by == NodeSpec::By::id) {

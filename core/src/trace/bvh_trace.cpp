@@ -110,4 +110,48 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
   return t;
 }
 
+Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const std::vector<RayRequest>& rays,
+                            const std::string& scene_path, const std::string& scene_hash) {
+  const WideBvhView view = bvh.describe();
+  Trace t;
+  t.scene_path = scene_path;
+  t.scene_hash = scene_hash;
+  t.scene_primitives = geometry.size();
+  t.structure.kind = bvh.name();
+  if (!view.nodes.empty()) t.structure.bounds = view.nodes[0].box;
+  size_t leaves = 0;
+  for (const WideBvhView::Node& n : view.nodes) leaves += n.leaf;
+  bvh_params(bvh.options(), &t.structure);
+  t.structure.params.push_back({"width", false, double(bvh.width()), ""});
+  t.structure.params.push_back({"nodes", false, double(view.nodes.size()), ""});
+  t.structure.params.push_back({"leaves", false, double(leaves), ""});
+  detail::sort_params(&t.structure);
+
+  detail::record_rays(
+      geometry, rays,
+      [&](const RayRequest& req, EventRecorder& rec) {
+        Hit hit;
+        bvh.record(req.ray, &hit, req.kind == RayKind::shadow, rec);
+      },
+      &t);
+  const std::set<int32_t> ids =
+      with_parent_chains(named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
+  for (int32_t id : ids) {
+    const WideBvhView::Node& n = view.nodes[size_t(id)];
+    TraceNode tn;
+    tn.id = id;
+    tn.parent = n.parent;
+    tn.depth = n.depth;
+    tn.box = n.box;
+    tn.leaf = n.leaf;
+    tn.axis = -1;  // a wide node's children come from several of the binary tree's splits
+    if (n.leaf)
+      tn.prims.assign(n.prims.begin(), n.prims.end());
+    else
+      tn.children = n.children;
+    t.nodes.push_back(std::move(tn));
+  }
+  return t;
+}
+
 }  // namespace raystep

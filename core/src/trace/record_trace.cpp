@@ -10,12 +10,12 @@
 namespace raystep {
 
 namespace {
-const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep or bvh-median";
+const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8";
 }  // namespace
 
 bool records_events(const Accelerator& accel) {
   return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel) ||
-         dynamic_cast<const Bvh*>(&accel);
+         dynamic_cast<const Bvh*>(&accel) || dynamic_cast<const WideBvh*>(&accel);
 }
 
 Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std::vector<RayRequest>& rays,
@@ -26,6 +26,8 @@ Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std
     return record_kd_trace(geometry, *kd, rays, scene_path, scene_hash);
   if (auto* bvh = dynamic_cast<const Bvh*>(&accel))
     return record_bvh_trace(geometry, *bvh, rays, scene_path, scene_hash);
+  if (auto* wide = dynamic_cast<const WideBvh*>(&accel))
+    return record_wide_bvh_trace(geometry, *wide, rays, scene_path, scene_hash);
   throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
 }
 

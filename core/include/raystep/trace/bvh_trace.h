@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raystep/accel/bvh.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/trace/ray_request.h"
 #include "raystep/trace/trace_file.h"
 
@@ -17,5 +18,10 @@ namespace raystep {
 // others as nearest-hit queries.
 Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vector<RayRequest>& rays,
                        const std::string& scene_path, const std::string& scene_hash);
+
+// The wide BVH (kinds "bvh4", "bvh8"), with its node ids as WideBvh::describe() numbers them (every child
+// slot has one); its nodes have no split axis (TraceNode::axis -1).
+Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const std::vector<RayRequest>& rays,
+                            const std::string& scene_path, const std::string& scene_hash);
 
 }  // namespace raystep
