@@ -194,6 +194,29 @@ TEST(Bvh, SahInspectorShowsTheBinnedCurve) {
   EXPECT_EQ(header.rfind("axis,bin,position,n_left,n_right", 0), 0u) << header;
 }
 
+// The heat map of bounding-box tests: counted for the BVH, none for the kd-tree (which tests planes, not
+// boxes).
+TEST(Bvh, BoxTestHeatMap) {
+  Snap b = snap("'" + kCornell + "' --accel bvh --heat boxes", "bvh_heat_boxes");
+  EXPECT_EQ(b.state["heat"]["quantity"], "boxes");
+  EXPECT_GT(b.state["heat"]["max"].get<double>(), 2.0);
+  Snap k = snap("'" + kCornell + "' --accel kd --heat boxes", "kd_heat_boxes");
+  EXPECT_EQ(k.state["heat"]["max"].get<double>(), 0.0);
+}
+
+// The wide BVH's walk: a node's up to 8 children tested one after the other, each row in the panel, the boxes
+// hit so far drawn with their overlaps.
+TEST(Bvh, WideNodeShowsEveryChild) {
+  Snap s = snap("'" + kCornell + "' --accel bvh8 --pixel 100,220 --step-to box_test:4", "bvh8_children");
+  const json& p = s.state["panels"];
+  EXPECT_TRUE(has(p["nodeLabel"], "(a wide node)")) << p["nodeLabel"];
+  const std::string rows = p["crossingLabel"];
+  size_t children = 0;
+  for (size_t at = rows.find("child "); at != std::string::npos; at = rows.find("child ", at + 1)) ++children;
+  EXPECT_GT(children, 2u) << rows;
+  EXPECT_EQ(s.state["view"]["bvh"]["children_drawn"].size(), 4u);
+}
+
 // Bad BVH option values: exit code 2 and one line "error: ..." (beside Qt's own note about the environment
 // and the scripted mode's timings of what was done before).
 TEST(Bvh, BadOptionsExit2WithOneLine) {

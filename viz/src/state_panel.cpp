@@ -278,7 +278,8 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     QString what =
         !tn        ? QString(event_type_name(n.type))
         : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
-        : bvh ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
+        : bvh ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
+                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
               : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
