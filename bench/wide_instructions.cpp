@@ -1,10 +1,9 @@
-// raystep_wide_instructions primary|random MESH [N] [4|8] [scalar|sse|avx2]: traces N primary rays (a sqrt(N) x sqrt(N) image
-// of the mesh's camera) or N random rays through the wide BVH (8-wide unless told) with the null recorder,
-// counting instructions only around the traversal (callgrind client requests), and prints the walk's counters
-// per ray (nodes, box tests, leaves, pushes, skips, primitive tests), the kernel level, and a checksum of the
-// hits, so that a change to the kernel can be shown to find the same hits. Outside valgrind it also prints
-// the traversal's time (best of 5).
-// Run under `valgrind --tool=callgrind --instr-atstart=no`.
+// raystep_wide_instructions primary|random MESH [N] [4|8] [scalar|sse|avx2]: traces N primary rays (a sqrt(N)
+// x sqrt(N) image of the mesh's camera) or N random rays through the wide BVH (8-wide unless told) with the
+// null recorder, counting instructions only around the traversal (callgrind client requests), and prints the
+// walk's counters per ray (nodes, box tests, leaves, pushes, skips, primitive tests), the kernel level, and a
+// checksum of the hits, so that a change to the kernel can be shown to find the same hits. Outside valgrind
+// it also prints the traversal's time (best of 5). Run under `valgrind --tool=callgrind --instr-atstart=no`.
 #include <valgrind/callgrind.h>
 
 #include <algorithm>
@@ -24,7 +23,8 @@ using namespace raystep;
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: raystep_wide_instructions primary|random MESH.obj [N] [4|8] [scalar|sse|avx2]\n");
+    std::fprintf(stderr,
+                 "usage: raystep_wide_instructions primary|random MESH.obj [N] [4|8] [scalar|sse|avx2]\n");
     return 2;
   }
   std::string kind = argv[1];
