@@ -106,7 +106,11 @@ TEST(Palette, WalkColoursStayApartForColourBlindViewers) {
                 {"accepted hit", rgb(hitFinal)},
                 {"nearest hit so far", rgb(hitCandidate)},
                 {"stack", rgb(stackNode)},
-                {"selected node", rgb(selectedNode)}};
+                {"selected node", rgb(selectedNode)},
+                {"BVH first child", rgb(bvhChildFirst)},
+                {"BVH other child", rgb(bvhChildOther)},
+                {"BVH overlap", rgb(bvhOverlap)},
+                {"BVH skipped", rgb(bvhSkipped)}};
   expectApart(walk, {}, 15.0);
 }
 

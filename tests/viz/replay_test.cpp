@@ -3,6 +3,7 @@
 // (1) wins. Checks what the panels show at every step, and that the state depends on the step alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -383,6 +384,107 @@ TEST(Replay, ASecondTestOfTheNearestPrimitiveIsNotANewHit) {
   EXPECT_NE(first.find("nearer than any hit so far"), std::string::npos) << first;
   EXPECT_EQ(second.find("nearer than any hit so far"), std::string::npos) << second;
   EXPECT_NE(second.find("already the nearest hit"), std::string::npos) << second;
+}
+
+// A BVH walk as the trace contract (version 3) writes it: root 0 with two overlapping leaves, 1 (prim 0) and
+// 2 (prim 1). Both boxes are hit; the nearer, 1, is entered and 2 pushed; prim 0 hits at t = 1.2, so popped 2
+// (t_near = 1.5) is skipped and the hit is final.
+TracedRay bvhRay() {
+  TracedRay r;
+  r.ray.origin = glm::vec3(0.f);
+  r.ray.direction = glm::vec3(1.f, 0.f, 0.f);
+  auto ev = [&](EventType type) -> Event& {
+    Event e;
+    e.seq = uint32_t(r.events.size());
+    e.type = type;
+    r.events.push_back(e);
+    return r.events.back();
+  };
+  auto tree = [&](EventType type, int32_t node, int32_t depth, float a, float b) {
+    Event& e = ev(type);
+    e.node = node;
+    e.depth = depth;
+    e.t_min_node = a;
+    e.t_max_node = b;
+  };
+  auto box = [&](int32_t child, bool hit, float a, float b) {
+    Event& e = ev(EventType::box_test);
+    e.parent = 0;
+    e.node = child;
+    e.depth = 1;
+    e.hit = hit;
+    e.t_min_node = a;
+    e.t_max_node = b;
+  };
+  ev(EventType::ray_begin);                // 0
+  tree(EventType::node, 0, 0, 1.f, 4.f);   // 1
+  box(1, true, 1.f, 3.f);                  // 2
+  box(2, true, 1.5f, 4.f);                 // 3: overlaps [1, 3]
+  tree(EventType::push, 2, 1, 1.5f, 4.f);  // 4
+  tree(EventType::node, 1, 1, 1.f, 3.f);   // 5
+  tree(EventType::leaf, 1, 1, 1.f, 3.f);   // 6
+  {
+    Event& e = ev(EventType::prim_test);  // 7
+    e.prim = 0;
+    e.hit = true;
+    e.t = 1.2f;
+  }
+  tree(EventType::pop, 2, 1, 1.5f, 4.f);   // 8
+  tree(EventType::skip, 2, 1, 1.5f, 4.f);  // 9
+  {
+    Event& e = ev(EventType::hit_accepted);  // 10
+    e.prim = 0;
+    e.t = 1.2f;
+    e.reason = AcceptReason::structure_done;
+  }
+  {
+    Event& e = ev(EventType::ray_end);  // 11
+    e.prim = 0;
+    e.t = 1.2f;
+  }
+  return r;
+}
+
+TEST(Replay, BvhChildrenOrderPushAndSkip) {
+  const TracedRay r = bvhRay();
+  EXPECT_TRUE(isTreeRay(r));
+  EXPECT_TRUE(isBvhRay(nullptr, r));
+
+  // At the root: the box tests are not reached yet, so the choice is not known.
+  ReplayState s1 = replayAt(r, 1);
+  BvhChoice c1 = bvhChoice(r, s1);
+  ASSERT_TRUE(c1.valid);
+  ASSERT_EQ(c1.tests.size(), 2u);
+  EXPECT_FALSE(c1.tests[0].done);
+  EXPECT_FALSE(c1.decided);
+  EXPECT_NE(explainRule(r, s1).find("may overlap"), std::string::npos) << explainRule(r, s1);
+
+  // After the second test: both hit, overlapping; nearer first (1), 2 pushed.
+  ReplayState s3 = replayAt(r, 3);
+  BvhChoice c3 = bvhChoice(r, s3);
+  EXPECT_TRUE(c3.decided);
+  EXPECT_EQ(c3.first, 1);
+  EXPECT_EQ(c3.pushed, std::vector<int32_t>{2});
+  EXPECT_FLOAT_EQ(c3.tests[1].tNear, 1.5f);
+  EXPECT_EQ(s3.counters.box_tests, 2u);
+  const std::string why3 = explainRule(r, s3);
+  EXPECT_NE(why3.find("bounding volumes can overlap"), std::string::npos) << why3;
+  EXPECT_NE(why3.find("Nearer first: enter child 1"), std::string::npos) << why3;
+  EXPECT_NE(why3.find("push child 2"), std::string::npos) << why3;
+
+  // The leaf says why there is no mailbox.
+  const std::string why6 = explainRule(r, replayAt(r, 6));
+  EXPECT_NE(why6.find("exactly one leaf"), std::string::npos) << why6;
+
+  // The skip: its rule with the numbers, the node not counted as visited, the stack empty.
+  ReplayState s9 = replayAt(r, 9);
+  EXPECT_EQ(s9.skippedNodes, std::vector<int32_t>{2});
+  EXPECT_TRUE(s9.stack.empty());
+  const std::string why9 = explainRule(r, s9);
+  EXPECT_NE(why9.find("skip: t_near = 1.5 > t of the nearest hit = 1.2"), std::string::npos) << why9;
+  ReplayState s11 = replayAt(r, 11);
+  EXPECT_EQ(std::count(s11.visitedNodes.begin(), s11.visitedNodes.end(), 2), 0);
+  EXPECT_EQ(describeEvent(r.events[3]), "3  box_test  child 2 of 0: hit [1.5, 4]");
 }
 
 }  // namespace

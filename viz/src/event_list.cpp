@@ -47,6 +47,10 @@ class EventModel : public QAbstractListModel {
         case EventType::cell: return QColor(90, 140, 255);
         case EventType::prim_test: return e.hit ? QColor(40, 170, 60) : QColor(200, 50, 50);
         case EventType::mailbox_hit: return QColor(150, 80, 230);
+        case EventType::box_test:
+          return e.hit ? QColor(215, 120, 0) : QColor(130, 130, 130);  // BVH: a child's box
+        case EventType::skip:
+          return QColor(90, 140, 50);  // BVH: popped, beyond the nearest hit
         case EventType::hit_accepted:
         case EventType::hit_deferred: return QColor(220, 40, 170);
         default: return {};

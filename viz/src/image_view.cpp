@@ -291,6 +291,7 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   heat_->addItem(tr("cells or nodes visited"), "cells");
   heat_->addItem(tr("primitive tests"), "tests");
   heat_->addItem(tr("mailbox hits"), "mailbox");
+  heat_->addItem(tr("box tests (BVH)"), "boxes");
   heat_->addItem(tr("samples per pixel"), "samples");
   heat_->addItem(tr("error against the reference"), "error");
   row2->addWidget(heat_);

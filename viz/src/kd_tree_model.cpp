@@ -33,21 +33,95 @@ int kdLeafContaining(const KdTreeData& tree, const glm::vec3& p) {
   return int(n);
 }
 
+std::string bvhNodePath(const BvhData& bvh, uint32_t node) {
+  std::string path;
+  for (int32_t n = int32_t(node); n > 0 && size_t(n) < bvh.info.size();) {
+    int32_t p = bvh.info[size_t(n)].parent;
+    if (p < 0) break;
+    path += n == p + 1 ? 'L' : 'R';
+    n = p;
+  }
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+namespace {
+
+class KdShape final : public TreeShape {
+ public:
+  explicit KdShape(const KdTreeData& t) : t_(t) {}
+  const char* name() const override { return "kd-tree"; }
+  size_t size() const override { return t_.nodes.size(); }
+  int32_t parent(uint32_t n) const override { return t_.info[n].parent; }
+  int32_t depth(uint32_t n) const override { return t_.info[n].depth; }
+  bool leaf(uint32_t n) const override { return t_.nodes[n].is_leaf(); }
+  uint32_t child(uint32_t n, int row) const override { return row == 0 ? n + 1 : t_.nodes[n].above_child(); }
+  QString what(uint32_t id) const override {
+    const KdNode& n = t_.nodes[id];
+    if (n.is_leaf())
+      return n.prim_count() == 0 ? QObject::tr("leaf, empty")
+                                 : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
+    return QObject::tr("split %1 = %2").arg(axisName(n.axis())).arg(double(n.split), 0, 'g', 5);
+  }
+  QString whatHeader() const override { return QObject::tr("split or leaf"); }
+  float cost(uint32_t n) const override { return t_.info[n].cost; }
+  Bounds3 box(uint32_t n) const override { return t_.info[n].box; }
+  std::string path(uint32_t n) const override { return kdNodePath(t_, n); }
+
+ private:
+  const KdTreeData& t_;
+};
+
+// The BVH: children are the next node and the stored second child; each node has its own tight box.
+class BvhShape final : public TreeShape {
+ public:
+  explicit BvhShape(const BvhData& b) : b_(b) {}
+  const char* name() const override { return "BVH"; }
+  size_t size() const override { return b_.nodes.size(); }
+  int32_t parent(uint32_t n) const override { return b_.info[n].parent; }
+  int32_t depth(uint32_t n) const override { return b_.info[n].depth; }
+  bool leaf(uint32_t n) const override { return b_.nodes[n].is_leaf(); }
+  uint32_t child(uint32_t n, int row) const override { return row == 0 ? n + 1 : b_.nodes[n].second_child(); }
+  QString what(uint32_t id) const override {
+    const BvhNode& n = b_.nodes[id];
+    if (n.is_leaf())
+      return n.prim_count() == 0 ? QObject::tr("leaf, empty")
+                                 : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
+    return QObject::tr("split on %1, %2 prims").arg(axisName(n.axis())).arg(b_.info[id].prims);
+  }
+  QString whatHeader() const override { return QObject::tr("split axis or leaf"); }
+  float cost(uint32_t n) const override { return b_.info[n].cost; }
+  Bounds3 box(uint32_t n) const override { return b_.nodes[n].box; }
+  std::string path(uint32_t n) const override { return bvhNodePath(b_, n); }
+
+ private:
+  const BvhData& b_;
+};
+
+}  // namespace
+
+std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
+  if (const KdTree* kd = s.kdTree(); kd && !kd->data().nodes.empty())
+    return std::make_unique<KdShape>(kd->data());
+  if (const Bvh* bvh = s.bvh(); bvh && !bvh->data().nodes.empty())
+    return std::make_unique<BvhShape>(bvh->data());
+  return nullptr;
+}
+
 void KdTreeModel::setStructure(std::shared_ptr<const StructureData> structure) {
   beginResetModel();
   structure_ = std::move(structure);
-  const KdTree* kd = structure_ ? structure_->kdTree() : nullptr;
-  tree_ = kd && !kd->data().nodes.empty() ? &kd->data() : nullptr;
+  tree_ = structure_ ? treeShapeOf(*structure_) : nullptr;
   endResetModel();
 }
 
 int KdTreeModel::rowOf(uint32_t node) const {
-  int32_t p = tree_->info[node].parent;
+  int32_t p = tree_->parent(node);
   return p < 0 || int32_t(node) == p + 1 ? 0 : 1;
 }
 
 QModelIndex KdTreeModel::indexOfNode(int node) const {
-  if (!tree_ || node < 0 || size_t(node) >= tree_->nodes.size()) return {};
+  if (!tree_ || node < 0 || size_t(node) >= tree_->size()) return {};
   return createIndex(rowOf(uint32_t(node)), 0, quintptr(node));
 }
 
@@ -56,14 +130,13 @@ QModelIndex KdTreeModel::index(int row, int column, const QModelIndex& parent) c
   if (!parent.isValid()) return row == 0 ? createIndex(0, column, quintptr(0)) : QModelIndex();
   if (parent.column() != 0) return {};
   uint32_t p = uint32_t(parent.internalId());
-  const KdNode& n = tree_->nodes[p];
-  if (n.is_leaf() || row < 0 || row > 1) return {};
-  return createIndex(row, column, quintptr(row == 0 ? p + 1 : n.above_child()));
+  if (tree_->leaf(p) || row < 0 || row > 1) return {};
+  return createIndex(row, column, quintptr(tree_->child(p, row)));
 }
 
 QModelIndex KdTreeModel::parent(const QModelIndex& child) const {
   if (!tree_ || !child.isValid()) return {};
-  int32_t p = tree_->info[size_t(child.internalId())].parent;
+  int32_t p = tree_->parent(uint32_t(child.internalId()));
   if (p < 0) return {};
   return createIndex(rowOf(uint32_t(p)), 0, quintptr(p));
 }
@@ -72,7 +145,7 @@ int KdTreeModel::rowCount(const QModelIndex& parent) const {
   if (!tree_) return 0;
   if (!parent.isValid()) return 1;
   if (parent.column() != 0) return 0;
-  return tree_->nodes[size_t(parent.internalId())].is_leaf() ? 0 : 2;
+  return tree_->leaf(uint32_t(parent.internalId())) ? 0 : 2;
 }
 
 int KdTreeModel::columnCount(const QModelIndex&) const {
@@ -86,34 +159,33 @@ bool KdTreeModel::hasChildren(const QModelIndex& parent) const {
 QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   if (!tree_ || !index.isValid()) return {};
   uint32_t id = uint32_t(index.internalId());
-  const KdNode& n = tree_->nodes[id];
-  const KdNodeInfo& info = tree_->info[id];
   if (role == Qt::DisplayRole) {
     switch (index.column()) {
       case SideColumn:
-        return info.parent < 0 ? tr("root") : index.row() == 0 ? QStringLiteral("L") : QStringLiteral("R");
+        return tree_->parent(id) < 0 ? tr("root")
+               : index.row() == 0    ? QStringLiteral("L")
+                                     : QStringLiteral("R");
       case NodeColumn:
         return id;
       case DepthColumn:
-        return info.depth;
+        return tree_->depth(id);
       case WhatColumn:
-        if (n.is_leaf())
-          return n.prim_count() == 0 ? tr("leaf, empty")
-                                     : tr("leaf, %n primitive(s)", "", int(n.prim_count()));
-        return tr("split %1 = %2").arg(axisName(n.axis())).arg(double(n.split), 0, 'g', 5);
+        return tree_->what(id);
       case CostColumn:
-        return QString::number(double(info.cost), 'g', 5);  // 3.6298e+06 fits the column; 3629800.0 did not
+        return QString::number(double(tree_->cost(id)), 'g',
+                               5);  // 3.6298e+06 fits the column; 3629800.0 did not
     }
   } else if (role == Qt::ToolTipRole) {
+    const Bounds3 box = tree_->box(id);
     return tr("node %1, path \"%2\", box (%3, %4, %5) .. (%6, %7, %8)")
         .arg(id)
-        .arg(QString::fromStdString(kdNodePath(*tree_, id)))
-        .arg(double(info.box.lo.x), 0, 'g', 4)
-        .arg(double(info.box.lo.y), 0, 'g', 4)
-        .arg(double(info.box.lo.z), 0, 'g', 4)
-        .arg(double(info.box.hi.x), 0, 'g', 4)
-        .arg(double(info.box.hi.y), 0, 'g', 4)
-        .arg(double(info.box.hi.z), 0, 'g', 4);
+        .arg(QString::fromStdString(tree_->path(id)))
+        .arg(double(box.lo.x), 0, 'g', 4)
+        .arg(double(box.lo.y), 0, 'g', 4)
+        .arg(double(box.lo.z), 0, 'g', 4)
+        .arg(double(box.hi.x), 0, 'g', 4)
+        .arg(double(box.hi.y), 0, 'g', 4)
+        .arg(double(box.hi.z), 0, 'g', 4);
   }
   return {};
 }
@@ -128,7 +200,7 @@ QVariant KdTreeModel::headerData(int section, Qt::Orientation orientation, int r
     case DepthColumn:
       return tr("depth");
     case WhatColumn:
-      return tr("split or leaf");
+      return tree_ ? tree_->whatHeader() : tr("split or leaf");
     case CostColumn:
       return tr("cost");
   }

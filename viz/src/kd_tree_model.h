@@ -1,7 +1,9 @@
-// The kd-tree as a Qt item model for the tree view: a node's children are its below (L) and above (R) child,
-// rows are made on demand from the node arrays (an index's internal id is the node id), so a tree of a
-// million nodes costs nothing until a branch is expanded. Plus the two walks the views need: a node's path
-// from the root ("LRL", the inverse of core's kd_node_by_path) and the leaf containing a point.
+// The tree of a kd-tree or a binary BVH as a Qt item model for the tree view: a node's children are its two
+// children (kd: below L and above R; BVH: left L and right R), rows are made on demand from the node arrays
+// (an index's internal id is the node id), so a tree of a million nodes costs nothing until a branch is
+// expanded. One small adapter per structure (TreeShape) says what a node is. Plus the two walks the views
+// need: a node's path from the root ("LRL", the inverse of core's kd_node_by_path) and the leaf containing a
+// point.
 #pragma once
 
 #include <memory>
@@ -9,6 +11,9 @@
 
 #include <QAbstractItemModel>
 
+#include <QString>
+
+#include "raystep/accel/bvh_node.h"
 #include "raystep/accel/kdtree_node.h"
 
 namespace raystep::viz {
@@ -21,6 +26,28 @@ std::string kdNodePath(const KdTreeData& tree, uint32_t node);
 // The leaf whose box contains p (on a split plane: the child above); -1 when p is outside the root's box.
 int kdLeafContaining(const KdTreeData& tree, const glm::vec3& p);
 
+// 'L' for a BVH node's first child (the node after its parent), 'R' for the second; "" for the root.
+std::string bvhNodePath(const BvhData& bvh, uint32_t node);
+
+// What the tree view and the tree model need of a binary tree, one adapter per structure.
+class TreeShape {
+ public:
+  virtual ~TreeShape() = default;
+  virtual const char* name() const = 0;  // "kd-tree", "BVH"
+  virtual size_t size() const = 0;
+  virtual int32_t parent(uint32_t node) const = 0;  // -1: the root
+  virtual int32_t depth(uint32_t node) const = 0;
+  virtual bool leaf(uint32_t node) const = 0;
+  virtual uint32_t child(uint32_t node, int row) const = 0;  // row 0 or 1 of an inner node
+  virtual QString what(uint32_t node) const = 0;             // "split x = 0.5", "leaf, 3 primitives"
+  virtual QString whatHeader() const = 0;
+  virtual float cost(uint32_t node) const = 0;
+  virtual Bounds3 box(uint32_t node) const = 0;
+  virtual std::string path(uint32_t node) const = 0;
+};
+// The adapter for a structure's tree: a kd-tree, a binary BVH, or null (a grid, a wide BVH).
+std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s);
+
 class KdTreeModel : public QAbstractItemModel {
   Q_OBJECT
  public:
@@ -29,9 +56,9 @@ class KdTreeModel : public QAbstractItemModel {
   enum Column { SideColumn, NodeColumn, DepthColumn, WhatColumn, CostColumn, ColumnCount };
   explicit KdTreeModel(QObject* parent = nullptr) : QAbstractItemModel(parent) {}
 
-  // The structure whose kd-tree is shown (none, or a grid: an empty model); kept alive while shown.
+  // The structure whose tree is shown (none, or a grid: an empty model); kept alive while shown.
   void setStructure(std::shared_ptr<const StructureData> structure);
-  const KdTreeData* tree() const { return tree_; }
+  const TreeShape* tree() const { return tree_.get(); }
   QModelIndex indexOfNode(int node) const;  // invalid for no such node
   static int nodeOf(const QModelIndex& index) { return index.isValid() ? int(index.internalId()) : -1; }
 
@@ -46,7 +73,7 @@ class KdTreeModel : public QAbstractItemModel {
  private:
   int rowOf(uint32_t node) const;  // 0: the root or a below child, 1: an above child
   std::shared_ptr<const StructureData> structure_;
-  const KdTreeData* tree_ = nullptr;
+  std::unique_ptr<TreeShape> tree_;
 };
 
 }  // namespace raystep::viz

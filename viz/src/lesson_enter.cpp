@@ -7,6 +7,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "main_window.h"
+#include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/util/error.h"
 #include "replay.h"
@@ -147,24 +148,31 @@ void enterState(MainWindow& w, const LessonState& st) {
   else
     canvas->resetPan();
 
-  // The kd-tree's inspector: a node by id or path, or the root for `panel: sah`; closed otherwise.
+  // The tree's inspector (kd-tree or binary BVH): a node by id or path, or the root for `panel: sah`; closed
+  // otherwise.
   const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
+  const Bvh* bvh = s->structure() ? s->structure()->bvh() : nullptr;
   int node = st.panel == "sah" ? 0 : -1;
   if (!st.panel.empty() || st.node.by != NodeSpec::By::none) {
     const char* what = st.node.by == NodeSpec::By::id     ? "--node"
                        : st.node.by == NodeSpec::By::path ? "--node-path"
                                                           : "--panel";
-    if (!kd) fail(std::string(what) + ": no kd-tree (open a scene with --accel kd or kd-median)");
-    const size_t count = kd->data().nodes.size();
+    if (!kd && !bvh)
+      fail(std::string(what) +
+           ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
+           "bvh-sweep or bvh-median)");
+    const size_t count = kd ? kd->data().nodes.size() : bvh->data().nodes.size();
+    const std::string name = kd ? "kd-tree" : "BVH";
     if (st.node.by == NodeSpec::By::id) {
       if (st.node.id < 0 || size_t(st.node.id) >= count)
-        fail("--node " + std::to_string(st.node.id) + ": the kd-tree has " + std::to_string(count) +
+        fail("--node " + std::to_string(st.node.id) + ": the " + name + " has " + std::to_string(count) +
              " nodes (0.." + std::to_string(count - 1) + ")");
       node = st.node.id;
     }
     if (st.node.by == NodeSpec::By::path) {
       try {
-        node = int(kd_node_by_path(kd->data(), st.node.path));
+        node =
+            int(kd ? kd_node_by_path(kd->data(), st.node.path) : bvh_node_by_path(bvh->data(), st.node.path));
       } catch (const InputError& e) {
         std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
         if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)

@@ -32,6 +32,7 @@
 #include "lesson_pane.h"
 #include "pixel_inspector.h"
 #include "presenter.h"
+#include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -152,14 +153,19 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   });
   connect(session_, &Session::selectedNodeChanged, this, &MainWindow::showSahCurve);
   connect(session_, &Session::structureChanged, this, [this] {
-    const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+    // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
+    const bool kd = session_->structure() && treeShapeOf(*session_->structure());
+    const bool isBvh = session_->structure() && session_->structure()->bvh();
+    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector")
+                                  : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(
-          tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
-             "3D view, shows its nodes and SAH curves"));
+          isBvh ? tr("BVH built: View > tree and SAH inspector shows its nodes and binned SAH curves")
+                : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+                     "3D view, shows its nodes and SAH curves"));
     else if (!kd)
       hideKdPanel();
     showSahCurve();
@@ -406,15 +412,43 @@ void MainWindow::ensureHeat() {
   if (heatKey_ != heatKeyNow()) computeHeat();
 }
 
+void MainWindow::showBvhSahCurve() {
+  auto structure = session_->structureShared();
+  const Bvh* bvh = structure->bvh();
+  int node = session_->selectedNode();
+  if (node < 0) {
+    sahChart_->showMessage(tr("Select a node in the tree to see its binned SAH cost curve."));
+    return;
+  }
+  sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
+  BvhOptions options = bvh->options();
+  QString path = QString::fromStdString(bvhNodePath(bvh->data(), uint32_t(node)));
+  runTask(
+      "sah", tr("Recording the SAH curve of node %1...").arg(node), [this, structure, options, node, path] {
+        auto t0 = std::chrono::steady_clock::now();
+        auto curve = std::make_shared<const BvhSahCurve>(
+            record_bvh_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        return std::function<void()>([this, structure, options, node, path, curve, ms] {
+          if (structure != session_->structureShared() || node != session_->selectedNode()) return;  // stale
+          sahChart_->setBvhCurve(curve, path, options.t_i, options.t_t);
+          statusBar()->showMessage(
+              tr("SAH curve of BVH node %1: %2 candidates").arg(node).arg(curve->candidates.size()) +
+              took(tr(", recorded"), ms));
+        });
+      });
+}
+
 void MainWindow::showSahCurve() {
   auto structure = session_->structureShared();
+  if (structure && structure->bvh()) return showBvhSahCurve();
   const KdTree* kd = structure ? structure->kdTree() : nullptr;
   int node = session_->selectedNode();
   if (!kd || node < 0) {
     sahChart_->showMessage(
         kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
                 "cost curve.")
-           : tr("The SAH inspector shows kd-tree nodes: build a kd-tree."));
+           : tr("The SAH inspector shows kd-tree and binary BVH nodes: build a kd-tree or a BVH."));
     return;
   }
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
@@ -439,8 +473,12 @@ void MainWindow::showSahCurve() {
 
 void MainWindow::exportSahCsv(const QString& path) {
   try {
-    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree node first");
-    write_sah_csv(path.toStdString(), *sahChart_->curve());
+    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree or BVH node first");
+    if (sahChart_->bvhCurve())
+      write_bvh_sah_csv(path.toStdString(),
+                        *sahChart_->bvhCurve());  // the columns of raystep sah --accel bvh
+    else
+      write_sah_csv(path.toStdString(), *sahChart_->curve());
     statusBar()->showMessage(tr("wrote %1").arg(path));
   } catch (const std::exception& e) {
     if (scripted_) throw;
@@ -739,6 +777,26 @@ void MainWindow::buildStructure() {
                                 .arg(coarsened)
                                 .arg(grid->reference_count())
                                 .arg(double(grid->reference_count()) / n, 0, 'f', 2) +
+                            took(tr(", built"), built->buildMs));
+      } else if (const Bvh* bvh = built->bvh()) {
+        BvhStats st = bvh_stats(bvh->data(), bvh->options());
+        structure_->setInfo(
+            tr("%1: %2 nodes, %3 leaves, depth %4, %5 primitives per leaf (max %6), SAH cost %7, "
+               "children's overlap %8 (each primitive in one leaf)")
+                .arg(QString::fromStdString(built->kind))
+                .arg(st.nodes)
+                .arg(st.leaves)
+                .arg(st.max_depth)
+                .arg(st.mean_leaf_prims, 0, 'f', 2)
+                .arg(st.max_leaf_prims)
+                .arg(st.sah_cost, 0, 'f', 1)
+                .arg(st.overlap, 0, 'f', 3) +
+            took(tr(", built"), built->buildMs));
+      } else if (built->kind == "bvh4" || built->kind == "bvh8") {
+        structure_->setInfo(tr("%1: the binned BVH collapsed into %2-wide nodes, %3 KiB")
+                                .arg(QString::fromStdString(built->kind))
+                                .arg(built->kind == "bvh4" ? 4 : 8)
+                                .arg(double(built->accel->memory_bytes()) / 1024.0, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
       } else if (const KdTree* kd = built->kdTree()) {
         KdTreeStats st = kd_tree_stats(kd->data(), kd->options());

@@ -145,6 +145,7 @@ class MainWindow : public QMainWindow {
   void showTrace(std::shared_ptr<const Trace> trace, const QString& path, double readMs);
   void buildMenus();
   void showSahCurve();  // records the selected node's curve off the GUI thread
+  void showBvhSahCurve();    // the same for a BVH node (its binned curve)
   void drawPixelBackdrop();  // the scene inside the traced pixel, for the inspector (when not drawn yet)
 
   Session* session_;

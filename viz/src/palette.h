@@ -27,6 +27,12 @@ inline const QColor primMissed{70, 80, 110};      // tested: missed: dark slate
 inline const QColor primSkipped{170, 90, 255};    // skipped: already tested (mailbox)
 inline const QColor selectedNode{0, 158, 115};    // kd-tree: the node chosen in the tree view / inspector: teal
 inline const QColor background{28, 30, 36};
+// BVH: the current inner node's children's boxes, translucent so that where they overlap ("bounding volumes
+// can overlap") both tints add up, the overlap itself outlined, and the popped nodes skipped beyond the hit.
+inline const QColor bvhChildFirst{255, 150, 30};  // the first child tested (binary BVH: the left one): orange
+inline const QColor bvhChildOther{160, 0, 255};   // the other children: violet
+inline const QColor bvhOverlap{255, 50, 50};      // where two children's boxes overlap: red outline
+inline const QColor bvhSkipped{140, 180, 100};    // skipped: popped with t_near beyond the nearest hit: sage
 
 // The SAH inspector's chart (drawn on white): the cost curves per split axis, the leaf cost, the chosen split.
 inline const QColor sahX{220, 40, 40};           // candidates on x: red

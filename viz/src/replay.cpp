@@ -50,7 +50,8 @@ const char* axisName(int axis) {
 namespace {
 
 bool isTreeEvent(EventType t) {
-  return t == EventType::node || t == EventType::push || t == EventType::pop || t == EventType::leaf;
+  return t == EventType::node || t == EventType::push || t == EventType::pop || t == EventType::leaf ||
+         t == EventType::box_test || t == EventType::skip;
 }
 
 std::string num(float v) {
@@ -72,6 +73,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
   // Walk the log up to the current event, as the kernel did.
   std::unordered_map<int32_t, size_t> tested;  // prim -> its mailbox entry
   std::unordered_set<int32_t> left;            // nodes in visitedNodes
+  std::unordered_set<int32_t> skipped;         // BVH: popped and skipped, never visited
   for (int i = 0; i <= step; ++i) {
     const Event& e = ev[size_t(i)];
     switch (e.type) {
@@ -89,7 +91,7 @@ ReplayState replayAt(const TracedRay& ray, int step) {
         // The walk moves to another node (a leaf event names the node it is already at).
         if (e.type != EventType::leaf && s.nodeEvent >= 0) {
           int32_t from = ev[size_t(s.nodeEvent)].node;
-          if (left.insert(from).second) s.visitedNodes.push_back(from);
+          if (!skipped.count(from) && left.insert(from).second) s.visitedNodes.push_back(from);
         }
         s.nodeEvent = i;
         s.hasInterval = true;
@@ -100,6 +102,12 @@ ReplayState replayAt(const TracedRay& ray, int step) {
           ++s.counters.pops;
           if (!s.stack.empty()) s.stack.pop_back();
         }
+        break;
+      case EventType::box_test:  // BVH: a child's box tested; the inner node stays the current one
+        ++s.counters.box_tests;
+        break;
+      case EventType::skip:  // BVH: the popped entry (the current node) is not visited
+        if (skipped.insert(e.node).second) s.skippedNodes.push_back(e.node);
         break;
       case EventType::push:  // the far child waits on the stack; the inner node stays the current one
         ++s.counters.pushes;
@@ -248,6 +256,51 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   return c;
 }
 
+bool isBvhKind(const std::string& kind) {
+  return kind.rfind("bvh", 0) == 0;
+}
+
+bool isBvhRay(const Trace* trace, const TracedRay& ray) {
+  if (trace && isBvhKind(trace->structure.kind)) return true;
+  for (const Event& e : ray.events)
+    if (e.type == EventType::box_test || e.type == EventType::skip) return true;
+  return false;
+}
+
+BvhChoice bvhChoice(const TracedRay& ray, const ReplayState& s) {
+  BvhChoice c;
+  const std::vector<Event>& ev = ray.events;
+  if (s.nodeEvent < 0 || ev[size_t(s.nodeEvent)].type != EventType::node) return c;
+  c.nodeEvent = s.nodeEvent;
+  c.node = ev[size_t(s.nodeEvent)].node;
+  // The node's box tests and pushes follow it; the next node event is the child entered first.
+  size_t i = size_t(s.nodeEvent) + 1;
+  int lastTest = -1;
+  for (; i < ev.size(); ++i) {
+    const Event& e = ev[i];
+    if (e.type == EventType::box_test) {
+      BoxTestMark m;
+      m.child = e.node;
+      m.hit = e.hit;
+      m.tNear = e.t_min_node;
+      m.tFar = e.t_max_node;
+      m.event = int(i);
+      m.done = int(i) <= s.step;
+      c.tests.push_back(m);
+      lastTest = int(i);
+    } else if (e.type == EventType::push) {
+      c.pushed.push_back(e.node);
+    } else {
+      break;
+    }
+  }
+  if (c.tests.empty()) return c;
+  if (i < ev.size() && ev[i].type == EventType::node) c.first = ev[i].node;
+  c.decided = s.step >= lastTest;
+  c.valid = true;
+  return c;
+}
+
 std::string describeEvent(const Event& e) {
   std::string s = std::to_string(e.seq) + "  " + event_type_name(e.type);
   switch (e.type) {
@@ -262,6 +315,14 @@ std::string describeEvent(const Event& e) {
     case EventType::leaf:
       s += (e.type == EventType::node ? "  " : "  node ") + std::to_string(e.node) + " depth " +
            std::to_string(e.depth) + "  t " + num(e.t_min_node) + ".." + num(e.t_max_node);
+      break;
+    case EventType::box_test:
+      s += (e.parent < 0 ? "  root " + std::to_string(e.node)
+                         : "  child " + std::to_string(e.node) + " of " + std::to_string(e.parent)) +
+           (e.hit ? ": hit [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]" : ": miss");
+      break;
+    case EventType::skip:
+      s += "  node " + std::to_string(e.node) + " t_near " + num(e.t_min_node) + " (beyond the nearest hit)";
       break;
     case EventType::prim_test:
       s += "  prim " + std::to_string(e.prim) + (e.hit ? ": hit at t " + num(e.t) : ": miss");
@@ -558,10 +619,157 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
   }
 }
 
+// The decision at an inner BVH node once its children's boxes are tested: enter the nearer box hit, push the
+// others, or (none hit) go on with the stack.
+std::string bvhDecision(const BvhChoice& c) {
+  std::vector<const BoxTestMark*> hits;
+  for (const BoxTestMark& m : c.tests)
+    if (m.hit) hits.push_back(&m);
+  if (hits.empty())
+    return "No child's box is hit: nothing under node " + std::to_string(c.node) +
+           " can be hit. Go on with the next node on the stack.";
+  const BoxTestMark* first = nullptr;
+  for (const BoxTestMark* m : hits)
+    if (m->child == c.first) first = m;
+  if (hits.size() == 1)
+    return "Only child " + std::to_string(hits[0]->child) + "'s box is hit: enter it, with [" +
+           num(hits[0]->tNear) + ", " + num(hits[0]->tFar) + "].";
+  std::string text = std::to_string(hits.size()) + " children's boxes are hit";
+  // Overlapping intervals: the boxes overlap along the ray (bounding volumes can overlap).
+  bool overlap = false;
+  for (size_t a = 0; a < hits.size(); ++a)
+    for (size_t b = a + 1; b < hits.size(); ++b)
+      overlap |= hits[a]->tNear <= hits[b]->tFar && hits[b]->tNear <= hits[a]->tFar;
+  if (overlap)
+    text += ", and their intervals overlap: the boxes overlap along the ray (bounding volumes can overlap)";
+  if (!first) return text + ".";
+  bool byDistance = true;
+  for (const BoxTestMark* m : hits) byDistance &= first->tNear <= m->tNear;
+  text += ".\nNearer first: enter child " + std::to_string(first->child) + " (t_near = " + num(first->tNear) +
+          ")";
+  bool tie = false;
+  for (const BoxTestMark* m : hits) tie |= m != first && m->tNear == first->tNear;
+  text += !byDistance ? " (chosen by the ray's direction on the split axis, not by t_near)"
+          : tie       ? " (a tie: the same t_near, so the child tested first goes first)"
+                      : "";
+  if (!c.pushed.empty()) {
+    text += "; push ";
+    for (size_t k = 0; k < c.pushed.size(); ++k) {
+      if (k) text += ", ";
+      text += "child " + std::to_string(c.pushed[k]);
+      for (const BoxTestMark* m : hits)
+        if (m->child == c.pushed[k]) text += " (t_near = " + num(m->tNear) + ")";
+    }
+    text += " for later.";
+  } else {
+    text += ".";
+  }
+  return text;
+}
+
+// The BVH's stack walk in the lecture's words: tight boxes, possibly overlapping, tested child by child.
+std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
+  const Event& e = *s.event;
+  const std::vector<Event>& ev = ray.events;
+  size_t next = size_t(s.step) + 1;
+  const Event* after = next < ev.size() ? &ev[next] : nullptr;
+  switch (e.type) {
+    case EventType::ray_begin: {
+      int first = findEvent(ray, 0, EventType::node, true);
+      if (first < 0) return "The ray misses the root's box (slab test): no node to visit.";
+      const Event& root = ev[size_t(first)];
+      return "Slab test: the ray meets the root's box over [t_near, t_far] = [" + num(root.t_min_node) +
+             ", " + num(root.t_max_node) + "]; the walk starts at the root.";
+    }
+    case EventType::node: {
+      if (after && after->type == EventType::leaf)
+        return "Node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") is a leaf.";
+      BvhChoice c = bvhChoice(ray, s);
+      return "Inner node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) +
+             "), its box entered over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].\nTest its " +
+             std::to_string(c.tests.size()) +
+             " children's boxes (slab test). Each box is tight around its own primitives and may overlap its "
+             "sibling's, so the ray may have to enter more than one.";
+    }
+    case EventType::box_test: {
+      if (e.parent < 0)  // the root's own box, before the walk starts
+        return e.hit ? "Slab test: the ray meets the root's box over [t_near, t_far] = [" +
+                           num(e.t_min_node) + ", " + num(e.t_max_node) + "]; the walk starts at the root."
+                     : std::string(
+                           "The ray misses the root's box (slab test): nothing in the scene can be hit.");
+      std::string text = "Child " + std::to_string(e.node) + " of node " + std::to_string(e.parent) + ": ";
+      if (e.hit)
+        text +=
+            "its box is hit over [t_near, t_far] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].";
+      else
+        text += s.nearestPrim >= 0
+                    ? "its box is missed: the ray does not enter it before the nearest hit so far, t = " +
+                          num(s.nearestT) + ", so nothing under it can give a nearer hit."
+                    : std::string(
+                          "its box is missed (the slab intervals do not overlap): nothing under it can "
+                          "be hit.");
+      BvhChoice c = bvhChoice(ray, s);
+      if (c.valid && c.decided) text += "\n" + bvhDecision(c);
+      return text;
+    }
+    case EventType::push:
+      return "Push child " + std::to_string(e.node) + " with [t_near, t_far] = [" + num(e.t_min_node) + ", " +
+             num(e.t_max_node) + "]: it waits while the nearer child is walked. The stack holds " +
+             std::to_string(s.stack.size()) + (s.stack.size() == 1 ? " node." : " nodes.");
+    case EventType::leaf: {
+      size_t k = s.prims.size();
+      std::string head =
+          "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+      if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
+      return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
+             ". No mailbox: in a BVH each primitive is in exactly one leaf, so no primitive is tested twice "
+             "for a ray (the kd-tree needs mailboxes because it copies a primitive into every cell it "
+             "overlaps).";
+    }
+    case EventType::pop: {
+      std::string head = "Pop node " + std::to_string(e.node) + " with t_near = " + num(e.t_min_node) + ". ";
+      if (after && after->type == EventType::skip) return head + "Is its box beyond the nearest hit?";
+      if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
+      return head + "The nearest hit so far, t = " + num(s.nearestT) +
+             ", is not before its t_near: a nearer hit may lie in its box (the boxes overlap, or the hit "
+             "lies "
+             "beyond it), so visit it.";
+    }
+    case EventType::skip:
+      return "skip: t_near = " + num(e.t_min_node) + " > t of the nearest hit = " + num(s.nearestT) +
+             ": the box starts beyond the hit, so nothing in it can be nearer. Skip node " +
+             std::to_string(e.node) + " without testing its children.";
+    case EventType::prim_test: {
+      std::string where = s.nodeEvent >= 0 ? " in leaf " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
+      return explainPrimTest(trace, ray, e, s, where);
+    }
+    case EventType::hit_accepted: {
+      if (e.reason == AcceptReason::any_hit)
+        return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
+      if (e.reason == AcceptReason::next_node_beyond) {
+        int pop = findEvent(ray, s.step, EventType::pop, false);
+        std::string tnear = pop >= 0 ? num(ev[size_t(pop)].t_min_node) : "?";
+        return "The popped node starts beyond the hit: t_near = " + tnear + " > t(hit) = " + num(e.t) +
+               ", and every node below it on the stack was skipped or starts later  =>  stop, the hit is "
+               "final.";
+      }
+      return "The stack is empty: every box the ray entered has been walked or skipped. The nearest hit, t "
+             "= " +
+             num(e.t) + ", is final.";
+    }
+    case EventType::ray_end:
+      if (e.prim < 0) return "Miss: the walk tested every box the ray enters without a hit.";
+      return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
+    default:
+      return "";
+  }
+}
+
 }  // namespace
 
 std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   if (!s.event) return "";
+  if (isBvhRay(trace, ray)) return explainBvhRule(trace, ray, s);
   return isTreeRay(ray) ? explainTreeRule(trace, ray, s) : explainGridRule(trace, ray, s);
 }
 

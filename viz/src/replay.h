@@ -61,6 +61,29 @@ struct NodeCrossing {
   int32_t nearChild = -1, farChild = -1;  // -1: not visited from this node
 };
 
+// BVH: one child's box tested from the current inner node (lecture: "bounding volumes can overlap", so the
+// ray may enter more than one child). done: the test is at or before the current event.
+struct BoxTestMark {
+  int32_t child = -1;
+  bool hit = false;
+  float tNear = 0.f, tFar = 0.f;  // on a hit
+  int event = -1;
+  bool done = false;
+};
+
+// BVH: what the walk does at the current inner node: each child's box test ([t_near, t_far] or a miss), the
+// child entered first (the nearer one hit) and the children pushed for later, from the events that follow the
+// node event.
+struct BvhChoice {
+  bool valid = false;  // false: the current node is not an inner BVH node with box tests
+  int nodeEvent = -1;
+  int32_t node = -1;
+  std::vector<BoxTestMark> tests;  // in the order the kernel tested them
+  int32_t first = -1;              // the child walked next (-1: none hit, the walk pops)
+  std::vector<int32_t> pushed;     // pushed, bottom first
+  bool decided = false;            // the current event is the last box test or later: the choice is known
+};
+
 struct ReplayState {
   int step = -1;  // index of the current event
   const Event* event = nullptr;
@@ -73,6 +96,8 @@ struct ReplayState {
   std::vector<StackEntry> stack;
   // The nodes the walk was at before the current one, each once, in the order it left them.
   std::vector<int32_t> visitedNodes;
+  // BVH: popped entries not visited (their t_near beyond the nearest hit), in order.
+  std::vector<int32_t> skippedNodes;
   // The primitives of the current cell (or leaf), the block of events from blockEvent to the next cell:
   // every one it references, in the order the walk meets them.
   int blockEvent = -1;
@@ -92,8 +117,14 @@ struct ReplayState {
 
 ReplayState replayAt(const TracedRay& ray, int step);
 
-// True when the ray walked a tree (node, push, pop or leaf events).
+// True when the ray walked a tree (node, push, pop, leaf, box_test or skip events).
 bool isTreeRay(const TracedRay& ray);
+// True when the ray walked a BVH: the trace's structure is a BVH ("bvh", "bvh-sweep", "bvh-median", "bvh4",
+// "bvh8"), or (without a trace) its events test children's boxes.
+bool isBvhKind(const std::string& kind);
+bool isBvhRay(const Trace* trace, const TracedRay& ray);
+// The BVH choice at the current inner node (the node event of s.nodeEvent).
+BvhChoice bvhChoice(const TracedRay& ray, const ReplayState& s);
 // The node of a trace's geometry with this id, or null.
 const TraceNode* findNode(const Trace& trace, int32_t id);
 // The crossing at the current inner node (the node event of s.nodeEvent), from the trace's split plane and the

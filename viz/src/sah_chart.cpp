@@ -29,6 +29,7 @@
 
 #include "chart_util.h"
 #include "palette.h"
+#include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "replay.h"
 
@@ -202,6 +203,7 @@ void SahChart::setScale(double scale) {
 
 void SahChart::showMessage(const QString& text) {
   curve_.reset();
+  bvhCurve_.reset();
   d_->message = text;
   d_->chart->ClearPlots();
   for (auto& t : d_->axisTable) t = nullptr;
@@ -214,6 +216,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
                         float empty_bonus) {
   Impl& d = *d_;
   curve_ = std::move(curve);
+  bvhCurve_.reset();
   lastPath_ = path;
   lastTi_ = t_i;
   lastTt_ = t_t;
@@ -335,6 +338,83 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
   renderNow();
 }
 
+namespace {
+
+LeafReason kdReasonOf(BvhLeafReason r) {
+  switch (r) {
+    case BvhLeafReason::few_primitives:
+      return LeafReason::few_primitives;
+    case BvhLeafReason::max_depth:
+      return LeafReason::max_depth;
+    case BvhLeafReason::no_cheaper_split:
+      return LeafReason::no_cheaper_split;
+    case BvhLeafReason::no_candidate:
+      return LeafReason::no_candidate;
+  }
+  return LeafReason::few_primitives;
+}
+
+}  // namespace
+
+void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i,
+                           float t_t) {
+  // The chart draws candidates against their plane's position across the node's box: a BVH candidate is the
+  // plane between two bins of centroids, N left and right its sides' counts (no planar primitives: each
+  // primitive goes to one side by its centroid).
+  const BvhSahCurve& b = *curve;
+  auto c = std::make_shared<SahCurve>();
+  c->node = b.node;
+  c->info.box = b.bvh_node.box;
+  c->info.parent = b.info.parent;
+  c->info.depth = b.info.depth;
+  c->info.cost = b.info.cost;
+  c->n_prims = b.info.prims;
+  c->leaf_cost = b.leaf_cost;
+  c->leaf = b.leaf;
+  c->leaf_reason = kdReasonOf(b.leaf_reason);
+  c->chosen = b.chosen;
+  for (const BvhCandidate& k : b.candidates) {
+    SahCandidate s;
+    s.axis = k.axis;
+    s.position = k.position;
+    s.n_below = k.n_left;
+    s.n_above = k.n_right;
+    s.area_below = k.area_left;
+    s.area_above = k.area_right;
+    s.area_node = k.area_node;
+    s.cost = k.cost;
+    c->candidates.push_back(s);
+  }
+  const bool chosenKnown = b.chosen >= 0 && size_t(b.chosen) < b.candidates.size();
+  if (!b.leaf && chosenKnown) {
+    const BvhCandidate& k = b.candidates[size_t(b.chosen)];
+    c->axis = k.axis;
+    c->position = k.position;
+    c->cost = k.cost;
+  }
+  setCurve(c, path, t_i, t_t);
+  bvhCurve_ = std::move(curve);
+  if (conceal_ || b.leaf || !chosenKnown) return;
+  // The decision in the BVH's terms: the bin, the counts and the areas of each side's tight box.
+  const BvhCandidate& k = b.candidates[size_t(b.chosen)];
+  QString t = text_->text();
+  const int cut = t.indexOf("<b>split");
+  if (cut >= 0) t.truncate(cut);
+  t += tr("<b>bin %1 on %2</b> (plane %2 = %3), cost %4 = t_t + (S_l N_l + S_r N_r) t_i / S_node (t_t = %5)"
+          "<br>N left %6, right %7; each side's box is tight around its primitives and may overlap the other")
+           .arg(k.bin)
+           .arg(axisName(k.axis))
+           .arg(fmt(k.position))
+           .arg(fmt(k.cost))
+           .arg(double(t_t))
+           .arg(k.n_left)
+           .arg(k.n_right);
+  text_->setText(t);
+  d_->chart->SetTitle("node " + std::to_string(b.node) + ": bin " + std::to_string(k.bin) + " on " +
+                      axisName(k.axis));
+  renderNow();
+}
+
 void SahChart::renderNow() {
   d_->window->Render();
 }
@@ -380,6 +460,9 @@ QJsonObject SahChart::dumpState() const {
   o["points"] = points;  // as plotted: one per candidate
   o["plots"] = int(d.chart->GetNumberOfPlots());
   o["candidates"] = int(c.candidates.size());
+  o["structure"] = bvhCurve_ ? "bvh" : "kd";
+  if (bvhCurve_ && bvhCurve_->chosen >= 0 && size_t(bvhCurve_->chosen) < bvhCurve_->candidates.size())
+    o["chosen_bin"] = bvhCurve_->candidates[size_t(bvhCurve_->chosen)].bin;
   return o;
 }
 

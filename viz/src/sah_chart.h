@@ -4,7 +4,7 @@
 // cost N t_i as a dashed line (a split must come below it); the chosen split as a vertical line, or the
 // reason the node became a leaf. Beside it the node's id, path, depth, N, box and decision. The curve itself
 // is recorded by the main window off the GUI thread (core's record_sah_curve); VTK stays inside
-// sah_chart.cpp.
+// sah_chart.cpp. A BVH node's binned curve is drawn the same way (setBvhCurve).
 #pragma once
 
 #include <memory>
@@ -18,6 +18,7 @@ class QLabel;
 
 namespace raystep {
 struct SahCurve;
+struct BvhSahCurve;
 }
 
 namespace raystep::viz {
@@ -31,6 +32,11 @@ class SahChart : public QWidget {
   // The curve of a node (path: its "LRL" from the root), with the costs' t_i for the text.
   void setCurve(std::shared_ptr<const SahCurve> curve, const QString& path, float t_i, float t_t,
                 float empty_bonus = 0.f);
+  // A BVH node's binned curve (core's record_bvh_sah_curve): the same chart, one point per bin boundary and
+  // axis at the plane's position across the node's box, the chosen bin's line, and the text in the BVH's
+  // terms (N left and right, bin k).
+  void setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i, float t_t);
+  std::shared_ptr<const BvhSahCurve> bvhCurve() const { return bvhCurve_; }
   // No curve: a message instead ("Select a node ...", "Recording node 5 ...").
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }
@@ -63,6 +69,7 @@ class SahChart : public QWidget {
   struct Impl;
   std::unique_ptr<Impl> d_;
   std::shared_ptr<const SahCurve> curve_;
+  std::shared_ptr<const BvhSahCurve> bvhCurve_;  // set with curve_ (its kd-shaped copy) for a BVH node
   QLabel* text_;
   QString lastPath_;  // setCurve's arguments, to draw again at another scale
   float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;

@@ -40,6 +40,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "backdrop_cache.h"
+#include "kd_tree_model.h"
 #include "palette.h"
 #include "session.h"
 
@@ -71,6 +72,36 @@ void addBoxEdges(vtkPoints* pts, vtkCellArray* lines, const glm::vec3& lo, const
     vtkIdType ids[2] = {base + e[0], base + e[1]};
     lines->InsertNextCell(2, ids);
   }
+}
+
+// The 6 faces of a box as quads appended to pts/polys; returns the number of cells added.
+int addBoxFaces(vtkPoints* pts, vtkCellArray* polys, const glm::vec3& lo, const glm::vec3& hi) {
+  vtkIdType base = pts->GetNumberOfPoints();
+  for (int c = 0; c < 8; ++c)
+    pts->InsertNextPoint(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+  static const int faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                  {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  for (auto& f : faces) {
+    vtkIdType ids[4] = {base + f[0], base + f[1], base + f[2], base + f[3]};
+    polys->InsertNextCell(4, ids);
+  }
+  return 6;
+}
+
+void appendColor(vtkUnsignedCharArray* colors, const QColor& c, int n) {
+  for (int k = 0; k < n; ++k) colors->InsertNextTuple3(c.red(), c.green(), c.blue());
+}
+
+// An actor coloured per cell (unlit).
+vtkSmartPointer<vtkActor> cellColoredActor(vtkPolyData* data, float lineWidth) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  mapper->SetScalarModeToUseCellData();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetLighting(false);
+  actor->GetProperty()->SetLineWidth(lineWidth);
+  return actor;
 }
 
 // A sphere as a UV-tessellated triangle list.
@@ -135,6 +166,13 @@ struct SceneView::Impl {
   // kd-tree: the nodes waiting on the stack, the current node's split plane.
   vtkNew<vtkPolyData> stackData, splitData;
   vtkSmartPointer<vtkActor> stackActor, splitActor;
+  // BVH: the current inner node's children's boxes (translucent faces under the walk, outlines over it, one
+  // colour for the first child tested and one for the others), their pairwise overlaps outlined, and the
+  // nodes skipped so far.
+  vtkNew<vtkPolyData> childFacesData, childEdgesData, overlapData, skippedData;
+  vtkSmartPointer<vtkActor> childFacesActor, childEdgesActor, overlapActor, skippedActor;
+  bool bvh = false;
+  std::vector<int32_t> childrenDrawn, overlapsDrawn;  // for the dump: children, and pairs (a, b) flattened
   // The primitive being tested: its outline (its face shows the test's result, known at the test's event, so
   // that a leaf's or cell's last test is seen with its result before the walk moves on).
   vtkNew<vtkPolyData> testingData;
@@ -318,6 +356,14 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.planes->AddActor(d.splitActor);
   d.selectedActor = unlitActor(d.selectedData, palette::selectedNode, 3.f);
   d.overlay->AddActor(d.selectedActor);
+  d.childFacesActor = cellColoredActor(d.childFacesData, 1.f);
+  d.childFacesActor->GetProperty()->SetOpacity(0.22);
+  d.planes->AddActor(d.childFacesActor);
+  d.childEdgesActor = cellColoredActor(d.childEdgesData, 2.f);
+  d.overlapActor = unlitActor(d.overlapData, palette::bvhOverlap, 3.f);
+  d.skippedActor = unlitActor(d.skippedData, palette::bvhSkipped, 2.f);
+  for (vtkActor* a : {d.childEdgesActor.Get(), d.overlapActor.Get(), d.skippedActor.Get()})
+    d.overlay->AddActor(a);
   // A click without a drag picks the scene (a drag still turns the camera).
   d.picker->SetTolerance(0.0005);
   d.picker->PickFromListOn();
@@ -454,6 +500,12 @@ void SceneView::rebuildGeometry() {
     d.haveTree = !kd->data().nodes.empty();
     d.gridLo = kd->data().bounds.lo;
     d.gridHi = kd->data().bounds.hi;
+  } else if (session_->structure() && isBvhKind(session_->structure()->kind)) {
+    // A BVH: its root box is the scene's bounds (tight around every primitive).
+    const Bounds3& b = session_->structure()->scene->scene.geometry.bounds();
+    d.haveTree = !b.empty();
+    d.gridLo = b.lo;
+    d.gridHi = b.hi;
   } else if (const Trace* t = session_->trace(); t && !session_->scene() && t->structure.kind != "grid") {
     d.haveTree = true;
     d.gridLo = t->structure.bounds.lo;
@@ -504,7 +556,22 @@ void SceneView::rebuildGeometry() {
   QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested (outline)")) +
                        swatch(palette::primHit, tr("hit")) + swatch(palette::primMissed, tr("missed")) +
                        swatch(palette::primSkipped, tr("skipped (mailbox)"));
-  if (d.haveTree)
+  const bool bvhLegend = (session_->structure() && isBvhKind(session_->structure()->kind)) ||
+                         (session_->trace() && isBvhKind(session_->trace()->structure.kind));
+  if (d.haveTree && bvhLegend)
+    d.legend->setText(
+        walk + swatch(palette::currentCell, tr("current node")) +
+        swatch(palette::bvhChildFirst, tr("first child tested")) +
+        swatch(palette::bvhChildOther, tr("other child")) +
+        swatch(palette::bvhOverlap, tr("children overlap")) + swatch(palette::stackNode, tr("on the stack")) +
+        swatch(palette::visitedCell, tr("visited")) +
+        swatch(palette::bvhSkipped, tr("skipped (beyond the hit)")) + hits +
+        (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
+        "<br>" + tr("Primitives of the current leaf (each in exactly one leaf: no mailbox): ") +
+        swatch(palette::primPending, tr("not reached")) +
+        swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
+        swatch(palette::primMissed, tr("missed")));
+  else if (d.haveTree)
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
                       swatch(palette::visitedCell, tr("visited")) + hits +
@@ -522,12 +589,12 @@ void SceneView::updateSelected() {
   vtkNew<vtkPoints> pts;
   vtkNew<vtkCellArray> lines;
   d.selectedDrawn = -1;
-  const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+  std::unique_ptr<TreeShape> tree = session_->structure() ? treeShapeOf(*session_->structure()) : nullptr;
   int n = session_->selectedNode();
-  if (kd && n >= 0 && size_t(n) < kd->data().info.size()) {
+  if (tree && n >= 0 && size_t(n) < tree->size()) {
     // Drawn a little outside the node's box, so that it stays in view when the node is also the walk's current
     // one (whose yellow box lies on the same edges).
-    const Bounds3& b = kd->data().info[size_t(n)].box;
+    const Bounds3 b = tree->box(uint32_t(n));
     glm::vec3 pad(0.006f * glm::length(b.hi - b.lo));
     d.selectedDrawn = n;
     d.selectedLo = b.lo - pad;
@@ -588,6 +655,68 @@ bool SceneView::pickDisplay(int x, int y) {
   return true;
 }
 
+void SceneView::updateBvhChildren() {
+  Impl& d = *d_;
+  const TracedRay* ray = session_->ray();
+  const ReplayState& s = session_->state();
+  vtkNew<vtkPoints> fpts, epts, opts, kpts;
+  vtkNew<vtkCellArray> fpolys, elines, olines, klines;
+  vtkNew<vtkUnsignedCharArray> fcolors, ecolors;
+  fcolors->SetNumberOfComponents(3);
+  ecolors->SetNumberOfComponents(3);
+  d.childrenDrawn.clear();
+  d.overlapsDrawn.clear();
+  d.bvh = ray && d.haveTree && isBvhRay(session_->trace(), *ray);
+  if (d.bvh) {
+    // The children tested so far: a box hit filled, a box missed outlined only.
+    BvhChoice c = bvhChoice(*ray, s);
+    std::vector<const TraceNode*> hitBoxes;
+    for (size_t k = 0; k < c.tests.size(); ++k) {
+      const BoxTestMark& m = c.tests[k];
+      const TraceNode* n = d.node(m.child);
+      if (!n || !m.done) continue;
+      const QColor& col = k == 0 ? palette::bvhChildFirst : palette::bvhChildOther;
+      d.childrenDrawn.push_back(m.child);
+      int before = int(elines->GetNumberOfCells());
+      addBoxEdges(epts, elines, n->box.lo, n->box.hi);
+      appendColor(ecolors, col, int(elines->GetNumberOfCells()) - before);
+      if (m.hit) {
+        appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
+        hitBoxes.push_back(n);
+      }
+    }
+    // Where two children's boxes overlap: their intersection, outlined (the tints add up inside it).
+    for (size_t a = 0; a < hitBoxes.size(); ++a)
+      for (size_t b = a + 1; b < hitBoxes.size(); ++b) {
+        glm::vec3 lo = glm::max(hitBoxes[a]->box.lo, hitBoxes[b]->box.lo);
+        glm::vec3 hi = glm::min(hitBoxes[a]->box.hi, hitBoxes[b]->box.hi);
+        if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z) continue;
+        addBoxEdges(opts, olines, lo, hi);
+        d.overlapsDrawn.push_back(hitBoxes[a]->id);
+        d.overlapsDrawn.push_back(hitBoxes[b]->id);
+      }
+    for (int32_t id : s.skippedNodes)
+      if (const TraceNode* n = d.node(id)) {
+        glm::vec3 inset = 0.01f * (n->box.hi - n->box.lo);
+        addBoxEdges(kpts, klines, n->box.lo + inset, n->box.hi - inset);
+      }
+  }
+  d.childFacesData->SetPoints(fpts);
+  d.childFacesData->SetPolys(fpolys);
+  d.childFacesData->GetCellData()->SetScalars(fcolors);
+  d.childFacesData->Modified();
+  d.childEdgesData->SetPoints(epts);
+  d.childEdgesData->SetLines(elines);
+  d.childEdgesData->GetCellData()->SetScalars(ecolors);
+  d.childEdgesData->Modified();
+  d.overlapData->SetPoints(opts);
+  d.overlapData->SetLines(olines);
+  d.overlapData->Modified();
+  d.skippedData->SetPoints(kpts);
+  d.skippedData->SetLines(klines);
+  d.skippedData->Modified();
+}
+
 void SceneView::updateStep() {
   auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
@@ -636,9 +765,12 @@ void SceneView::updateStep() {
         glm::vec3 inset = 0.02f * (n->box.hi - n->box.lo);
         addBoxEdges(stpts, stlines, n->box.lo + inset, n->box.hi - inset);
       }
-    if (const TraceNode* n = d.node(d.currentNode)) {
+    // BVH: a popped node that is skipped is drawn as skipped (sage), not as the node the walk is in.
+    const bool skippedNow =
+        std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
+    if (const TraceNode* n = skippedNow ? nullptr : d.node(d.currentNode)) {
       addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
-      if (!n->leaf) {
+      if (!n->leaf && n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
         int a = n->axis, b = (a + 1) % 3, c = (a + 2) % 3;
         vtkIdType ids[4];
         for (int k = 0; k < 4; ++k) {
@@ -652,6 +784,7 @@ void SceneView::updateStep() {
       }
     }
   }
+  updateBvhChildren();
   d.stackData->SetPoints(stpts);
   d.stackData->SetLines(stlines);
   d.stackData->Modified();
@@ -941,7 +1074,11 @@ QJsonObject SceneView::dumpState() const {
                             {"hit_candidate", jsonColor(palette::hitCandidate)},
                             {"stack_node", jsonColor(palette::stackNode)},
                             {"split_plane", jsonColor(palette::splitPlane)},
-                            {"selected_node", jsonColor(palette::selectedNode)}};
+                            {"selected_node", jsonColor(palette::selectedNode)},
+                            {"bvh_child_first", jsonColor(palette::bvhChildFirst)},
+                            {"bvh_child_other", jsonColor(palette::bvhChildOther)},
+                            {"bvh_overlap", jsonColor(palette::bvhOverlap)},
+                            {"bvh_skipped", jsonColor(palette::bvhSkipped)}};
   const TracedRay* ray = session_->ray();
   const ReplayState& s = session_->state();
   if (ray && s.cellEvent >= 0 && d.haveGrid) {
@@ -990,6 +1127,27 @@ QJsonObject SceneView::dumpState() const {
     for (int32_t id : d.visitedNodes) vis.append(id);
     o["stack_nodes"] = stack;
     o["visited_nodes"] = vis;
+    if (!n->children.empty()) {
+      QJsonArray children;
+      for (int32_t c : n->children) children.append(c);
+      cn["children"] = children;
+      o["current_node"] = cn;
+    }
+  }
+  if (d.bvh) {
+    QJsonArray drawn, overlaps, skipped;
+    for (int32_t c : d.childrenDrawn) {
+      const TraceNode* n = d.node(c);
+      drawn.append(QJsonObject{{"node", c},
+                               {"min", QJsonArray{n->box.lo.x, n->box.lo.y, n->box.lo.z}},
+                               {"max", QJsonArray{n->box.hi.x, n->box.hi.y, n->box.hi.z}},
+                               {"projected_corners", projectBox(n->box.lo, n->box.hi)}});
+    }
+    for (size_t k = 0; k + 1 < d.overlapsDrawn.size(); k += 2)
+      overlaps.append(QJsonArray{d.overlapsDrawn[k], d.overlapsDrawn[k + 1]});
+    for (int32_t id : s.skippedNodes) skipped.append(id);
+    o["bvh"] =
+        QJsonObject{{"children_drawn", drawn}, {"overlaps_drawn", overlaps}, {"skipped_nodes", skipped}};
   }
   QJsonArray visited;
   for (int i : s.visitedCellEvents) {

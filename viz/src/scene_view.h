@@ -1,8 +1,10 @@
 // The 3D view: the scene's geometry flat shaded (optionally translucent), the grid's outline, and on top of
 // it the replayed walk: the ray with its current [tmin, tmax] interval, the hit point, the current cell,
 // the cells already visited, and the current cell's primitives coloured by state; the kd-tree node selected
-// in the tree view. A click on the scene picks a point (the main window selects the leaf holding it). VTK stays inside
-// scene_view.cpp; actors are made once per scene or trace and only their data changes per step.
+// in the tree view. BVH: the current node's children's boxes, translucent in two colours with their overlap
+// outlined ("bounding volumes can overlap"), the stack, the visited and the skipped nodes. A click on the
+// scene picks a point (the main window selects the leaf holding it). VTK stays inside scene_view.cpp; actors
+// are made once per scene or trace and only their data changes per step.
 #pragma once
 
 #include <memory>
@@ -53,6 +55,7 @@ class SceneView : public QWidget {
   void fitCameraTo(const double* bounds);  // xmin, xmax, ymin, ymax, zmin, zmax
   void updateStep();
   void updateSelected();  // the selected kd-tree node's box
+  void updateBvhChildren();  // BVH: the current node's children's boxes, their overlap, the skipped nodes
   bool pickDisplay(int x, int y);
   bool eventFilter(QObject* watched, QEvent* event) override;  // a click without a drag picks  // VTK display coordinates (origin bottom left, device pixels)
   struct Impl;

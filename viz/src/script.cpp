@@ -106,12 +106,17 @@ QJsonObject dumpState(MainWindow& w) {
   o["view"] = w.sceneView()->dumpState();
   o["sah"] = w.sahChart()->dumpState();
   o["selected_node"] = s->selectedNode();
-  if (const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr) {
-    QJsonObject tree{{"nodes", int(kd->data().nodes.size())}, {"rows_made", w.treeView()->expandedCount()}};
+  if (std::unique_ptr<TreeShape> shape = s->structure() ? treeShapeOf(*s->structure()) : nullptr) {
+    QJsonObject tree{{"nodes", int(shape->size())},
+                     {"rows_made", w.treeView()->expandedCount()},
+                     {"structure", shape->name()}};
     QModelIndex cur = w.treeView()->view()->currentIndex();
     tree["current_row_node"] = KdTreeModel::nodeOf(cur);
-    if (s->selectedNode() >= 0)
-      tree["selected_path"] = QString::fromStdString(kdNodePath(kd->data(), uint32_t(s->selectedNode())));
+    if (s->selectedNode() >= 0) {
+      tree["selected_path"] = QString::fromStdString(shape->path(uint32_t(s->selectedNode())));
+      tree["selected_what"] = shape->what(uint32_t(s->selectedNode()));
+    }
+    tree["root_what"] = w.treeView()->view()->model()->index(0, KdTreeModel::WhatColumn).data().toString();
     o["tree"] = tree;
   }
   o["window"] = QJsonArray{w.width(), w.height()};
@@ -158,21 +163,32 @@ void defineOptions(QCommandLineParser& p) {
   auto opt = [&](const QString& name, const QString& help, const QString& value = QString()) {
     p.addOption(QCommandLineOption(name, help, value));
   };
-  opt("accel", "Acceleration structure: grid, kd (SAH) or kd-median.", "NAME");
-  opt("ti", "kd: t_i, the cost of a ray-primitive test (default 80).", "T");
-  opt("tt", "kd: t_t, the cost of a traversal step (default 1).", "T");
+  opt("accel",
+      "Acceleration structure: grid, kd (SAH), kd-median, bvh (binned SAH), bvh-sweep, bvh-median, bvh4 or "
+      "bvh8.",
+      "NAME");
+  opt("ti", "kd and BVH: t_i, the cost of a ray-primitive test (default 80).", "T");
+  opt("tt", "kd and BVH: t_t, the cost of a traversal step (default 1).", "T");
   opt("empty-bonus", "kd: bonus in [0,1) for splits that cut off empty space (default 0).", "B");
-  opt("max-depth", "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N).", "D");
+  opt("max-depth",
+      "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); BVH: depth limit (0: "
+      "64).",
+      "D");
   opt("leaf-size", "kd: a node with at most this many primitives is a leaf (default 1).", "N");
   opt("mailbox", "kd: mailboxes on | off (default on).", "MODE");
+  opt("bins", "BVH (binned SAH): bins per axis, 2..256 (default 16).", "N");
+  opt("bvh-leaf", "BVH: a node with at most this many primitives is a leaf (default 1).", "N");
+  opt("bvh-max-leaf", "BVH: a node with more primitives is always split when it can be (default 16).", "N");
+  opt("bvh-order", "Binary BVH: the nearer child by entry (t_near) or by axis (the direction's sign).",
+      "ORDER");
   opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
   opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
   opt("heat",
-      "Heat map overlay: cells, tests, mailbox, samples (the anti-aliasing's rays per pixel) or error "
-      "(against "
-      "the exact reference, where the scene has one).",
+      "Heat map overlay: cells (cells or nodes visited), tests, mailbox, boxes (BVH: bounding-box tests), "
+      "samples (the anti-aliasing's rays per pixel) or error (against the exact reference, where the scene "
+      "has one).",
       "Q");
   opt("size", "Picture size (default: the scene's); --pixel refers to it.", "WxH");
   opt("pixel", "Trace this pixel's rays.", "X,Y");

@@ -294,7 +294,9 @@ void Session::setSquare(int index) {
 
 void Session::setSelectedNode(int node) {
   const KdTree* kd = structure_ ? structure_->kdTree() : nullptr;
-  if (node < -1 || (node >= 0 && (!kd || size_t(node) >= kd->data().nodes.size()))) return;
+  const Bvh* bvh = structure_ ? structure_->bvh() : nullptr;
+  const size_t nodes = kd ? kd->data().nodes.size() : bvh ? bvh->data().nodes.size() : 0;
+  if (node < -1 || (node >= 0 && size_t(node) >= nodes)) return;
   if (node == selectedNode_) return;
   selectedNode_ = node;
   Q_EMIT selectedNodeChanged();

@@ -11,6 +11,7 @@
 #include <QImage>
 #include <QObject>
 
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/structure_options.h"
@@ -27,7 +28,8 @@ struct SceneData {
   std::string path, hash;
 };
 
-// Any accelerator that records events: "grid", "kd" (SAH) or "kd-median".
+// Any accelerator that records events: "grid", "kd" (SAH), "kd-median", "bvh" (binned SAH), "bvh-sweep",
+// "bvh-median", "bvh4" or "bvh8".
 struct StructureData {
   std::shared_ptr<const SceneData> scene;  // the structure points into its geometry: keep it alive
   std::string kind;
@@ -35,6 +37,7 @@ struct StructureData {
   double buildMs = 0.0;
   const UniformGrid* grid() const { return dynamic_cast<const UniformGrid*>(accel.get()); }
   const KdTree* kdTree() const { return dynamic_cast<const KdTree*>(accel.get()); }
+  const Bvh* bvh() const { return dynamic_cast<const Bvh*>(accel.get()); }  // the binary BVH
 };
 
 // Each throws InputError on bad input; safe on any thread.
@@ -125,7 +128,7 @@ class Session : public QObject {
   // The kd-tree node that the tree view, the SAH inspector and the 3D view show (-1: none). A new structure
   // clears it (the main window selects the same path again in the new tree).
   int selectedNode() const { return selectedNode_; }
-  void setSelectedNode(int node);  // -1, or a node of the current kd-tree (others are ignored)
+  void setSelectedNode(int node);  // -1, or a node of the current kd-tree or binary BVH (others are ignored)
 
  Q_SIGNALS:
   void sceneChanged();

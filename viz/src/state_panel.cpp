@@ -129,7 +129,8 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   // Room for five entries: a bunny's walk keeps up to six on the stack, and two rows told too little.
   stack_->setMinimumHeight(stack_->horizontalHeader()->sizeHint().height() + 5 * 18 + 4);
   treeForm->addRow(tr("node"), node_);
-  treeForm->addRow(tr("t*"), crossing_);
+  crossingTitle_ = new QLabel(tr("t*"));
+  treeForm->addRow(crossingTitle_, crossing_);
   treeForm->addRow(new QLabel(tr("stack (top first; pushed far children)")));
   treeForm->addRow(stack_);
   treeBox_->hide();
@@ -146,7 +147,7 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   counterLayout->addWidget(counters_);
   layout->addWidget(counterBox);
 
-  auto* mailBox = new QGroupBox(tr("Mailbox: primitives tested for this ray"));
+  auto* mailBox = mailBoxGroup_ = new QGroupBox(tr("Mailbox: primitives tested for this ray"));
   mailboxBox_ = mailBox;
   auto* mailLayout = new QVBoxLayout(mailBox);
   mailLayout->setContentsMargins(2, 2, 2, 2);
@@ -191,14 +192,24 @@ void StatePanel::refresh() {
     stack_->setRowCount(0);
     // Before a ray, the boxes of the structure that is built.
     const bool tree = session_->structure() && session_->structure()->kind != "grid";
+    const bool bvh = session_->structure() && isBvhKind(session_->structure()->kind);
+    treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
+    crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
+    mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
+                                : tr("Mailbox: primitives tested for this ray"));
     treeBox_->setVisible(tree);
     gridBox_->setVisible(!tree);
     return;
   }
   const bool tree = isTreeRay(*r);
-  treeBox_->setVisible(tree);
+  const bool bvh = isBvhRay(session_->trace(), *r);
+  treeBox_->setVisible(tree || bvh);
+  treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
+  crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
+  mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
+                              : tr("Mailbox: primitives tested for this ray"));
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
-  if (tree) refreshTree(*r, s);
+  if (tree || bvh) refreshTree(*r, s);
   ray_->setText(
       tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
           .arg(ray_kind_name(r->kind))
@@ -243,8 +254,15 @@ void StatePanel::refresh() {
   rule_->setText(conceal_ ? tr("Hidden until the quiz's answer is revealed: it says what the walk does next.")
                           : QString::fromStdString(explainRule(session_->trace(), *r, s)));
   const RayCounters& k = s.counters;
-  QString walk = tree ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
-                      : tr("cells %1").arg(k.cells);
+  QString walk = bvh ? tr("nodes %1 &nbsp; box tests %2 &nbsp; pushes %3 &nbsp; pops %4 &nbsp; skips %5")
+                           .arg(k.nodes)
+                           .arg(k.box_tests)
+                           .arg(k.pushes)
+                           .arg(k.pops)
+                           .arg(s.skippedNodes.size())
+                 : tree
+                     ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
+                     : tr("cells %1").arg(k.cells);
   counters_->setText(walk + tr("<br>primitive tests %1 &nbsp; hits %2 &nbsp; mailbox hits %3")
                                 .arg(k.prim_tests)
                                 .arg(k.prim_hits)
@@ -256,9 +274,13 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   if (s.nodeEvent >= 0) {
     const Event& n = r.events[size_t(s.nodeEvent)];
     const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
-    QString what = !tn ? QString(event_type_name(n.type))
-                   : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
-                              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+    const bool bvh = isBvhRay(session_->trace(), r);
+    QString what =
+        !tn        ? QString(event_type_name(n.type))
+        : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
+        : bvh ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
+                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
+              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)
@@ -268,8 +290,10 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   } else {
     node_->setText(tr("<i>not in the tree yet</i>"));
   }
-  NodeCrossing c = session_->trace() ? nodeCrossing(*session_->trace(), r, s) : NodeCrossing{};
-  if (c.valid) {
+  if (isBvhRay(session_->trace(), r)) {
+    refreshBvhChildren(r, s);
+  } else if (NodeCrossing c = session_->trace() ? nodeCrossing(*session_->trace(), r, s) : NodeCrossing{};
+             c.valid) {
     auto child = [](int32_t id) { return id >= 0 ? QString::number(id) : QString("-"); };
     QString which;
     switch (c.crossing) {
@@ -327,6 +351,34 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
       item->setFont(f);
     }
   }
+}
+
+void StatePanel::refreshBvhChildren(const TracedRay& r, const ReplayState& s) {
+  // Each child's box test as far as the walk is (a test not reached yet: "?"), then the order chosen.
+  BvhChoice c = bvhChoice(r, s);
+  if (!c.valid) {
+    crossing_->setText(tr("<i>- (the current node is not an inner node whose children are tested)</i>"));
+    return;
+  }
+  QString t;
+  for (const BoxTestMark& m : c.tests) {
+    QString result = !m.done ? tr("<i>?</i>")
+                     : m.hit ? QString("[%1, %2]").arg(num(m.tNear), num(m.tFar))
+                             : tr("<b>miss</b>");
+    t += tr("child %1: %2<br>").arg(m.child).arg(result);
+  }
+  if (!c.decided || conceal_) {
+    t += tr("<i>order: ? (after the box tests%1)</i>").arg(conceal_ ? tr("; the quiz asks it") : QString());
+  } else if (c.first < 0) {
+    t += tr("<b>no child hit</b>: go on with the stack");
+  } else {
+    QStringList pushed;
+    for (int32_t p : c.pushed) pushed << QString::number(p);
+    t += tr("<b>nearer first</b>: enter %1%2")
+             .arg(c.first)
+             .arg(pushed.isEmpty() ? QString() : tr("; pushed %1").arg(pushed.join(", ")));
+  }
+  crossing_->setText(t);
 }
 
 void StatePanel::setConceal(bool on) {

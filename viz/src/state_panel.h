@@ -2,7 +2,8 @@
 // tDelta per axis with the axis stepped next, the nearest hit so far, and the stopping rule
 // "tmin(cell) > tmax(ray)" with its numbers when it ends the walk. Tree (kd-tree): the current node, its t*
 // and which children the ray crosses, and the stack as a table (node, depth, t_min, t_max) that grows with
-// push and shrinks with pop. Both: the "Why" line, the mailbox table, running counters.
+// push and shrinks with pop. BVH: each child's [t_near, t_far] or miss, the child entered first (the nearer),
+// what was pushed, and the stack. All: the "Why" line, the mailbox table, running counters.
 #pragma once
 
 #include <QJsonObject>
@@ -40,6 +41,7 @@ class StatePanel : public QWidget {
  private:
   void refresh();
   void refreshTree(const TracedRay& ray, const ReplayState& s);
+  void refreshBvhChildren(const TracedRay& ray, const ReplayState& s);
   Session* session_;
   QLabel* ray_;
   QLabel* event_;
@@ -50,7 +52,9 @@ class StatePanel : public QWidget {
   QLabel* nearest_;
   QGroupBox* treeBox_;
   QLabel* node_;
-  QLabel* crossing_;  // t* and the children crossed
+  QLabel* crossing_;  // kd: t* and the children crossed; BVH: each child's box test and the order chosen
+  QLabel* crossingTitle_;
+  QGroupBox* mailBoxGroup_;
   QTableWidget* stack_;
   QLabel* rule_;
   QLabel* counters_;

@@ -26,6 +26,7 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   accel_->setObjectName("accelBox");
   accel_->addItem(tr("uniform grid"), "grid");
   accel_->addItem(tr("kd-tree"), "kd");
+  accel_->addItem(tr("bounding volume hierarchy"), "bvh");
   top->addWidget(accel_, 1);
   build_ = new QPushButton(tr("Build"));
   build_->setObjectName("buildButton");
@@ -137,6 +138,70 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   mailboxes_->setToolTip(tr("Skip a primitive that an earlier leaf of the same ray already tested"));
   k->addWidget(mailboxes_, 2, 0, 1, 3);
   layout->addWidget(kd_);
+
+  // The BVH's parameters (defaults as BvhOptions and the command line's).
+  bvh_ = new QGroupBox(tr("Bounding volume hierarchy"));
+  auto* b = new QGridLayout(bvh_);
+  b->setContentsMargins(6, 2, 6, 4);
+  b->setVerticalSpacing(2);
+  BvhOptions bdef;
+  bvhBuilder_ = new QComboBox;
+  bvhBuilder_->setObjectName("bvhBuilder");
+  bvhBuilder_->addItem(tr("binned SAH"), "bvh");
+  bvhBuilder_->addItem(tr("full sweep SAH"), "bvh-sweep");
+  bvhBuilder_->addItem(tr("object median"), "bvh-median");
+  bvhBuilder_->addItem(tr("4-wide (SIMD)"), "bvh4");
+  bvhBuilder_->addItem(tr("8-wide (SIMD)"), "bvh8");
+  bvhBuilder_->setToolTip(tr(
+      "binned SAH: centroids in equal bins per axis (Wald 2007); full sweep: every centroid (the reference); "
+      "object median: the longest axis's median centroid; 4- and 8-wide: the binned tree collapsed into wide "
+      "nodes tested with SIMD (the fast one)"));
+  b->addWidget(new QLabel(tr("builder")), 0, 0);
+  b->addWidget(bvhBuilder_, 0, 1, 1, 3);
+  bvhOrder_ = new QComboBox;
+  bvhOrder_->setObjectName("bvhOrder");
+  bvhOrder_->addItem(tr("entry distance"), "entry_distance");
+  bvhOrder_->addItem(tr("split axis"), "split_axis");
+  bvhOrder_->setToolTip(
+      tr("Which child is walked first (the nearer): the smaller t_near, or by the sign of the "
+         "ray's direction on the node's split axis (binary BVH)"));
+  b->addWidget(new QLabel(tr("order")), 0, 4);
+  b->addWidget(bvhOrder_, 0, 5);
+  bvhTi_ = spin("bvhTi", 0.01, 10000.0, 1.0, 2, bdef.t_i);
+  bvhTi_->setToolTip(tr("t_i: the cost of one ray-primitive test (lecture: t_i = 80 t_t)"));
+  bvhTt_ = spin("bvhTt", 0.0, 10000.0, 0.5, 2, bdef.t_t);
+  bvhTt_->setToolTip(tr("t_t: the cost of one traversal step"));
+  b->addWidget(new QLabel(tr("t_i")), 1, 0);
+  b->addWidget(bvhTi_, 1, 1);
+  b->addWidget(new QLabel(tr("t_t")), 1, 2);
+  b->addWidget(bvhTt_, 1, 3);
+  bvhBins_ = new QSpinBox;
+  bvhBins_->setObjectName("bvhBins");
+  bvhBins_->setRange(2, 256);
+  bvhBins_->setValue(bdef.bins);
+  bvhBins_->setToolTip(tr("Binned SAH: bins per axis (Wald: 16 to 32)"));
+  b->addWidget(new QLabel(tr("bins")), 1, 4);
+  b->addWidget(bvhBins_, 1, 5);
+  bvhLeafSize_ = new QSpinBox;
+  bvhLeafSize_->setObjectName("bvhLeafSize");
+  bvhLeafSize_->setRange(1, 1000000);
+  bvhLeafSize_->setValue(bdef.leaf_size);
+  bvhLeafSize_->setToolTip(tr("A node with at most this many primitives is a leaf without a search"));
+  b->addWidget(new QLabel(tr("leaf size")), 2, 0);
+  b->addWidget(bvhLeafSize_, 2, 1);
+  bvhMaxDepth_ = new QSpinBox;
+  bvhMaxDepth_->setObjectName("bvhMaxDepth");
+  bvhMaxDepth_->setRange(1, kBvhMaxDepth);
+  bvhMaxDepth_->setValue(bdef.max_depth);
+  bvhMaxDepth_->setToolTip(tr("The depth limit"));
+  b->addWidget(new QLabel(tr("max depth")), 2, 2);
+  b->addWidget(bvhMaxDepth_, 2, 3);
+  layout->addWidget(bvh_);
+  connect(bvhBuilder_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] {
+    const QString k = bvhBuilder_->currentData().toString();
+    bvhBins_->setEnabled(k == "bvh" || k == "bvh4" || k == "bvh8");
+    bvhOrder_->setEnabled(k != "bvh4" && k != "bvh8");  // the wide walk orders by entry distance
+  });
   connect(accel_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &StructurePanel::showSection);
   connect(options_, &QToolButton::toggled, this, &StructurePanel::showSection);
   showSection();
@@ -164,15 +229,18 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
 }
 
 std::string StructurePanel::accelName() const {
-  if (accel_->currentData().toString() == "grid") return "grid";
+  const QString a = accel_->currentData().toString();
+  if (a == "grid") return "grid";
+  if (a == "bvh") return bvhBuilder_->currentData().toString().toStdString();
   return builder_->currentData().toString().toStdString();
 }
 
 void StructurePanel::showSection() {
-  const bool kd = accel_->currentData().toString() == "kd";
+  const QString a = accel_->currentData().toString();
   const bool shown = !compact_ || options_->isChecked();
-  grid_->setVisible(shown && !kd);
-  kd_->setVisible(shown && kd);
+  grid_->setVisible(shown && a == "grid");
+  kd_->setVisible(shown && a == "kd");
+  bvh_->setVisible(shown && a == "bvh");
 }
 
 void StructurePanel::setCompact(bool on) {
@@ -195,12 +263,34 @@ StructureOptions StructurePanel::options() const {
   so.kd.max_depth = maxDepth_->value();
   so.kd.leaf_size = leafSize_->value();
   so.kd_mailboxes = mailboxes_->isChecked();
+  const QString bb = bvhBuilder_->currentData().toString();
+  so.bvh.builder = bb == "bvh-sweep"    ? BvhBuilder::sweep
+                   : bb == "bvh-median" ? BvhBuilder::median
+                                        : BvhBuilder::binned;
+  so.bvh.t_i = float(bvhTi_->value());
+  so.bvh.t_t = float(bvhTt_->value());
+  so.bvh.bins = bvhBins_->value();
+  so.bvh.leaf_size = bvhLeafSize_->value();
+  so.bvh.max_depth = bvhMaxDepth_->value();
+  so.bvh_order =
+      bvhOrder_->currentData().toString() == "split_axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
   return so;
 }
 
 void StructurePanel::setStructure(const std::string& accelName, const StructureOptions& so) {
   settingUp_ = true;
-  accel_->setCurrentIndex(accelName == "grid" ? 0 : 1);
+  const bool bvh = accelName.rfind("bvh", 0) == 0;
+  accel_->setCurrentIndex(accelName == "grid" ? 0 : bvh ? 2 : 1);
+  if (bvh) {
+    const int i = bvhBuilder_->findData(QString::fromStdString(accelName));
+    bvhBuilder_->setCurrentIndex(i >= 0 ? i : 0);
+  }
+  bvhTi_->setValue(so.bvh.t_i);
+  bvhTt_->setValue(so.bvh.t_t);
+  bvhBins_->setValue(so.bvh.bins);
+  bvhLeafSize_->setValue(so.bvh.leaf_size);
+  bvhMaxDepth_->setValue(so.bvh.max_depth);
+  bvhOrder_->setCurrentIndex(so.bvh_order == BvhOrder::split_axis ? 1 : 0);
   builder_->setCurrentIndex(accelName == "kd-median" ? 1 : 0);
   ti_->setValue(so.kd.t_i);
   tt_->setValue(so.kd.t_t);

@@ -3,7 +3,10 @@
 // insertion; the info line says when the density rule's resolution was coarsened to the reference budget.
 // kd-tree: t_i, t_t (the SAH's costs), empty bonus, SAH or spatial-median builder, max depth (0:
 // max(8, 1.2 log2 N), with an empty bonus pbrt's 8 + 1.3 log2 N), leaf size, mailboxes; an edit of a kd cost
-// rebuilds at once. The build itself runs off the GUI thread (the main window does it).
+// rebuilds at once. BVH: the builder (binned SAH, full sweep SAH, object median, or the wide BVH4/BVH8
+// collapsed from the binned one), t_i and t_t, bins per axis, leaf size, max depth, and the binary walk's
+// order (nearer child by entry distance or by the ray's direction on the split axis). The build itself runs
+// off the GUI thread (the main window does it).
 #pragma once
 
 #include <QWidget>
@@ -29,7 +32,8 @@ class StructurePanel : public QWidget {
   Q_OBJECT
  public:
   explicit StructurePanel(QWidget* parent = nullptr);
-  // The accelerator's name for make_accelerator: "grid", "kd" (SAH) or "kd-median".
+  // The accelerator's name for make_accelerator: "grid", "kd" (SAH), "kd-median", "bvh", "bvh-sweep",
+  // "bvh-median", "bvh4" or "bvh8".
   std::string accelName() const;
   StructureOptions options() const;
   void setStructure(const std::string& accelName, const StructureOptions& o);
@@ -65,6 +69,14 @@ class StructurePanel : public QWidget {
   QSpinBox* maxDepth_;
   QSpinBox* leafSize_;
   QCheckBox* mailboxes_;
+  QGroupBox* bvh_;
+  QComboBox* bvhBuilder_;
+  QDoubleSpinBox* bvhTi_;
+  QDoubleSpinBox* bvhTt_;
+  QSpinBox* bvhBins_;
+  QSpinBox* bvhLeafSize_;
+  QSpinBox* bvhMaxDepth_;
+  QComboBox* bvhOrder_;
   QTimer* costsTimer_;
   bool settingUp_ = false;
   bool compact_ = false;

@@ -22,6 +22,8 @@ std::vector<EventType> Timeline::typesOf(const QString& kind) {
   if (kind == "leaf") return {EventType::leaf};
   if (kind == "prim_test") return {EventType::prim_test};
   if (kind == "mailbox_hit") return {EventType::mailbox_hit};
+  if (kind == "box_test") return {EventType::box_test};
+  if (kind == "skip") return {EventType::skip};
   if (kind == "hit") return {EventType::hit_accepted};
   return {};
 }
@@ -69,6 +71,8 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   kind_->addItem(tr("push / pop"), "pushpop");
   kind_->addItem(tr("primitive test"), "prim_test");
   kind_->addItem(tr("mailbox hit"), "mailbox_hit");
+  kind_->addItem(tr("box test (BVH)"), "box_test");
+  kind_->addItem(tr("skip (BVH)"), "skip");
   kind_->addItem(tr("the hit"), "hit");
   kind_->setFocusPolicy(Qt::NoFocus);
   row->addWidget(kind_);
@@ -218,7 +222,8 @@ bool Timeline::playing() const { return timer_->isActive(); }
 void Timeline::offerUnit(bool tree) {
   QString k = kind_->currentData().toString();
   if (tree && k == "cell") kind_->setCurrentIndex(kind_->findData("node"));
-  if (!tree && (k == "node" || k == "leaf" || k == "pushpop")) kind_->setCurrentIndex(kind_->findData("cell"));
+  if (!tree && (k == "node" || k == "leaf" || k == "pushpop" || k == "box_test" || k == "skip"))
+    kind_->setCurrentIndex(kind_->findData("cell"));
 }
 
 void Timeline::refresh() {

@@ -53,10 +53,10 @@ TreeView::TreeView(Session* session, QWidget* parent)
   });
   connect(session_, &Session::structureChanged, this, [this] {
     model_->setStructure(session_->structureShared());
-    if (const KdTreeData* t = model_->tree())
-      title_->setText(tr("<b>kd-tree</b>: %1 nodes").arg(t->nodes.size()));
+    if (const TreeShape* t = model_->tree())
+      title_->setText(tr("<b>%1</b>: %2 nodes").arg(t->name()).arg(t->size()));
     else
-      title_->setText(tr("<b>kd-tree</b>: none (build a kd-tree)"));
+      title_->setText(tr("<b>Tree</b>: none (build a kd-tree or a BVH)"));
     view_->expandToDepth(0);  // the root's two children
     showSelected();
   });
