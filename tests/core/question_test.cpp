@@ -9,6 +9,7 @@
 #include <random>
 #include <sstream>
 
+#include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
@@ -199,6 +200,62 @@ void check_tree(const std::string& name) {
   EXPECT_GE(pushed, 200);
   EXPECT_GE(pops, 200);
   EXPECT_GE(stops, 150);
+}
+
+// next-pop on a BVH against its rule, recomputed from the stack: pop the top; an entry whose box starts beyond
+// the nearest hit (and the walk's margin) is skipped and the next one popped, since a BVH's stack is not ordered
+// by distance; the first entry not skipped is visited; an empty stack ends the walk. first-child does not apply.
+TEST(QuestionAcceptance, BvhNextPopSkipsEntriesBeyondTheHit) {
+  Geometry g = test::make_soup(3, 300, 6);
+  StructureOptions options;
+  auto accel = make_accelerator("bvh", options);
+  accel->build(g);
+  const BvhData& bvh = dynamic_cast<const Bvh&>(*accel).data();
+  Trace trace = record_trace(g, *accel, random_rays(23), "soup", "");
+  int answers = 0, pops = 0, stops = 0, after_skips = 0;
+  bool first_child_refused = false;
+  for (int r = 0; r < int(trace.rays.size()); ++r) {
+    const std::vector<Event>& ev = trace.rays[size_t(r)].events;
+    float root_min, root_max;
+    if (!intersect_slabs(bvh.nodes[0].box, trace.rays[size_t(r)].ray, &root_min, &root_max)) continue;
+    const float margin = std::max(std::fabs(root_min), std::fabs(root_max)) / 4096.f;
+    std::vector<const Event*> stack;
+    for (int i = 0; i < int(ev.size()); ++i) {
+      const Event& e = ev[size_t(i)];
+      if (e.type == EventType::push) stack.push_back(&e);
+      if (e.type == EventType::pop) stack.pop_back();
+      if (e.type == EventType::node && !first_child_refused && i + 1 < int(ev.size()) &&
+          ev[size_t(i) + 1].type != EventType::leaf) {
+        EXPECT_THROW(answer_question(QuestionKind::first_child, context_at(trace, *accel, r, i)), InputError);
+        first_child_refused = true;
+      }
+      if (e.type != EventType::leaf) continue;
+      int32_t hit;
+      float t;
+      nearest_before(ev, end_of_block(ev, size_t(i)), &hit, &t);
+      std::vector<const Event*> rest = stack;
+      int skipped = 0;
+      while (!rest.empty() && hit >= 0 && rest.back()->t_min_node > t + margin) {
+        rest.pop_back();
+        ++skipped;
+      }
+      const bool stop = rest.empty();
+      const Answer a = answer_question(QuestionKind::next_pop, context_at(trace, *accel, r, i));
+      ++answers;
+      ASSERT_EQ(a.stops, stop) << "ray " << r << " event " << i << ": " << a.why;
+      if (!stop) {
+        ASSERT_EQ(a.node, rest.back()->node) << a.why;
+        after_skips += skipped > 0;
+      }
+      (stop ? stops : pops) += 1;
+    }
+  }
+  std::printf("bvh: %d next-pop answers agree (%d pops, %d of them after skips, %d stops)\n", answers, pops,
+              after_skips, stops);
+  EXPECT_TRUE(first_child_refused);
+  EXPECT_GE(pops, 100);
+  EXPECT_GE(after_skips, 5);
+  EXPECT_GE(stops, 50);
 }
 
 TEST(QuestionAcceptance, KdSahAnswersEqualTheTraversal) {
@@ -403,7 +460,7 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
             f + "10: step 'B': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, "
                 "bvh4 or bvh8)");
   EXPECT_EQ(check_error(head + "pixel: 160,200\n```\n## B\n\nask\n\n```raystep\nask: next-pop\n```\n"),
-            f + "12: step 'B': next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
+            f + "12: step 'B': next-pop: the ray walks a grid, not a tree (accel: kd, kd-median or a BVH)");
 }
 
 // An anti-aliased pixel is traced as the debugger traces it: every sample's rays, the pixel section with them

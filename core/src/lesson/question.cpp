@@ -83,6 +83,13 @@ bool walks_tree(const TracedRay& r) {
   return false;
 }
 
+// A BVH's walk tests its children's boxes: box_test events, which a kd-tree's walk never has.
+bool walks_bvh(const TracedRay& r) {
+  for (const Event& e : r.events)
+    if (e.type == EventType::box_test) return true;
+  return false;
+}
+
 // ---- The grid: next-cell and dda-axis, from the cell events (the kernel logs tMax per axis with each cell).
 
 Answer grid_answer(QuestionKind kind, const QuestionContext& c) {
@@ -187,6 +194,9 @@ Answer first_child_answer(const QuestionContext& c) {
   if (next >= ev.size() || ev[next].type == EventType::leaf)
     fail("first-child: node " + std::to_string(e.node) + " is a leaf, not an inner node");
   const TraceNode* n = c.trace ? find_node(*c.trace, e.node) : nullptr;
+  if (walks_bvh(r))
+    fail("first-child: asks which side of a kd-tree's split plane comes first; a BVH has no split plane "
+         "(accel: kd or kd-median; on a BVH ask next-pop)");
   if (!n || n->leaf) fail("first-child: the trace has no split plane for node " + std::to_string(e.node));
 
   Answer a;
@@ -237,7 +247,7 @@ Answer first_child_answer(const QuestionContext& c) {
 Answer next_pop_answer(const QuestionContext& c) {
   const TracedRay& r = current_ray(QuestionKind::next_pop, c);
   const std::vector<Event>& ev = r.events;
-  if (!walks_tree(r)) fail("next-pop: the ray walks a grid, not a kd-tree (accel: kd or kd-median)");
+  if (!walks_tree(r)) fail("next-pop: the ray walks a grid, not a tree (accel: kd, kd-median or a BVH)");
   // The leaf the walk is in: the current event is a leaf's node event, the leaf event or one of its tests.
   int leaf = -1;
   if (ev[size_t(c.step)].type == EventType::node && size_t(c.step) + 1 < ev.size() &&
@@ -279,12 +289,18 @@ Answer next_pop_answer(const QuestionContext& c) {
   a.kind = QuestionKind::next_pop;
   a.stops = true;
   bool any_hit = false;
+  std::vector<const Event*> skipped;  // a BVH's popped entries that start beyond the hit: skipped, the walk goes on
   for (size_t i = after; i < ev.size(); ++i) {
     if (ev[i].type == EventType::hit_accepted) {
       any_hit = ev[i].reason == AcceptReason::any_hit;
       break;
     }
+    if (ev[i].type == EventType::skip) {
+      skipped.push_back(&ev[i]);
+      continue;
+    }
     if (ev[i].type != EventType::pop) break;
+    if (i + 1 < ev.size() && ev[i + 1].type == EventType::skip) continue;
     if (i + 1 < ev.size() && ev[i + 1].type == EventType::node && ev[i + 1].node == ev[i].node) {
       a.stops = false;
       a.node = ev[i].node;
@@ -298,6 +314,22 @@ Answer next_pop_answer(const QuestionContext& c) {
   const std::string leaf_name = "Leaf " + std::to_string(ev[size_t(leaf)].node);
   if (any_hit) {
     a.why = leaf_name + ": a shadow ray stops at its first hit, t = " + num(hit_t) + ".";
+  } else if (walks_bvh(r) && !stack.empty()) {
+    // A BVH's stack is not ordered by distance (sibling boxes overlap), so the walk does not stop at the first
+    // entry beyond the hit: it skips that one and pops the next.
+    std::string w = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
+                    (stack.size() == 1 ? " node" : " nodes") + ". ";
+    for (const Event* k : skipped)
+      w += "Pop node " + std::to_string(k->node) + ": its box starts at t_near = " + num(k->t_min_node) +
+           " > t(hit) = " + num(hit_t) + ", so nothing in it can be nearer: skip it. ";
+    if (a.stops)
+      w += "The stack is empty: the walk stops with " + hit + ".";
+    else
+      w += "Pop node " + std::to_string(a.node) + " and visit it: " +
+           (hit_prim < 0 ? std::string("no hit yet") : "its box may hold a hit nearer than t = " + num(hit_t)) +
+           ". (Unlike the kd-tree's, a BVH's stack is not sorted by distance: boxes overlap, so an entry beyond "
+           "the hit is skipped and the walk goes on.)";
+    a.why = w;
   } else if (stack.empty()) {
     a.why = leaf_name +
             ": the stack is empty, every node the ray crosses has been visited. The walk stops with " + hit +
