@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
   render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
   render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
-  add_structure_options(render_cmd, render.structure, "grid");
+  add_structure_options(render_cmd, render.structure, "bvh8");
   render_cmd->add_option("--heatmap", render.heatmap,
                          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox"
                          " | boxes (bvh: bounding-box tests)")
@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
   cast_cmd->add_option("scene", cast.scene, "scene .json or mesh .obj")->required();
   cast_cmd->add_option("--rays", cast.rays, "input rays (.rays: 32 bytes per ray)")->required();
   cast_cmd->add_option("--hits", cast.hits, "output hits (.hits: 8 bytes per ray)")->required();
-  add_structure_options(cast_cmd, cast.structure, "grid");
+  add_structure_options(cast_cmd, cast.structure, "bvh8");
   cast_cmd->add_option("--threads", cast.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
   cast_cmd->add_option("--reps", cast.reps, "timed passes; trace_ms is their median")->capture_default_str();
 
