@@ -1,7 +1,8 @@
-// raystep_bvh_instructions null|hookfree|counting primary|random MESH [N] [entry|axis]: traces N primary rays
-// (a sqrt(N) x sqrt(N) image of the mesh's camera) or N random rays through the binned-SAH BVH with one
-// kernel variant, counting instructions only around the traversal (callgrind client requests), and prints the
-// walk's counters per ray and a checksum of the hits (the variants must find the same hits). Run under
+// raystep_bvh_instructions null|hookfree|intersect|counting primary|random MESH [N] [entry|axis]: traces N
+// primary rays (a sqrt(N) x sqrt(N) image of the mesh's camera) or N random rays through the binned-SAH BVH
+// with one kernel variant (intersect: Bvh::intersect, the library's own null-recorder entry point), counting
+// instructions only around the traversal (callgrind client requests), and prints the walk's counters per ray
+// and a checksum of the hits (the variants must find the same hits). Run under
 // `valgrind --tool=callgrind --instr-atstart=no`.
 #include <valgrind/callgrind.h>
 
@@ -29,9 +30,10 @@ void count_loop(const std::vector<Ray>& rays, std::vector<Hit>& hits, Trace trac
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr,
-                 "usage: raystep_bvh_instructions null|hookfree|counting primary|random MESH.obj [N] "
-                 "[entry|axis]\n");
+    std::fprintf(
+        stderr,
+        "usage: raystep_bvh_instructions null|hookfree|intersect|counting primary|random MESH.obj [N] "
+        "[entry|axis]\n");
     return 2;
   }
   std::string variant = argv[1], kind = argv[2];
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
                  [&](const Ray& r, Hit* h) { return bench::bvh_traverse_hookfree(bvh, r, h, false); });
     else if (variant == "counting")
       count_loop(rays, hits, [&](const Ray& r, Hit* h) { return bvh.traverse(r, h, false, counting); });
+    else if (variant == "intersect")
+      count_loop(rays, hits, [&](const Ray& r, Hit* h) { return bvh.intersect(r, h); });
     else
       count_loop(rays, hits, [&](const Ray& r, Hit* h) { return bvh.traverse(r, h, false, null_rec); });
     uint64_t h = 14695981039346656037ull;
