@@ -41,28 +41,31 @@ const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", 
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
 const char* const kAxes[3] = {"x", "y", "z"};
 const char* const kOutcomes[3] = {"agree", "depth_limit", "subdivided"};  // AdaptiveSquare::Outcome
+
+// Names to enums without building strings: the index of name in names, or -1.
+template <size_t N>
+int name_index(std::string_view name, const char* const (&names)[N]) {
+  for (size_t i = 0; i < N; ++i)
+    if (name == names[i]) return int(i);
+  return -1;
+}
+
 }  // namespace
 
 const char* event_type_name(EventType type) { return kEventNames[int(type)]; }
 
 bool parse_event_type(const std::string& name, EventType* type) {
-  for (int i = 0; i < kEventTypeCount; ++i)
-    if (name == kEventNames[i]) {
-      *type = EventType(i);
-      return true;
-    }
-  return false;
+  const int i = name_index(name, kEventNames);
+  if (i >= 0) *type = EventType(i);
+  return i >= 0;
 }
 
 const char* accept_reason_name(AcceptReason reason) { return kReasonNames[int(reason)]; }
 
 bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
-  for (int i = 0; i < kAcceptReasonCount; ++i)
-    if (name == kReasonNames[i]) {
-      *reason = AcceptReason(i);
-      return true;
-    }
-  return false;
+  const int i = name_index(name, kReasonNames);
+  if (i >= 0) *reason = AcceptReason(i);
+  return i >= 0;
 }
 
 const char* ray_kind_name(RayKind kind) { return kRayKinds[int(kind)]; }
@@ -582,14 +585,6 @@ int Reader::line_of(const std::string& path) const {
   }
   if (!pointer.empty() && pointer[0] != '/') pointer.insert(pointer.begin(), '/');
   return json_line_of(text_, pointer);
-}
-
-// Names to enums without building strings (the names are in the tables at the top).
-template <size_t N>
-int name_index(std::string_view name, const char* const (&names)[N]) {
-  for (size_t i = 0; i < N; ++i)
-    if (name == names[i]) return int(i);
-  return -1;
 }
 
 // The pixel section (version 2): every index in range, every sample where its pattern puts it, the adaptive
