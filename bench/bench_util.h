@@ -1,16 +1,21 @@
 // What the benchmarks share: the mesh they measure on (the Stanford bunny from ../shared/meshes, or a stand-in
-// with a mesh's structure when it is not there) and their small command lines, whose bad values end the run
-// with one line and exit code 2.
+// with a mesh's structure when it is not there), their small command lines, whose bad values end the run
+// with one line and exit code 2, and the instruction counts' rays and checksum of the hits.
 #pragma once
 
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "raystep/render/camera.h"
+#include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene.h"
 #include "raystep/scene/scene_loader.h"
 
@@ -72,5 +77,27 @@ class Args {
   char** argv_;
   int i_ = 0;
 };
+
+// The rays the *_instructions programs count on: n "random" rays through the scene's bounds (seed 7), or
+// ("primary") a sqrt(n) x sqrt(n) image of the scene's camera.
+inline std::vector<Ray> instruction_rays(const std::string& kind, const Scene& scene, size_t n) {
+  int side = int(std::lround(std::sqrt(double(n))));
+  return kind == "random" ? random_rays(scene.geometry.bounds(), n, 7) : camera_rays(scene.camera, side, side);
+}
+
+// FNV-1a over every hit's primitive and the bits of its t, so that two kernels can be shown to find the same
+// hits; *found counts the rays that hit something.
+inline uint64_t hits_checksum(const std::vector<Hit>& hits, size_t* found) {
+  uint64_t h = 14695981039346656037ull;
+  *found = 0;
+  for (const Hit& hit : hits) {
+    uint32_t t;
+    std::memcpy(&t, &hit.t, 4);
+    h = (h ^ uint32_t(hit.prim)) * 1099511628211ull;
+    h = (h ^ t) * 1099511628211ull;
+    *found += hit.found();
+  }
+  return h;
+}
 
 }  // namespace raystep::bench

@@ -5,14 +5,11 @@
 // Run under `valgrind --tool=callgrind --instr-atstart=no`.
 #include <valgrind/callgrind.h>
 
-#include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 
+#include "bench_util.h"
 #include "raystep/accel/kdtree.h"
-#include "raystep/render/camera.h"
-#include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/util/error.h"
 
@@ -29,22 +26,13 @@ int main(int argc, char** argv) {
     Scene scene = load_scene(argv[2]);
     KdTree tree;
     tree.build(scene.geometry);
-    int side = int(std::lround(std::sqrt(double(n))));
-    std::vector<Ray> rays =
-        kind == "random" ? random_rays(scene.geometry.bounds(), n, 7) : camera_rays(scene.camera, side, side);
+    std::vector<Ray> rays = bench::instruction_rays(kind, scene, n);
     std::vector<Hit> hits(rays.size());
     CALLGRIND_START_INSTRUMENTATION;
     for (size_t i = 0; i < rays.size(); ++i) tree.intersect(rays[i], &hits[i]);
     CALLGRIND_STOP_INSTRUMENTATION;
-    uint64_t h = 14695981039346656037ull;
     size_t found = 0;
-    for (const Hit& hit : hits) {
-      uint32_t t;
-      std::memcpy(&t, &hit.t, 4);
-      h = (h ^ uint32_t(hit.prim)) * 1099511628211ull;
-      h = (h ^ t) * 1099511628211ull;
-      found += hit.found();
-    }
+    uint64_t h = bench::hits_checksum(hits, &found);
     CountingRecorder c;
     for (const Ray& r : rays) {
       Hit hit;

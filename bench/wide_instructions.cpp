@@ -8,14 +8,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <string>
 
+#include "bench_util.h"
 #include "raystep/accel/wide_bvh.h"
-#include "raystep/render/camera.h"
-#include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/util/error.h"
 
@@ -42,9 +39,7 @@ int main(int argc, char** argv) {
     Scene scene = load_scene(argv[2]);
     WideBvh wide(width);
     wide.build(scene.geometry);
-    int side = int(std::lround(std::sqrt(double(n))));
-    std::vector<Ray> rays =
-        kind == "random" ? random_rays(scene.geometry.bounds(), n, 7) : camera_rays(scene.camera, side, side);
+    std::vector<Ray> rays = bench::instruction_rays(kind, scene, n);
     std::vector<Hit> hits(rays.size());
     CALLGRIND_START_INSTRUMENTATION;
     for (size_t i = 0; i < rays.size(); ++i) wide.intersect(rays[i], &hits[i]);
@@ -58,15 +53,8 @@ int main(int argc, char** argv) {
         best_ms = r == 0 ? ms : std::min(best_ms, ms);
       }
     }
-    uint64_t h = 14695981039346656037ull;
     size_t found = 0;
-    for (const Hit& hit : hits) {
-      uint32_t t;
-      std::memcpy(&t, &hit.t, 4);
-      h = (h ^ uint32_t(hit.prim)) * 1099511628211ull;
-      h = (h ^ t) * 1099511628211ull;
-      found += hit.found();
-    }
+    uint64_t h = bench::hits_checksum(hits, &found);
     CountingRecorder c;
     for (const Ray& r : rays) {
       Hit hit;

@@ -130,56 +130,14 @@ int run_bvh_stats(const KdStatsArgs& a) {
       "S(node) / S(root))\n",
       st.overlap);
 
-  std::printf(
-      "\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
-      static_cast<unsigned long long>(a.lines));
-  if (rays_cast < a.lines)
-    std::printf(
-        "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
-        rays_cast, static_cast<unsigned long long>(kMaxEntryRayTests));
-  std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
-  std::vector<std::string> paths(d.nodes.size());
+  std::vector<EntryNode> nodes(d.nodes.size());
   for (size_t i = 0; i < d.nodes.size(); ++i) {
     const BvhNode& n = d.nodes[i];
-    if (!n.is_leaf()) {
-      paths[i + 1] = paths[i] + "L";
-      paths[n.second_child()] = paths[i] + "R";
-    }
-    if (d.info[i].depth <= 3)
-      std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, d.info[i].depth,
-                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines,
-                  entry[i].rays);
+    nodes[i] = {d.info[i].depth, d.info[i].parent, n.is_leaf(), d.info[i].prims,
+                n.is_leaf() ? 0u : n.second_child()};
   }
-  double sum_abs = 0, worst = 0, sum_over = 0;
-  size_t compared = 0;
-  for (const BvhNodeEntry& e : entry) {
-    if (std::isnan(e.predicted)) continue;
-    sum_abs += std::fabs(e.predicted - e.lines);
-    worst = std::max(worst, std::fabs(e.predicted - e.lines));
-    sum_over += e.predicted - e.rays;
-    ++compared;
-  }
-  double n = double(std::max<size_t>(compared, 1));
-  std::printf(
-      "all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
-      "(rays stop at their first hit and skip boxes beyond it)\n",
-      compared, sum_abs / n, worst, sum_over / n);
-  if (compared < entry.size())
-    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n",
-                entry.size() - compared);
-  if (!a.csv.empty()) {
-    write_file_atomically(a.csv, [&](std::ostream& out) {
-      out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
-      char buf[160];
-      for (size_t i = 0; i < d.nodes.size(); ++i) {
-        std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, d.info[i].depth,
-                      d.info[i].parent, d.nodes[i].is_leaf() ? 1 : 0, d.info[i].prims, entry[i].predicted,
-                      entry[i].lines, entry[i].rays);
-        out << buf;
-      }
-    });
-    std::printf("wrote %s\n", a.csv.c_str());
-  }
+  report_entry_probability(nodes, entry, a.lines, rays_cast,
+                           "(rays stop at their first hit and skip boxes beyond it)", a.csv);
   return 0;
 }
 

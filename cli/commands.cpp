@@ -483,6 +483,54 @@ int run_sah(const SahArgs& a) {
   return 0;
 }
 
+void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
+                              uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv) {
+  // Predicted against measured entry probabilities: the top of the tree, then all nodes at once.
+  std::printf("\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
+              static_cast<unsigned long long>(lines));
+  if (rays_cast < lines)
+    std::printf(
+        "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
+        rays_cast, static_cast<unsigned long long>(kMaxEntryRayTests));
+  std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
+  std::vector<std::string> paths(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (!nodes[i].leaf) {
+      paths[i + 1] = paths[i] + "L";
+      paths[nodes[i].second_child] = paths[i] + "R";
+    }
+    if (nodes[i].depth <= 3)
+      std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, nodes[i].depth,
+                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines, entry[i].rays);
+  }
+  double sum_abs = 0, worst = 0, sum_over = 0;
+  size_t compared = 0;
+  for (const KdNodeEntry& e : entry) {
+    if (std::isnan(e.predicted)) continue;  // below a root of zero area
+    sum_abs += std::fabs(e.predicted - e.lines);
+    worst = std::max(worst, std::fabs(e.predicted - e.lines));
+    sum_over += e.predicted - e.rays;
+    ++compared;
+  }
+  double n = double(std::max<size_t>(compared, 1));
+  std::printf("all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f %s\n", compared,
+              sum_abs / n, worst, sum_over / n, rays_note);
+  if (compared < entry.size())
+    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n", entry.size() - compared);
+  if (!csv.empty()) {
+    write_file_atomically(csv, [&](std::ostream& out) {
+      out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
+      char buf[160];
+      for (size_t i = 0; i < nodes.size(); ++i) {
+        std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, nodes[i].depth, nodes[i].parent,
+                      nodes[i].leaf ? 1 : 0, nodes[i].prims, entry[i].predicted, entry[i].lines, entry[i].rays);
+        out << buf;
+      }
+    });
+    std::printf("wrote %s\n", csv.c_str());
+  }
+}
+
 int run_kdtree_stats(const KdStatsArgs& a) {
   if (a.lines < 1 || a.lines > (uint64_t(1) << 26)) throw InputError("", 0, "--lines must be 1..67108864");
   if (!a.csv.empty()) check_output_folder(a.csv);
@@ -518,55 +566,13 @@ int run_kdtree_stats(const KdStatsArgs& a) {
   std::printf("SAH cost of the tree: %.3f (t_i %g, t_t %g); a single leaf would cost %.1f\n", st.sah_cost,
               tree->options().t_i, tree->options().t_t, double(prims) * tree->options().t_i);
 
-  // Predicted against measured entry probabilities: the top of the tree, then all nodes at once.
-  std::printf("\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
-              static_cast<unsigned long long>(a.lines));
-  if (rays_cast < a.lines)
-    std::printf(
-        "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
-        rays_cast, static_cast<unsigned long long>(kMaxEntryRayTests));
-  std::printf("  %-8s %-7s %-10s %10s %10s %10s\n", "node", "depth", "path", "predicted", "lines", "rays");
-  std::vector<std::string> paths(d.nodes.size());
+  std::vector<EntryNode> nodes(d.nodes.size());
   for (size_t i = 0; i < d.nodes.size(); ++i) {
     const KdNode& n = d.nodes[i];
-    if (!n.is_leaf()) {
-      paths[i + 1] = paths[i] + "L";
-      paths[n.above_child()] = paths[i] + "R";
-    }
-    if (d.info[i].depth <= 3)
-      std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, d.info[i].depth,
-                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines, entry[i].rays);
+    nodes[i] = {d.info[i].depth, d.info[i].parent, n.is_leaf(), n.is_leaf() ? n.prim_count() : 0u,
+                n.is_leaf() ? 0u : n.above_child()};
   }
-  double sum_abs = 0, worst = 0, sum_over = 0;
-  size_t compared = 0;
-  for (const KdNodeEntry& e : entry) {
-    if (std::isnan(e.predicted)) continue;  // below a root of zero area
-    sum_abs += std::fabs(e.predicted - e.lines);
-    worst = std::max(worst, std::fabs(e.predicted - e.lines));
-    sum_over += e.predicted - e.rays;
-    ++compared;
-  }
-  double n = double(std::max<size_t>(compared, 1));
-  std::printf(
-      "all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f "
-      "(rays stop at their first hit)\n",
-      compared, sum_abs / n, worst, sum_over / n);
-  if (compared < entry.size())
-    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n",
-                entry.size() - compared);
-  if (!a.csv.empty()) {
-    write_file_atomically(a.csv, [&](std::ostream& out) {
-      out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
-      char buf[160];
-      for (size_t i = 0; i < d.nodes.size(); ++i) {
-        std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, d.info[i].depth, d.info[i].parent,
-                      d.nodes[i].is_leaf() ? 1 : 0, d.nodes[i].is_leaf() ? d.nodes[i].prim_count() : 0u,
-                      entry[i].predicted, entry[i].lines, entry[i].rays);
-        out << buf;
-      }
-    });
-    std::printf("wrote %s\n", a.csv.c_str());
-  }
+  report_entry_probability(nodes, entry, a.lines, rays_cast, "(rays stop at their first hit)", a.csv);
   return 0;
 }
 

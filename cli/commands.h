@@ -10,6 +10,10 @@
 
 #include "raystep/accel/structure_options.h"
 
+namespace raystep {
+struct KdNodeEntry;
+}
+
 namespace raystep::cli {
 
 // "WxH" (--size) into *w and *h, with 1 <= W, H <= 16384; anything else throws InputError.
@@ -154,6 +158,20 @@ struct CostArgs {
 
 // Shared by the commands (commands.cpp).
 void check_output_folder(const std::string& path);
+
+// One node of a binary tree (the first child follows its parent) as the entry-probability report shows it.
+struct EntryNode {
+  int depth = 0;
+  int parent = -1;
+  bool leaf = false;
+  uint32_t prims = 0;         // the CSV's prims column
+  uint32_t second_child = 0;  // inner nodes only
+};
+
+// kd-stats' and bvh-stats' entry probabilities, predicted against measured (entry, one per node): the top
+// of the tree, then all nodes at once, the summary line ending in rays_note; every node to csv unless empty.
+void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
+                              uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv);
 KdOptions kd_options(const StructureArgs& s);
 BvhOptions bvh_options(const StructureArgs& s);  // InputError naming the option for a bad value
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);

@@ -1,16 +1,16 @@
 #include "raystep/accel/bvh_sah_curve.h"
 
-#include <cctype>
-#include <cstdio>
-
 #include <nlohmann/json.hpp>
 
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "sah_curve_common.h"
 
 namespace raystep {
 
 namespace {
+
+using sah_curve::num;
 
 const char* const kAxisNames[3] = {"x", "y", "z"};
 
@@ -47,29 +47,11 @@ class CurveListener final : public BvhBuildListener {
   bool found_ = false;
 };
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
 }  // namespace
 
 uint32_t bvh_node_by_path(const BvhData& bvh, const std::string& path) {
-  if (bvh.nodes.empty()) throw InputError("", 0, "--path: the tree is empty");
-  uint32_t id = 0;
-  for (size_t i = 0; i < path.size(); ++i) {
-    char c = char(std::toupper(static_cast<unsigned char>(path[i])));
-    if (c != 'L' && c != 'R')
-      throw InputError("", 0, "--path '" + path + "': use L (first child) and R (second)");
-    const BvhNode& n = bvh.nodes[id];
-    if (n.is_leaf())
-      throw InputError("", 0,
-                       "--path '" + path + "': node " + std::to_string(id) + " (after '" + path.substr(0, i) +
-                           "') is a leaf");
-    id = c == 'L' ? id + 1 : n.second_child();
-  }
-  return id;
+  return sah_curve::node_by_path(bvh.nodes, path, "L (first child) and R (second)",
+                                 [](const BvhNode& n) { return n.second_child(); });
 }
 
 BvhSahCurve record_bvh_sah_curve(const Geometry& geometry, const BvhOptions& options, uint32_t node) {

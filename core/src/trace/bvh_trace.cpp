@@ -24,30 +24,6 @@ void bvh_params(const BvhOptions& o, TraceStructure* s) {
   param("max_depth", o.max_depth);
 }
 
-// The ids the events of every ray name: nodes visited, pushed, popped, skipped, and both ends of a box test.
-std::set<int32_t> named_nodes(const Trace& t) {
-  std::set<int32_t> named;
-  for (const TracedRay& tr : t.rays) {
-    for (const Event& e : tr.events) {
-      switch (e.type) {
-        case EventType::box_test:
-          if (e.parent >= 0) named.insert(e.parent);
-          [[fallthrough]];
-        case EventType::node:
-        case EventType::push:
-        case EventType::pop:
-        case EventType::leaf:
-        case EventType::skip:
-          named.insert(e.node);
-          break;
-        default:
-          break;
-      }
-    }
-  }
-  return named;
-}
-
 // The named nodes and their parents up to the root, in id order: parent(id) gives -1 at the root.
 template <class Parent>
 std::set<int32_t> with_parent_chains(std::set<int32_t> ids, Parent parent) {
@@ -65,11 +41,7 @@ std::set<int32_t> with_parent_chains(std::set<int32_t> ids, Parent parent) {
 Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vector<RayRequest>& rays,
                        const std::string& scene_path, const std::string& scene_hash) {
   const BvhData& data = bvh.data();
-  Trace t;
-  t.scene_path = scene_path;
-  t.scene_hash = scene_hash;
-  t.scene_primitives = geometry.size();
-  t.structure.kind = bvh.name();
+  Trace t = detail::begin_trace(geometry, bvh.name(), scene_path, scene_hash);
   if (!data.nodes.empty()) t.structure.bounds = data.nodes[0].box;
   size_t leaves = 0;
   for (const BvhNode& n : data.nodes) leaves += n.is_leaf();
@@ -88,7 +60,7 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
       },
       &t);
   const std::set<int32_t> ids =
-      with_parent_chains(named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
+      with_parent_chains(detail::named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
   for (int32_t id : ids) {
     const BvhNode& n = data.nodes[size_t(id)];
     const BvhNodeInfo& info = data.info[size_t(id)];
@@ -113,11 +85,7 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
 Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const std::vector<RayRequest>& rays,
                             const std::string& scene_path, const std::string& scene_hash) {
   const WideBvhView view = bvh.describe();
-  Trace t;
-  t.scene_path = scene_path;
-  t.scene_hash = scene_hash;
-  t.scene_primitives = geometry.size();
-  t.structure.kind = bvh.name();
+  Trace t = detail::begin_trace(geometry, bvh.name(), scene_path, scene_hash);
   if (!view.nodes.empty()) t.structure.bounds = view.nodes[0].box;
   size_t leaves = 0;
   for (const WideBvhView::Node& n : view.nodes) leaves += n.leaf;
@@ -135,7 +103,7 @@ Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const 
       },
       &t);
   const std::set<int32_t> ids =
-      with_parent_chains(named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
+      with_parent_chains(detail::named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
   for (int32_t id : ids) {
     const WideBvhView::Node& n = view.nodes[size_t(id)];
     TraceNode tn;

@@ -10,11 +10,7 @@ namespace raystep {
 
 Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid, const std::vector<RayRequest>& rays,
                         const std::string& scene_path, const std::string& scene_hash) {
-  Trace t;
-  t.scene_path = scene_path;
-  t.scene_hash = scene_hash;
-  t.scene_primitives = geometry.size();
-  t.structure.kind = "grid";
+  Trace t = detail::begin_trace(geometry, "grid", scene_path, scene_hash);
   t.structure.bounds = grid.bounds();
   t.structure.resolution = grid.resolution();
   auto param = [&](const char* key, double number) { t.structure.params.push_back({key, false, number, ""}); };

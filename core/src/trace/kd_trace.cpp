@@ -16,11 +16,7 @@ Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::v
                       const std::string& scene_path, const std::string& scene_hash) {
   const KdTreeData& data = tree.data();
   const KdOptions& o = tree.options();
-  Trace t;
-  t.scene_path = scene_path;
-  t.scene_hash = scene_hash;
-  t.scene_primitives = geometry.size();
-  t.structure.kind = tree.name();
+  Trace t = detail::begin_trace(geometry, tree.name(), scene_path, scene_hash);
   t.structure.bounds = data.bounds;
   size_t leaves = 0;
   for (const KdNode& n : data.nodes) leaves += n.is_leaf();
@@ -45,13 +41,7 @@ Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::v
         tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
       },
       &t);
-  std::set<int32_t> named;
-  for (const TracedRay& tr : t.rays)
-    for (const Event& e : tr.events)
-      if (e.type == EventType::node || e.type == EventType::push || e.type == EventType::pop ||
-          e.type == EventType::leaf)
-        named.insert(e.node);
-  for (int32_t id : named) {
+  for (int32_t id : detail::named_nodes(t)) {
     const KdNode& n = data.nodes[size_t(id)];
     const KdNodeInfo& info = data.info[size_t(id)];
     TraceNode tn;

@@ -41,28 +41,31 @@ const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", 
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
 const char* const kAxes[3] = {"x", "y", "z"};
 const char* const kOutcomes[3] = {"agree", "depth_limit", "subdivided"};  // AdaptiveSquare::Outcome
+
+// Names to enums without building strings: the index of name in names, or -1.
+template <size_t N>
+int name_index(std::string_view name, const char* const (&names)[N]) {
+  for (size_t i = 0; i < N; ++i)
+    if (name == names[i]) return int(i);
+  return -1;
+}
+
 }  // namespace
 
 const char* event_type_name(EventType type) { return kEventNames[int(type)]; }
 
 bool parse_event_type(const std::string& name, EventType* type) {
-  for (int i = 0; i < kEventTypeCount; ++i)
-    if (name == kEventNames[i]) {
-      *type = EventType(i);
-      return true;
-    }
-  return false;
+  const int i = name_index(name, kEventNames);
+  if (i >= 0) *type = EventType(i);
+  return i >= 0;
 }
 
 const char* accept_reason_name(AcceptReason reason) { return kReasonNames[int(reason)]; }
 
 bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
-  for (int i = 0; i < kAcceptReasonCount; ++i)
-    if (name == kReasonNames[i]) {
-      *reason = AcceptReason(i);
-      return true;
-    }
-  return false;
+  const int i = name_index(name, kReasonNames);
+  if (i >= 0) *reason = AcceptReason(i);
+  return i >= 0;
 }
 
 const char* ray_kind_name(RayKind kind) { return kRayKinds[int(kind)]; }
@@ -104,6 +107,13 @@ ordered number(float v) {
   return double(v);
 }
 ordered vec(const glm::vec3& v) { return ordered::array({number(v.x), number(v.y), number(v.z)}); }
+
+// The rows of one of the file's arrays, one a line ("\n   row,\n   row"): the caller opens and closes it.
+template <class T, class ToJson>
+void write_rows(std::ostream& out, const std::vector<T>& items, ToJson to_json) {
+  for (size_t i = 0; i < items.size(); ++i)
+    out << (i ? ",\n   " : "\n   ") << ordered(to_json(items[i])).dump();
+}
 
 ordered event_to_json(const Event& e) {
   ordered j;
@@ -202,20 +212,18 @@ std::string pixel_json(const TracePixel& p) {
   h.pop_back();  // reopen the object to append the samples and squares, one per line
   std::ostringstream out;
   out << h << ",\n  \"samples\": [";
-  for (size_t i = 0; i < s.samples.size(); ++i) {
-    const PixelSample& ps = s.samples[i];
+  write_rows(out, s.samples, [&](const PixelSample& ps) {
     ordered j;
     j["px"] = number(ps.px);
     j["py"] = number(ps.py);
     j["colour"] = vec(ps.colour);
     if (ps.stratum[0] >= 0) j["stratum"] = {ps.stratum[0], ps.stratum[1]};
     if (ps.lattice[0] >= 0) j["lattice"] = {ps.lattice[0], ps.lattice[1]};
-    out << (i ? ",\n   " : "\n   ") << j.dump();
-  }
+    return j;
+  });
   out << (s.samples.empty() ? "],\n" : "\n  ],\n");
   out << "  \"squares\": [";
-  for (size_t i = 0; i < s.squares.size(); ++i) {
-    const AdaptiveSquare& q = s.squares[i];
+  write_rows(out, s.squares, [&](const AdaptiveSquare& q) {
     ordered j;
     j["parent"] = q.parent;
     j["depth"] = q.depth;
@@ -228,8 +236,8 @@ std::string pixel_json(const TracePixel& p) {
     j["outcome"] = kOutcomes[int(q.outcome)];
     j["children"] = {q.children[0], q.children[1], q.children[2], q.children[3]};
     j["value"] = vec(q.value);
-    out << (i ? ",\n   " : "\n   ") << j.dump();
-  }
+    return j;
+  });
   out << (s.squares.empty() ? "]}" : "\n  ]}");
   return out.str();
 }
@@ -331,17 +339,15 @@ std::string trace_json_rest(const Trace& t) {
   out << (t.rays.empty() ? "],\n" : "\n ],\n");
 
   out << " \"geometry\": {\n  \"cells\": [";
-  for (size_t i = 0; i < t.cells.size(); ++i) {
-    const TraceCell& c = t.cells[i];
+  write_rows(out, t.cells, [&](const TraceCell& c) {
     ordered jc = {{"cell", {c.cell[0], c.cell[1], c.cell[2]}}, {"min", vec(c.box.lo)}, {"max", vec(c.box.hi)}};
-    out << (i ? ",\n   " : "\n   ") << jc.dump();
-  }
+    return jc;
+  });
   out << (t.cells.empty() ? "],\n" : "\n  ],\n");
   // A tree's trace always lists its nodes, [] for a ray that misses the root's box, so readers find the key.
   if (!t.nodes.empty() || t.structure.kind != "grid") {
     out << "  \"nodes\": [";
-    for (size_t i = 0; i < t.nodes.size(); ++i) {
-      const TraceNode& n = t.nodes[i];
+    write_rows(out, t.nodes, [&](const TraceNode& n) {
       ordered jn;
       jn["id"] = n.id;
       jn["parent"] = n.parent;
@@ -358,13 +364,12 @@ std::string trace_json_rest(const Trace& t) {
         jn["axis"] = kAxes[n.axis];
         jn["split"] = number(n.split);
       }
-      out << (i ? ",\n   " : "\n   ") << jn.dump();
-    }
+      return jn;
+    });
     out << (t.nodes.empty() ? "],\n" : "\n  ],\n");
   }
   out << "  \"primitives\": [";
-  for (size_t i = 0; i < t.primitives.size(); ++i) {
-    const TracePrimitive& p = t.primitives[i];
+  write_rows(out, t.primitives, [&](const TracePrimitive& p) {
     ordered jp;
     jp["id"] = p.id;
     if (p.type == PrimType::triangle) {
@@ -375,8 +380,8 @@ std::string trace_json_rest(const Trace& t) {
       jp["center"] = vec(p.v[0]);
       jp["radius"] = number(p.radius);
     }
-    out << (i ? ",\n   " : "\n   ") << jp.dump();
-  }
+    return jp;
+  });
   out << (t.primitives.empty() ? "]\n" : "\n  ]\n");
   out << " }\n}\n";
   return out.str();
@@ -582,14 +587,6 @@ int Reader::line_of(const std::string& path) const {
   }
   if (!pointer.empty() && pointer[0] != '/') pointer.insert(pointer.begin(), '/');
   return json_line_of(text_, pointer);
-}
-
-// Names to enums without building strings (the names are in the tables at the top).
-template <size_t N>
-int name_index(std::string_view name, const char* const (&names)[N]) {
-  for (size_t i = 0; i < N; ++i)
-    if (name == names[i]) return int(i);
-  return -1;
 }
 
 // The pixel section (version 2): every index in range, every sample where its pattern puts it, the adaptive

@@ -1,9 +1,11 @@
-// Shared by the structures' trace recorders (grid_trace.cpp, kd_trace.cpp): walk each requested ray with the
-// event recorder, and collect the primitives the events name.
+// Shared by the structures' trace recorders (grid_trace.cpp, kd_trace.cpp, bvh_trace.cpp): the scene and
+// structure every trace starts with, walk each requested ray with the event recorder, and collect the
+// primitives and tree nodes the events name.
 #pragma once
 
 #include <algorithm>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "raystep/trace/event_recorder.h"
@@ -11,6 +13,17 @@
 #include "raystep/trace/trace_file.h"
 
 namespace raystep::detail {
+
+// A trace of the scene at scene_path, about to record rays through the structure named kind.
+inline Trace begin_trace(const Geometry& geometry, const std::string& kind, const std::string& scene_path,
+                         const std::string& scene_hash) {
+  Trace t;
+  t.scene_path = scene_path;
+  t.scene_hash = scene_hash;
+  t.scene_primitives = geometry.size();
+  t.structure.kind = kind;
+  return t;
+}
 
 // walk(request, recorder) traverses one ray. Fills trace->rays and trace->primitives.
 template <class Walk>
@@ -45,6 +58,31 @@ void record_rays(const Geometry& geometry, const std::vector<RayRequest>& rays, 
     }
     trace->primitives.push_back(p);
   }
+}
+
+// The tree nodes the events of every ray name: nodes visited, pushed, popped, skipped, and both ends of a box
+// test (a kd-tree's walk emits no box tests or skips).
+inline std::set<int32_t> named_nodes(const Trace& t) {
+  std::set<int32_t> named;
+  for (const TracedRay& tr : t.rays) {
+    for (const Event& e : tr.events) {
+      switch (e.type) {
+        case EventType::box_test:
+          if (e.parent >= 0) named.insert(e.parent);
+          [[fallthrough]];
+        case EventType::node:
+        case EventType::push:
+        case EventType::pop:
+        case EventType::leaf:
+        case EventType::skip:
+          named.insert(e.node);
+          break;
+        default:
+          break;
+      }
+    }
+  }
+  return named;
 }
 
 inline void sort_params(TraceStructure* s) {
