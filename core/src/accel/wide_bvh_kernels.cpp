@@ -244,6 +244,7 @@ namespace {
 struct BoxRay {
   __m256 origin[3], inv_dir[3];
   int near_row[3], far_row[3];
+  size_t near_off8[3], far_off8[3];  // the rows' byte offsets in an 8-wide node (a row: 32 bytes)
   float tmin;
   [[gnu::always_inline]] bool prepare(const Ray& ray) {
     const wide_sse::RayVectors v = wide_sse::prepare_vectors(ray);
@@ -254,6 +255,8 @@ struct BoxRay {
       inv_dir[a] = _mm256_set_m128(sse.inv_dir[a], sse.inv_dir[a]);
       near_row[a] = sse.near_row[a];
       far_row[a] = sse.far_row[a];
+      near_off8[a] = size_t(64 * a + 32 * ((v.sign >> a) & 1));
+      far_off8[a] = near_off8[a] ^ 32;
     }
     tmin = v.tmin;
     return v.valid;
@@ -280,10 +283,13 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
   } else {
     __m256 t_near = _mm256_set1_ps(-kInfinity), t_far = _mm256_set1_ps(kInfinity);
     for (int a = 0; a < 3; ++a) {
-      __m256 dn =
-          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.near_row[a]]), r.origin[a]), r.inv_dir[a]);
-      __m256 df =
-          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.far_row[a]]), r.origin[a]), r.inv_dir[a]);
+      const char* rows = reinterpret_cast<const char*>(n.box);
+      __m256 dn = _mm256_mul_ps(
+          _mm256_sub_ps(_mm256_load_ps(reinterpret_cast<const float*>(rows + r.near_off8[a])), r.origin[a]),
+          r.inv_dir[a]);
+      __m256 df = _mm256_mul_ps(
+          _mm256_sub_ps(_mm256_load_ps(reinterpret_cast<const float*>(rows + r.far_off8[a])), r.origin[a]),
+          r.inv_dir[a]);
       t_near = _mm256_max_ps(dn, t_near);
       t_far = _mm256_min_ps(df, t_far);
     }
