@@ -22,7 +22,11 @@ WideSimd detect_simd() {
 }
 #endif
 
-std::atomic<int> g_simd{int(detect_simd())};
+}  // namespace
+
+std::atomic<int> g_wide_simd{int(detect_simd())};
+
+namespace {
 
 // Collapses the binary tree into W-wide nodes (after Embree's and madmann91/bvh's collapse): a wide node's
 // children start as the binary node's two, and the child with the largest surface area that is not a leaf is
@@ -215,12 +219,12 @@ WideSimd WideBvh::best_simd() {
 
 bool WideBvh::force_simd(WideSimd level) {
   if (int(level) > int(detect_simd())) return false;
-  g_simd = int(level);
+  g_wide_simd = int(level);
   return true;
 }
 
 const char* WideBvh::simd_level() {
-  switch (WideSimd(g_simd.load(std::memory_order_relaxed))) {
+  switch (wide_simd_in_use()) {
     case WideSimd::avx2:
       return "avx2";
     case WideSimd::sse:
@@ -228,10 +232,6 @@ const char* WideBvh::simd_level() {
     default:
       return "scalar";
   }
-}
-
-WideSimd wide_simd_in_use() {
-  return WideSimd(g_simd.load(std::memory_order_relaxed));
 }
 
 bool WideBvh::intersect(const Ray& ray, Hit* hit) const {

@@ -3,6 +3,7 @@
 // filter in front of the watertight test.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -57,8 +58,12 @@ struct WideBvh::Impl {
   }
 };
 
-// The kernel level in use (WideBvh::force_simd).
-WideSimd wide_simd_in_use();
+// The kernel level in use (WideBvh::force_simd). Inline: read once per ray, a call would cost more than
+// the read.
+extern std::atomic<int> g_wide_simd;
+inline WideSimd wide_simd_in_use() {
+  return WideSimd(g_wide_simd.load(std::memory_order_relaxed));
+}
 
 // The stack of a walk: up to width - 1 entries pushed per level.
 constexpr int kWideStack = 7 * kBvhMaxDepth + 8;

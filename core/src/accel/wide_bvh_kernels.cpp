@@ -5,6 +5,7 @@
 // watertight test's own first steps (geometry/triangle.h) with the same roundings, so that the answers do not
 // depend on the instruction set. No FMA: a fused multiply-add rounds once where the scalar code rounds twice.
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <new>
 #include <type_traits>
@@ -81,7 +82,10 @@ namespace {
 struct BoxRay {
   float origin[3], inv_dir[3];
   int near_row[3], far_row[3];
-  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
+  float tmin;
+  // False for a ray that meets nothing (RayPrep::valid).
+  [[gnu::always_inline]] bool prepare(const Ray& ray) {
+    const RayPrep r = raystep::prepare(ray);
     for (int a = 0; a < 3; ++a) {
       origin[a] = r.origin[a];
       inv_dir[a] = r.inv_dir[a];
@@ -89,6 +93,8 @@ struct BoxRay {
       near_row[a] = 2 * a + (negative ? 1 : 0);
       far_row[a] = 2 * a + (negative ? 0 : 1);
     }
+    tmin = r.tmin;
+    return r.valid;
   }
 };
 
@@ -139,17 +145,56 @@ inline void tri_filter(const TriPacket&, const TriRay&, float, PacketResult* out
 namespace wide_sse {
 namespace {
 
+// prepare() of the SIMD kernels: the ray's origin and direction as two vectors, the validity of RayPrep and
+// the reciprocal (divps rounds as divss) with a few vector compares, the near rows from the sign mask.
+// Ray is 32 bytes: origin, direction, tmin, tmax; the loads read ox oy oz dx and dx dy dz tmin.
+static_assert(sizeof(Ray) == 32 && offsetof(Ray, direction) == 12 && offsetof(Ray, tmin) == 24,
+              "prepare() loads the ray as floats");
+struct RayVectors {
+  __m128 origin, inv_dir;  // lanes 0-2
+  float tmin;
+  int sign;    // bit a: the direction on axis a is negative (or -0)
+  bool valid;  // RayPrep::valid
+};
+[[gnu::always_inline]] inline RayVectors prepare_vectors(const Ray& ray) {
+  RayVectors v;
+  const __m128 o = _mm_loadu_ps(&ray.origin.x), d = _mm_loadu_ps(&ray.direction.x);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff)), inf = _mm_set1_ps(kInfinity);
+  // Finite origin and direction (a NaN compares false), a direction that is not zero (a NaN one is invalid
+  // already), tmin < tmax (false when either is NaN).
+  const int finite = _mm_movemask_ps(
+      _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(o, abs_mask), inf), _mm_cmplt_ps(_mm_and_ps(d, abs_mask), inf)));
+  const int nonzero = _mm_movemask_ps(_mm_cmpneq_ps(d, _mm_setzero_ps()));
+  v.valid = ((finite & 7) == 7) & ((nonzero & 7) != 0) & (ray.tmin < ray.tmax);
+  v.origin = o;
+  v.inv_dir = _mm_div_ps(_mm_set1_ps(1.f), d);  // lane 3: 1 / tmin, unused
+  v.sign = _mm_movemask_ps(v.inv_dir) & 7;
+  v.tmin = ray.tmin;
+  return v;
+}
+
 struct BoxRay {
   __m128 origin[3], inv_dir[3];
   int near_row[3], far_row[3];
-  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) {
+  float tmin;
+  [[gnu::always_inline]] void set(const RayVectors& v) {
+    origin[0] = _mm_shuffle_ps(v.origin, v.origin, 0x00);
+    origin[1] = _mm_shuffle_ps(v.origin, v.origin, 0x55);
+    origin[2] = _mm_shuffle_ps(v.origin, v.origin, 0xaa);
+    inv_dir[0] = _mm_shuffle_ps(v.inv_dir, v.inv_dir, 0x00);
+    inv_dir[1] = _mm_shuffle_ps(v.inv_dir, v.inv_dir, 0x55);
+    inv_dir[2] = _mm_shuffle_ps(v.inv_dir, v.inv_dir, 0xaa);
     for (int a = 0; a < 3; ++a) {
-      origin[a] = _mm_set1_ps(r.origin[a]);
-      inv_dir[a] = _mm_set1_ps(r.inv_dir[a]);
-      bool negative = std::signbit(r.inv_dir[a]);
-      near_row[a] = 2 * a + (negative ? 1 : 0);
-      far_row[a] = 2 * a + (negative ? 0 : 1);
+      near_row[a] = 2 * a + ((v.sign >> a) & 1);
+      far_row[a] = near_row[a] ^ 1;
     }
+    tmin = v.tmin;
+  }
+  // False for a ray that meets nothing (RayPrep::valid).
+  [[gnu::always_inline]] bool prepare(const Ray& ray) {
+    const RayVectors v = prepare_vectors(ray);
+    set(v);
+    return v.valid;
   }
 };
 
@@ -199,15 +244,34 @@ namespace {
 struct BoxRay {
   __m256 origin[3], inv_dir[3];
   int near_row[3], far_row[3];
-  wide_sse::BoxRay sse;
-  [[gnu::always_inline]] explicit BoxRay(const RayPrep& r) : sse(r) {
+  size_t near_off8[3], far_off8[3];  // the rows' byte offsets in an 8-wide node (a row: 32 bytes)
+  float tmin;
+  [[gnu::always_inline]] bool prepare(const Ray& ray) {
+    const wide_sse::RayVectors v = wide_sse::prepare_vectors(ray);
+    wide_sse::BoxRay sse;
+    sse.set(v);
     for (int a = 0; a < 3; ++a) {
-      origin[a] = _mm256_set1_ps(r.origin[a]);
-      inv_dir[a] = _mm256_set1_ps(r.inv_dir[a]);
-      bool negative = std::signbit(r.inv_dir[a]);
-      near_row[a] = 2 * a + (negative ? 1 : 0);
-      far_row[a] = 2 * a + (negative ? 0 : 1);
+      origin[a] = _mm256_set_m128(sse.origin[a], sse.origin[a]);
+      inv_dir[a] = _mm256_set_m128(sse.inv_dir[a], sse.inv_dir[a]);
+      near_row[a] = sse.near_row[a];
+      far_row[a] = sse.far_row[a];
+      near_off8[a] = size_t(64 * a + 32 * ((v.sign >> a) & 1));
+      far_off8[a] = near_off8[a] ^ 32;
     }
+    tmin = v.tmin;
+    return v.valid;
+  }
+  // The SSE ray of a 4-wide node: the low halves (no instruction).
+  [[gnu::always_inline]] wide_sse::BoxRay sse() const {
+    wide_sse::BoxRay s;
+    for (int a = 0; a < 3; ++a) {
+      s.origin[a] = _mm256_castps256_ps128(origin[a]);
+      s.inv_dir[a] = _mm256_castps256_ps128(inv_dir[a]);
+      s.near_row[a] = near_row[a];
+      s.far_row[a] = far_row[a];
+    }
+    s.tmin = tmin;
+    return s;
   }
 };
 
@@ -215,14 +279,17 @@ template <int W>
 inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, float tmax, float* t_near_out,
                          float* t_far_out) {
   if constexpr (W == 4) {
-    return wide_sse::box_test4<4>(n, 0, r.sse, _mm_set1_ps(tmin), _mm_set1_ps(tmax), t_near_out, t_far_out);
+    return wide_sse::box_test4<4>(n, 0, r.sse(), _mm_set1_ps(tmin), _mm_set1_ps(tmax), t_near_out, t_far_out);
   } else {
     __m256 t_near = _mm256_set1_ps(-kInfinity), t_far = _mm256_set1_ps(kInfinity);
     for (int a = 0; a < 3; ++a) {
-      __m256 dn =
-          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.near_row[a]]), r.origin[a]), r.inv_dir[a]);
-      __m256 df =
-          _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(n.box[r.far_row[a]]), r.origin[a]), r.inv_dir[a]);
+      const char* rows = reinterpret_cast<const char*>(n.box);
+      __m256 dn = _mm256_mul_ps(
+          _mm256_sub_ps(_mm256_load_ps(reinterpret_cast<const float*>(rows + r.near_off8[a])), r.origin[a]),
+          r.inv_dir[a]);
+      __m256 df = _mm256_mul_ps(
+          _mm256_sub_ps(_mm256_load_ps(reinterpret_cast<const float*>(rows + r.far_off8[a])), r.origin[a]),
+          r.inv_dir[a]);
       t_near = _mm256_max_ps(dn, t_near);
       t_far = _mm256_min_ps(df, t_far);
     }
