@@ -7,15 +7,16 @@
 
 namespace raystep::bench {
 
-inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool any_hit) {
+// Not inlined, as the library's kernel is not: both pay the same call.
+[[gnu::noinline]] inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool any_hit) {
   const BvhData& bvh_ = bvh.data();
+  const BvhPairs& pairs_ = bvh.pairs();
   const Geometry* geometry_ = &bvh.geometry();
   const BvhOrder order_ = bvh.order();
   *hit = Hit{};
   BvhBoxRay slab{SlabRay(ray)};  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
   float t_min, t_max;
-  const BvhNode* nodes = bvh_.nodes.data();
-  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(nodes[0].box, &t_min, &t_max)) {
+  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(bvh_.nodes[0].box, &t_min, &t_max)) {
     return false;
   }
   // A primitive's computed t may stray a few ulps below its box's (conservative) entry distance, so a box is
@@ -23,11 +24,12 @@ inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool
   // box: a box within it is visited, which costs a little time and never a hit (as in kdtree.h).
   const float margin = std::max(std::fabs(t_min), std::fabs(t_max)) * (1.f / 4096.f);
 
-  // The stack of children still to visit, with the distance at which the ray enters each.
+  // The stack of children still to visit, with the distance at which the ray enters each (and, for traces,
+  // the node's id and depth).
   struct Entry {
-    uint32_t node;
-    int32_t depth;
+    BvhRef ref;
     float t_near, t_far;
+    int32_t id, depth;
   };
   Entry stack[kBvhMaxDepth + 1];
   int stack_size = 0;
@@ -37,44 +39,40 @@ inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool
   float t_nearest = ray.tmax;
   float t_limit =
       ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
+  const BvhPair* pairs = pairs_.pairs.data();
   const uint32_t* prim_ids = bvh_.prim_index.data();
-  uint32_t node_id = 0;
-  int32_t depth = 0;
+  BvhRef node = pairs_.root;
+  int32_t node_id = 0, depth = 0;  // traces only
   for (;;) {
-    const BvhNode& node = nodes[node_id];
-
     if (!node.is_leaf()) {
       // Inner node: test both children's boxes (they may overlap: both may be entered).
-      uint32_t left = node_id + 1, right = node.second_child();
-      __builtin_prefetch(&nodes[right]);
-      float l_near, l_far, r_near, r_far;
-      bool hit_left = slab.hit(nodes[left].box, &l_near, &l_far);
-      bool hit_right = slab.hit(nodes[right].box, &r_near, &r_far);
-      if (hit_left && hit_right) {
-        // Front to back: the nearer child now, the other on the stack with its entry distance.
-        bool right_first = order_ == BvhOrder::entry_distance
-                               ? r_near < l_near
-                               : std::signbit(component(ray.direction, node.axis()));
-        Entry far =
-            right_first ? Entry{left, depth + 1, l_near, l_far} : Entry{right, depth + 1, r_near, r_far};
-        stack[stack_size++] = far;
-        node_id = right_first ? right : left;
-        t_min = right_first ? r_near : l_near;
-        t_max = right_first ? r_far : l_far;
-        ++depth;
-        continue;
-      }
-      if (hit_left || hit_right) {
-        node_id = hit_left ? left : right;
-        t_min = hit_left ? l_near : r_near;
-        t_max = hit_left ? l_far : r_far;
+      const BvhPair& pair = pairs[node.index];
+      float t_near[2], t_far[2];
+      const int hits = slab.hit_children(pair, t_near, t_far);
+      int32_t child_id[2] = {0, 0};
+      if (hits != 0) {
+        // One child hit: enter it. Both: front to back, the nearer now, the other on the stack with its
+        // entry distance.
+        int first = hits == 2 ? 1 : 0;
+        if (hits == 3) {
+          first = order_ == BvhOrder::entry_distance
+                      ? (t_near[1] < t_near[0] ? 1 : 0)
+                      : (std::signbit(component(ray.direction, pairs_.axis[node.index])) ? 1 : 0);
+          const int other = 1 - first;
+          Entry far{pair.child[other], t_near[other], t_far[other], child_id[other], depth + 1};
+          stack[stack_size++] = far;
+        }
+        node = pair.child[first];
+        node_id = child_id[first];
+        t_min = t_near[first];
+        t_max = t_far[first];
         ++depth;
         continue;
       }
     } else {
       // Leaf: test its primitives.
-      const uint32_t* prims = prim_ids + node.first_prim();
-      const uint32_t n = node.prim_count();
+      const uint32_t* prims = prim_ids + node.index;
+      const uint32_t n = node.count;
       for (uint32_t i = 0; i < n; ++i) geometry_->prefetch(prims[i]);
       for (uint32_t i = 0; i < n; ++i) {
         uint32_t prim = prims[i];
@@ -88,7 +86,7 @@ inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool
         t_nearest = candidate.t;
         t_limit = next_float_up(t_nearest);
         // Boxes that start beyond the hit (and its margin) are misses from now on.
-        slab.tmax = std::min(slab.tmax, t_nearest + margin);
+        slab.set_tmax(std::min(slab.tmax, t_nearest + margin));
         if (any_hit) break;
       }
       if (any_hit && nearest.found()) {
@@ -104,7 +102,8 @@ inline bool bvh_traverse_hookfree(const Bvh& bvh, const Ray& ray, Hit* hit, bool
       if (nearest.found() && e.t_near > t_nearest + margin) {
         continue;
       }
-      node_id = e.node;
+      node = e.ref;
+      node_id = e.id;
       depth = e.depth;
       t_min = e.t_near;
       t_max = e.t_far;

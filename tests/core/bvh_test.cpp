@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <random>
 
@@ -188,6 +189,101 @@ TEST(Bvh, NonFiniteRaysMissAndTerminate) {
     EXPECT_EQ(bvh->intersect(r, &h), brute.intersect(r, &a));
     EXPECT_EQ(h.prim, a.prim);
   }
+}
+
+// The walk tests an inner node's two children together (bvh_box_ray.h, SSE2 where there is SSE2): the same
+// answer and the same interval bits as one box at a time, on boxes and rays made to be hard: thin and flat
+// boxes, rays in their faces with +0 and -0 components, origins on planes (0 * inf), shrunk tmax, infinite
+// tmax, negative tmin, boxes behind and around the origin, and huge and tiny coordinates.
+TEST(Bvh, ChildPairTestEqualsOneBoxAtATimeBitForBit) {
+  std::mt19937 rng(123);
+  auto pick = [&](std::initializer_list<float> values) {
+    return *(values.begin() + std::uniform_int_distribution<size_t>(0, values.size() - 1)(rng));
+  };
+  std::uniform_real_distribution<float> u(-2.f, 2.f);
+  auto coordinate = [&] { return pick({0.f, -0.f, 1.f, -1.f, 0.5f, u(rng), u(rng), u(rng) * 1e6f, u(rng) * 1e-6f}); };
+  int disagreements = 0, hits = 0, misses = 0;
+  for (int i = 0; i < 200000; ++i) {
+    BvhPair p;
+    for (int k = 0; k < 2; ++k)
+      for (int a = 0; a < 3; ++a) {
+        float lo = coordinate(), hi = pick({lo, lo + std::fabs(u(rng)), coordinate()});
+        p.rows[a][k] = std::min(lo, hi);
+        p.rows[a][k + 2] = std::max(lo, hi);
+      }
+    Ray r;
+    for (int a = 0; a < 3; ++a) {
+      r.origin[a] = pick({p.rows[a][0], p.rows[a][3], coordinate()});
+      r.direction[a] = pick({0.f, -0.f, u(rng), u(rng), 1.f, -1e-30f, 1e30f});
+    }
+    r.tmin = pick({0.f, 0.f, -1.f, 1e-3f});
+    r.tmax = pick({kInfinity, kInfinity, 1.f, 0.25f, 1e7f});
+    BvhBoxRay slab{SlabRay(r)};
+    if (!slab.valid) continue;
+    if (i % 3 == 0) slab.set_tmax(slab.tmax * 0.5f);
+    float simd_near[2], simd_far[2], scalar_near[2], scalar_far[2];
+    int simd = slab.hit_children(p, simd_near, simd_far);
+    int scalar = slab.hit_children_scalar(p, scalar_near, scalar_far);
+    bool same = simd == scalar;
+    for (int k = 0; k < 2; ++k)
+      same = same && std::memcmp(&simd_near[k], &scalar_near[k], 4) == 0 &&
+             std::memcmp(&simd_far[k], &scalar_far[k], 4) == 0;
+    disagreements += !same;
+    hits += (scalar & 1) + (scalar >> 1);
+    misses += 2 - (scalar & 1) - (scalar >> 1);
+  }
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_GT(hits, 30000);  // both outcomes are well exercised
+  EXPECT_GT(misses, 30000);
+}
+
+// The walk's copy holds every inner node once, with its children's boxes and references as BvhData has them.
+TEST(Bvh, ChildPairsMirrorTheNodes) {
+  Geometry g = make_soup(5, 300, 3);
+  auto bvh = make_bvh(g, BvhBuilder::binned);
+  const BvhData& d = bvh->data();
+  const BvhPairs& pairs = bvh->pairs();
+  size_t inner = 0;
+  for (const BvhNode& n : d.nodes) inner += !n.is_leaf();
+  ASSERT_EQ(pairs.pairs.size(), inner);
+  ASSERT_GT(inner, 100u);
+  EXPECT_FALSE(pairs.root.is_leaf());
+  EXPECT_EQ(pairs.root.index, 0u);
+  for (size_t p = 0; p < pairs.pairs.size(); ++p) {
+    const BvhNode& node = d.nodes[pairs.node_id[p]];
+    ASSERT_FALSE(node.is_leaf());
+    EXPECT_EQ(pairs.axis[p], node.axis());
+    const uint32_t children[2] = {uint32_t(pairs.node_id[p]) + 1, node.second_child()};
+    for (int k = 0; k < 2; ++k) {
+      const BvhNode& c = d.nodes[children[k]];
+      EXPECT_EQ(pairs.child_id[2 * p + k], int32_t(children[k]));
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(pairs.pairs[p].rows[a][k], c.box.lo[a]);
+        EXPECT_EQ(pairs.pairs[p].rows[a][k + 2], c.box.hi[a]);
+      }
+      const BvhRef ref = pairs.pairs[p].child[k];
+      ASSERT_EQ(ref.is_leaf(), c.is_leaf());
+      if (c.is_leaf()) {
+        EXPECT_EQ(ref.index, c.first_prim());
+        EXPECT_EQ(ref.count, c.prim_count());
+      } else {
+        EXPECT_EQ(pairs.node_id[ref.index], int32_t(children[k]));
+      }
+    }
+  }
+  // A one-primitive scene is a root leaf, with no pairs.
+  Geometry one;
+  one.begin_object("t", 0);
+  one.add_triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  auto tiny = make_bvh(one, BvhBuilder::binned);
+  EXPECT_TRUE(tiny->pairs().root.is_leaf());
+  EXPECT_TRUE(tiny->pairs().pairs.empty());
+  Ray r;
+  r.origin = {0.2f, 0.2f, 1.f};
+  r.direction = {0.f, 0.f, -1.f};
+  Hit h;
+  EXPECT_TRUE(tiny->intersect(r, &h));
+  EXPECT_EQ(h.prim, 0);
 }
 
 TEST(Bvh, EmptySceneAndFactory) {

@@ -9,7 +9,9 @@
 #include <cmath>
 
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/bvh_box_ray.h"
 #include "raystep/accel/bvh_build.h"
+#include "raystep/accel/bvh_pair.h"
 #include "raystep/geometry/component.h"
 #include "raystep/trace/recorder.h"
 
@@ -19,37 +21,6 @@ namespace raystep {
 enum class BvhOrder : uint8_t {
   entry_distance,  // the child with the smaller t_near first
   split_axis,      // by the sign of the ray's direction on the node's split axis (no comparison of t)
-};
-
-// The slab test of geometry/bounds.h (intersect_slabs) prepared once per ray for the many boxes of one walk:
-// the near and far planes chosen by the direction's sign bits up front, the three slabs combined without
-// early exits. The same float operations in the same order, so the same answers: conservative (never a miss
-// where the exact segment meets the box), +0 and -0 alike, NaN rays miss, a parallel ray outside a slab
-// misses.
-struct BvhBoxRay {
-  glm::vec3 origin, inv_dir;
-  int near_hi[3];  // 1: the near plane is the box's upper one (negative direction, or -0)
-  float tmin, tmax;
-  bool valid;
-  explicit BvhBoxRay(const SlabRay& r)
-      : origin(r.origin), inv_dir(r.inv_dir), tmin(r.tmin), tmax(r.tmax), valid(r.valid) {
-    for (int a = 0; a < 3; ++a) near_hi[a] = std::signbit(r.inv_dir[a]) ? 1 : 0;
-  }
-  bool hit(const Bounds3& b, float* t_enter, float* t_exit) const {
-    const glm::vec3* planes = &b.lo;  // planes[0] = lo, planes[1] = hi
-    float t0 = tmin, t1 = tmax;
-    for (int a = 0; a < 3; ++a) {
-      float t_near = (planes[near_hi[a]][a] - origin[a]) * inv_dir[a];
-      float t_far = (planes[1 - near_hi[a]][a] - origin[a]) * inv_dir[a];
-      t_near *= t_near > 0.f ? 1.f - 2.f * gamma(3) : 1.f + 2.f * gamma(3);
-      t_far *= t_far > 0.f ? 1.f + 2.f * gamma(3) : 1.f - 2.f * gamma(3);
-      t0 = t_near > t0 ? t_near : t0;
-      t1 = t_far < t1 ? t_far : t1;
-    }
-    *t_enter = t0;
-    *t_exit = t1;
-    return t0 <= t1 && t0 != kInfinity;
-  }
 };
 
 class Bvh final : public Accelerator {
@@ -74,6 +45,7 @@ class Bvh final : public Accelerator {
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 
   const BvhData& data() const { return bvh_; }
+  const BvhPairs& pairs() const { return pairs_; }  // the walk's copy (bvh_pair.h)
   const BvhOptions& options() const { return options_; }
   BvhOrder order() const { return order_; }
   const Geometry& geometry() const { return *geometry_; }
@@ -83,6 +55,7 @@ class Bvh final : public Accelerator {
   BvhOrder order_;
   const Geometry* geometry_ = nullptr;
   BvhData bvh_;
+  BvhPairs pairs_;  // the walk's copy: each inner node's children side by side
 };
 
 template <class Recorder>
@@ -91,8 +64,7 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
   rec.ray_begin(ray);
   BvhBoxRay slab{SlabRay(ray)};  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
   float t_min, t_max;
-  const BvhNode* nodes = bvh_.nodes.data();
-  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(nodes[0].box, &t_min, &t_max)) {
+  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(bvh_.nodes[0].box, &t_min, &t_max)) {
     if (!bvh_.nodes.empty()) rec.box_test(BoxTest{-1, 0, 0, false, 0.f, 0.f});  // the root's box: a miss
     rec.ray_end(*hit);
     return false;
@@ -103,11 +75,12 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
   // box: a box within it is visited, which costs a little time and never a hit (as in kdtree.h).
   const float margin = std::max(std::fabs(t_min), std::fabs(t_max)) * (1.f / 4096.f);
 
-  // The stack of children still to visit, with the distance at which the ray enters each.
+  // The stack of children still to visit, with the distance at which the ray enters each (and, for traces,
+  // the node's id and depth).
   struct Entry {
-    uint32_t node;
-    int32_t depth;
+    BvhRef ref;
     float t_near, t_far;
+    int32_t id, depth;
   };
   Entry stack[kBvhMaxDepth + 1];
   int stack_size = 0;
@@ -117,49 +90,50 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
   float t_nearest = ray.tmax;
   float t_limit =
       ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
+  const BvhPair* pairs = pairs_.pairs.data();
   const uint32_t* prim_ids = bvh_.prim_index.data();
-  uint32_t node_id = 0;
-  int32_t depth = 0;
+  BvhRef node = pairs_.root;
+  int32_t node_id = 0, depth = 0;  // traces only
   for (;;) {
-    const BvhNode& node = nodes[node_id];
-    rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
+    rec.node(TreeStep{node_id, depth, t_min, t_max});
 
     if (!node.is_leaf()) {
       // Inner node: test both children's boxes (they may overlap: both may be entered).
-      uint32_t left = node_id + 1, right = node.second_child();
-      __builtin_prefetch(&nodes[right]);
-      float l_near, l_far, r_near, r_far;
-      bool hit_left = slab.hit(nodes[left].box, &l_near, &l_far);
-      bool hit_right = slab.hit(nodes[right].box, &r_near, &r_far);
-      rec.box_test(BoxTest{int32_t(node_id), int32_t(left), depth + 1, hit_left, l_near, l_far});
-      rec.box_test(BoxTest{int32_t(node_id), int32_t(right), depth + 1, hit_right, r_near, r_far});
-      if (hit_left && hit_right) {
-        // Front to back: the nearer child now, the other on the stack with its entry distance.
-        bool right_first = order_ == BvhOrder::entry_distance
-                               ? r_near < l_near
-                               : std::signbit(component(ray.direction, node.axis()));
-        Entry far =
-            right_first ? Entry{left, depth + 1, l_near, l_far} : Entry{right, depth + 1, r_near, r_far};
-        rec.push(TreeStep{int32_t(far.node), far.depth, far.t_near, far.t_far});
-        stack[stack_size++] = far;
-        node_id = right_first ? right : left;
-        t_min = right_first ? r_near : l_near;
-        t_max = right_first ? r_far : l_far;
-        ++depth;
-        continue;
+      const BvhPair& pair = pairs[node.index];
+      float t_near[2], t_far[2];
+      const int hits = slab.hit_children(pair, t_near, t_far);
+      int32_t child_id[2] = {0, 0};
+      if constexpr (kReadsNodeIds<Recorder>) {
+        child_id[0] = pairs_.child_id[2 * node.index];
+        child_id[1] = pairs_.child_id[2 * node.index + 1];
       }
-      if (hit_left || hit_right) {
-        node_id = hit_left ? left : right;
-        t_min = hit_left ? l_near : r_near;
-        t_max = hit_left ? l_far : r_far;
+      rec.box_test(BoxTest{node_id, child_id[0], depth + 1, (hits & 1) != 0, t_near[0], t_far[0]});
+      rec.box_test(BoxTest{node_id, child_id[1], depth + 1, (hits & 2) != 0, t_near[1], t_far[1]});
+      if (hits != 0) {
+        // One child hit: enter it. Both: front to back, the nearer now, the other on the stack with its
+        // entry distance.
+        int first = hits == 2 ? 1 : 0;
+        if (hits == 3) {
+          first = order_ == BvhOrder::entry_distance
+                      ? (t_near[1] < t_near[0] ? 1 : 0)
+                      : (std::signbit(component(ray.direction, pairs_.axis[node.index])) ? 1 : 0);
+          const int other = 1 - first;
+          Entry far{pair.child[other], t_near[other], t_far[other], child_id[other], depth + 1};
+          rec.push(TreeStep{far.id, far.depth, far.t_near, far.t_far});
+          stack[stack_size++] = far;
+        }
+        node = pair.child[first];
+        node_id = child_id[first];
+        t_min = t_near[first];
+        t_max = t_far[first];
         ++depth;
         continue;
       }
     } else {
       // Leaf: test its primitives.
-      rec.leaf(TreeStep{int32_t(node_id), depth, t_min, t_max});
-      const uint32_t* prims = prim_ids + node.first_prim();
-      const uint32_t n = node.prim_count();
+      rec.leaf(TreeStep{node_id, depth, t_min, t_max});
+      const uint32_t* prims = prim_ids + node.index;
+      const uint32_t n = node.count;
       for (uint32_t i = 0; i < n; ++i) geometry_->prefetch(prims[i]);
       for (uint32_t i = 0; i < n; ++i) {
         uint32_t prim = prims[i];
@@ -174,7 +148,7 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
         t_nearest = candidate.t;
         t_limit = next_float_up(t_nearest);
         // Boxes that start beyond the hit (and its margin) are misses from now on.
-        slab.tmax = std::min(slab.tmax, t_nearest + margin);
+        slab.set_tmax(std::min(slab.tmax, t_nearest + margin));
         if (any_hit) break;
       }
       if (any_hit && nearest.found()) {
@@ -188,12 +162,13 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
     bool more = false;
     while (stack_size > 0) {
       const Entry e = stack[--stack_size];
-      rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_near, e.t_far});
+      rec.pop(TreeStep{e.id, e.depth, e.t_near, e.t_far});
       if (nearest.found() && e.t_near > t_nearest + margin) {
-        rec.skip(TreeStep{int32_t(e.node), e.depth, e.t_near, e.t_far});
+        rec.skip(TreeStep{e.id, e.depth, e.t_near, e.t_far});
         continue;
       }
-      node_id = e.node;
+      node = e.ref;
+      node_id = e.id;
       depth = e.depth;
       t_min = e.t_near;
       t_max = e.t_far;

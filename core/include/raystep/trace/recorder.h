@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <glm/vec3.hpp>
 
 #include "raystep/geometry/ray.h"
@@ -91,5 +92,11 @@ struct CountingRecorder {
   void hit_accepted(uint32_t, float, AcceptReason) {}
   void ray_end(const Hit&) {}
 };
+
+// Whether a recorder reads the node ids of tree steps: every recorder but the null and the counting one. A walk
+// whose hot data does not hold ids (the binary BVH's child pairs) looks them up in a cold table only for these.
+template <class Recorder>
+constexpr bool kReadsNodeIds =
+    !std::is_same_v<Recorder, NullRecorder> && !std::is_same_v<Recorder, CountingRecorder>;
 
 }  // namespace raystep
