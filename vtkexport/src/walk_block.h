@@ -1,0 +1,17 @@
+// A recorded ray's path as a VTK polyline: the points of RayPath with the ray parameter t as point data, the
+// ray's index, kind, depth, pixel and result as cell data. Private to the export library.
+#pragma once
+
+#include <cstddef>
+
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+
+#include "raystep/trace/trace_file.h"
+#include "raystep/vtk_export/walk_cells.h"
+
+namespace raystep::vtk_export {
+
+vtkSmartPointer<vtkPolyData> ray_path_polydata(const TracedRay& ray, const RayPath& path, size_t index);
+
+}  // namespace raystep::vtk_export
