@@ -59,10 +59,11 @@ void check_same_structure(const Trace& trace, const Trace& rebuilt, const std::s
     for (const TraceParam& p : have)
       if (p.key == w.key) h = &p;
     if (!h || !same_param(w, *h))
-      throw InputError(trace_path, 0,
-                       "the trace's " + trace.structure.kind + " has " + param_text(w) + ", the one built here " +
-                           (h ? param_text(*h) : "no " + w.key) +
-                           " (give the trace's build options, or leave out --accel to use the trace's own nodes)");
+      throw InputError(
+          trace_path, 0,
+          "the trace's " + trace.structure.kind + " has " + param_text(w) + ", the one built here " +
+              (h ? param_text(*h) : "no " + w.key) +
+              " (give the trace's build options, or leave out --accel to use the trace's own nodes)");
   }
   if (trace.structure.kind == "grid" && trace.structure.resolution != rebuilt.structure.resolution)
     throw InputError(trace_path, 0,
@@ -86,8 +87,8 @@ int run_export_vtk(const ExportVtkArgs& a) {
     trace = read_trace_json(*a.trace);
     if (trace->scene_hash != scene_hash || trace->scene_primitives != scene.geometry.size())
       throw InputError(*a.trace, 0,
-                       "a trace of another scene (" + trace->scene_path + ", " + trace->scene_hash + "), not of " +
-                           a.scene + " (" + scene_hash + ")");
+                       "a trace of another scene (" + trace->scene_path + ", " + trace->scene_hash +
+                           "), not of " + a.scene + " (" + scene_hash + ")");
     if (!a.structure.accel.empty() && a.structure.accel != trace->structure.kind)
       throw InputError(*a.trace, 0,
                        "the trace walks a " + trace->structure.kind + ", not --accel " + a.structure.accel);
@@ -107,15 +108,17 @@ int run_export_vtk(const ExportVtkArgs& a) {
         throw InputError("", 0, "export-vtk: --accel " + a.structure.accel + " records no walk for --pixel");
       if (a.size) parse_size(*a.size, &w, &h);
       std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);
-      if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w || p[1] >= h)
+      if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w ||
+          p[1] >= h)
         throw InputError("", 0,
-                         "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" + std::to_string(h) +
-                             " image");
+                         "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
+                             std::to_string(h) + " image");
       px = int(p[0]);
       py = int(p[1]);
     }
     accel->build(scene.geometry);
-    if (trace) check_same_structure(*trace, record_trace(scene.geometry, *accel, {}, a.scene, scene_hash), *a.trace);
+    if (trace)
+      check_same_structure(*trace, record_trace(scene.geometry, *accel, {}, a.scene, scene_hash), *a.trace);
     structure = vtk_export::structure_cells(*accel, size_t(a.max_cells));
     if (a.pixel)
       trace = record_trace(scene.geometry, *accel, pixel_rays(scene, *accel, w, h, px, py, false), a.scene,
@@ -140,7 +143,8 @@ int run_export_vtk(const ExportVtkArgs& a) {
   if (trace)
     for (size_t r = 0; r < trace->rays.size(); ++r) {
       const TracedRay& ray = trace->rays[r];
-      std::printf("ray %zu: %s, %zu cells or nodes in its walk, ", r, ray_kind_name(ray.kind), summary.visited[r]);
+      std::printf("ray %zu: %s, %zu cells or nodes in its walk, ", r, ray_kind_name(ray.kind),
+                  summary.visited[r]);
       if (!ray.events.empty() && ray.events.back().hit)
         std::printf("hit primitive %d at t = %g\n", ray.events.back().prim, double(ray.events.back().t));
       else

@@ -273,16 +273,19 @@ int main(int argc, char** argv) {
       "export-vtk", "Write the scene, a structure's cells and recorded walks as VTK files for ParaView");
   export_vtk_cmd->add_option("scene", export_vtk.scene, "scene .json or mesh .obj")->required();
   add_structure_options(export_vtk_cmd, export_vtk.structure, "");
-  auto* export_pixel_opt =
-      export_vtk_cmd->add_option("--pixel", export_vtk.pixel, "record the primary ray of pixel X,Y (0,0: top left)");
+  auto* export_pixel_opt = export_vtk_cmd->add_option("--pixel", export_vtk.pixel,
+                                                      "record the primary ray of pixel X,Y (0,0: top left)");
   auto* export_trace_opt = export_vtk_cmd->add_option(
-      "--trace", export_vtk.trace, "a trace of the scene (raystep trace): its rays; without --accel its own nodes");
+      "--trace", export_vtk.trace,
+      "a trace of the scene (raystep trace): its rays; without --accel its own nodes");
   export_pixel_opt->excludes(export_trace_opt);
   export_vtk_cmd->add_option("--size", export_vtk.size, "image size WxH for --pixel (default: the scene's)");
-  export_vtk_cmd->add_option("--max-cells", export_vtk.max_cells,
-                             "at most this many structure cells: trees cut by depth, grids merged into blocks")
+  export_vtk_cmd
+      ->add_option("--max-cells", export_vtk.max_cells,
+                   "at most this many structure cells: trees cut by depth, grids merged into blocks")
       ->capture_default_str();
-  export_vtk_cmd->add_option("-o,--output", export_vtk.output, "output folder (replaced): raystep.vtm and raystep/")
+  export_vtk_cmd
+      ->add_option("-o,--output", export_vtk.output, "output folder (replaced): raystep.vtm and raystep/")
       ->required();
 
   try {

@@ -29,7 +29,9 @@ ReportFolder::~ReportFolder() {
   if (!committed_) fs::remove_all(temp_, ec);
 }
 
-std::string ReportFolder::file(const std::string& name) const { return (fs::path(temp_) / name).string(); }
+std::string ReportFolder::file(const std::string& name) const {
+  return (fs::path(temp_) / name).string();
+}
 
 void ReportFolder::commit() {
   std::error_code ec;

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <vtkCell.h>
 #include <vtkCellData.h>
+#include <vtkCellType.h>
 #include <vtkCompositeDataSet.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
@@ -30,6 +32,7 @@
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/trace_file.h"
+#include "raystep/vtk_export/vtk_export.h"
 
 namespace raystep::clitest {
 namespace {
@@ -92,8 +95,10 @@ void expect_pieces_readable(const std::string& dir, vtkMultiBlockDataSet* mb) {
     vtkMultiBlockDataSet* m = todo.back();
     todo.pop_back();
     for (unsigned i = 0; i < m->GetNumberOfBlocks(); ++i) {
-      if (auto* sub = vtkMultiBlockDataSet::SafeDownCast(m->GetBlock(i))) todo.push_back(sub);
-      else if (auto* ds = vtkDataSet::SafeDownCast(m->GetBlock(i))) from_vtm.push_back(ds->GetNumberOfCells());
+      if (auto* sub = vtkMultiBlockDataSet::SafeDownCast(m->GetBlock(i)))
+        todo.push_back(sub);
+      else if (auto* ds = vtkDataSet::SafeDownCast(m->GetBlock(i)))
+        from_vtm.push_back(ds->GetNumberOfCells());
     }
   }
   for (const auto& e : fs::recursive_directory_iterator(fs::path(dir) / "raystep")) {
@@ -116,7 +121,8 @@ void expect_pieces_readable(const std::string& dir, vtkMultiBlockDataSet* mb) {
   EXPECT_EQ(from_vtm, from_files);
 }
 
-// The triangles the geometry block must have: each triangle, and 320 per sphere (icosphere of 2 subdivisions).
+// The triangles the geometry block must have: each triangle, and 320 per sphere (icosphere of 2
+// subdivisions).
 size_t expected_triangles(const Geometry& g) {
   return g.triangle_count() + 320 * (g.size() - g.triangle_count());
 }
@@ -193,7 +199,8 @@ TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
   auto* geometry = vtkPolyData::SafeDownCast(block(mb, "geometry"));
   ASSERT_NE(geometry, nullptr);
   EXPECT_EQ(size_t(geometry->GetNumberOfPolys()), expected_triangles(s.geometry));
-  const std::vector<double> prim = cell_values(geometry, "primitive"), object = cell_values(geometry, "object"),
+  const std::vector<double> prim = cell_values(geometry, "primitive"),
+                            object = cell_values(geometry, "object"),
                             material = cell_values(geometry, "material");
   cell_values(geometry, "type");
   // Primitives in id order, each once (a triangle) or 320 times (a tessellated sphere).
@@ -217,7 +224,8 @@ TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
   ASSERT_NE(structure, nullptr);
   ASSERT_EQ(size_t(structure->GetNumberOfCells()), data.nodes.size());
   const std::vector<double> node = cell_values(structure, "node"), leaf = cell_values(structure, "leaf"),
-                            depth = cell_values(structure, "depth"), prims = cell_values(structure, "primitives"),
+                            depth = cell_values(structure, "depth"),
+                            prims = cell_values(structure, "primitives"),
                             axis = cell_values(structure, "split_axis");
   cell_values(structure, "cost");
   cell_values(structure, "split_position");
@@ -241,7 +249,8 @@ TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
 TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
   // A pixel with its secondary rays through the mirror and glass spheres: several rays, a BVH.
   const std::string sc = scene("spheres.json");
-  Outcome tr = run("trace " + sc + " --accel bvh --size 40x30 --pixel 20,17 --secondary -o " + path("t.json"));
+  Outcome tr =
+      run("trace " + sc + " --accel bvh --size 40x30 --pixel 20,17 --secondary -o " + path("t.json"));
   ASSERT_EQ(tr.code, 0) << tr.err;
   const Trace trace = read_trace_json(path("t.json"));
   ASSERT_GT(trace.rays.size(), 1u);
@@ -307,7 +316,8 @@ TEST_F(ExportVtkTest, GridOccupiedCellsAndMergedBlocks) {
   ASSERT_NE(cells, nullptr);
   EXPECT_EQ(size_t(cells->GetNumberOfCells()), occupied);
   std::vector<double> prims = cell_values(cells, "primitives");
-  const std::vector<double> i = cell_values(cells, "i"), j = cell_values(cells, "j"), k = cell_values(cells, "k");
+  const std::vector<double> i = cell_values(cells, "i"), j = cell_values(cells, "j"),
+                            k = cell_values(cells, "k");
   double sum = 0;
   for (size_t c = 0; c < prims.size(); ++c) {
     EXPECT_EQ(prims[c], double(grid.cell_end(int(i[c]), int(j[c]), int(k[c])) -
@@ -352,7 +362,8 @@ TEST_F(ExportVtkTest, WideBvhCutByDepth) {
 
   // A bound of half the nodes: whole levels 0..d, where level d + 1 would not fit.
   const size_t max_cells = view.nodes.size() / 2;
-  r = run("export-vtk " + sc + " --accel bvh4 --max-cells " + std::to_string(max_cells) + " -o " + path("cut"));
+  r = run("export-vtk " + sc + " --accel bvh4 --max-cells " + std::to_string(max_cells) + " -o " +
+          path("cut"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("nodes of depth 0.."), std::string::npos) << r.out;
   auto cut = read_vtm(path("cut"));
@@ -363,7 +374,8 @@ TEST_F(ExportVtkTest, WideBvhCutByDepth) {
   ASSERT_FALSE(top_depth.empty());
   const double d = *std::max_element(top_depth.begin(), top_depth.end());
   const size_t upto_d = size_t(std::count_if(depth.begin(), depth.end(), [&](double x) { return x <= d; }));
-  const size_t upto_d1 = size_t(std::count_if(depth.begin(), depth.end(), [&](double x) { return x <= d + 1; }));
+  const size_t upto_d1 =
+      size_t(std::count_if(depth.begin(), depth.end(), [&](double x) { return x <= d + 1; }));
   EXPECT_EQ(top_depth.size(), upto_d);
   EXPECT_LE(upto_d, max_cells);
   EXPECT_GT(upto_d1, max_cells);
@@ -376,20 +388,26 @@ TEST_F(ExportVtkTest, BadInputExitsTwoWithOneLine) {
   const std::string out = path("out");
   expect_error(run("export-vtk " + path("missing.json") + " --accel kd -o " + out), "", out);
   expect_error(run("export-vtk " + sc + " --accel octopus -o " + out), "", out);
-  expect_error(run("export-vtk " + sc + " --accel bvol -o " + out), "export-vtk: --accel bvol has no VTK export", out);
+  expect_error(run("export-vtk " + sc + " --accel bvol -o " + out),
+               "export-vtk: --accel bvol has no VTK export", out);
   expect_error(run("export-vtk " + sc + " -o " + out), "export-vtk: give --accel", out);
-  expect_error(run("export-vtk " + sc + " --accel kd --size 32x24 --pixel 32,0 -o " + out), "--pixel '32,0': outside", out);
+  expect_error(run("export-vtk " + sc + " --accel kd --size 32x24 --pixel 32,0 -o " + out),
+               "--pixel '32,0': outside", out);
   expect_error(run("export-vtk " + sc + " --accel kd --pixel 1,2,3 -o " + out), "--pixel", out);
   expect_error(run("export-vtk " + sc + " --accel kd --max-cells 0 -o " + out), "--max-cells", out);
   // A trace of another scene, a damaged one, one of another structure or other build options.
-  expect_error(run("export-vtk " + scene("spheres.json") + " --trace " + path("t.json") + " -o " + out), path("t.json"), out);
+  expect_error(run("export-vtk " + scene("spheres.json") + " --trace " + path("t.json") + " -o " + out),
+               path("t.json"), out);
   std::string text = slurp(path("t.json"));
   write("cut.json", text.substr(0, text.size() / 2));
-  expect_error(run("export-vtk " + sc + " --trace " + path("cut.json") + " -o " + out), path("cut.json"), out);
-  expect_error(run("export-vtk " + sc + " --accel grid --trace " + path("t.json") + " -o " + out), path("t.json"), out);
-  expect_error(run("export-vtk " + sc + " --accel kd --leaf-size 3 --trace " + path("t.json") + " -o " + out), path("t.json"),
+  expect_error(run("export-vtk " + sc + " --trace " + path("cut.json") + " -o " + out), path("cut.json"),
                out);
-  expect_error(run("export-vtk " + sc + " --accel kd --pixel 1,1 --trace " + path("t.json") + " -o " + out), "", out);
+  expect_error(run("export-vtk " + sc + " --accel grid --trace " + path("t.json") + " -o " + out),
+               path("t.json"), out);
+  expect_error(run("export-vtk " + sc + " --accel kd --leaf-size 3 --trace " + path("t.json") + " -o " + out),
+               path("t.json"), out);
+  expect_error(run("export-vtk " + sc + " --accel kd --pixel 1,1 --trace " + path("t.json") + " -o " + out),
+               "", out);
   // -o naming a file, or in a folder that does not exist; the file is left alone.
   write("file", "keep");
   expect_error(run("export-vtk " + sc + " --accel kd -o " + path("file")), path("file"));
@@ -412,6 +430,42 @@ TEST_F(ExportVtkTest, ReplacesAnOldExportWhole) {
   auto mb = read_vtm(out);
   ASSERT_NE(mb, nullptr);
   EXPECT_EQ(block_names(mb), (std::vector<std::string>{"geometry", "structure"}));
+}
+
+// The cell a BSP node will export (structure_cells.h): a convex polytope, written as a VTK polyhedron whose
+// corners are shared by its faces. Through the library directly: no structure has such cells yet.
+TEST_F(ExportVtkTest, APolytopeCellIsWrittenAsAPolyhedron) {
+  const glm::vec3 a(0, 0, 0), b(2, 0, 0), c(0, 3, 0), d(0, 0, 4);
+  vtk_export::ConvexCell tetra;
+  tetra.faces = {{a, c, b}, {a, b, d}, {a, d, c}, {b, c, d}};
+  vtk_export::StructureCells sc;
+  sc.kind = "bsp";
+  sc.cells.add_polytope(tetra);
+  sc.cells.set("depth", 3, true);
+  sc.cells.finish();
+  sc.total = 1;
+  Geometry g;
+  g.begin_object("triangle", 0);
+  g.add_triangle(a, b, c);
+  vtk_export::ExportInput in;
+  in.geometry = &g;
+  in.structure = &sc;
+  fs::create_directories(path("out"));
+  vtk_export::write_vtk_export(path("out"), in);
+
+  auto mb = read_vtm(path("out"));
+  ASSERT_NE(mb, nullptr);
+  expect_pieces_readable(path("out"), mb);
+  auto* structure = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
+  ASSERT_NE(structure, nullptr);
+  ASSERT_EQ(structure->GetNumberOfCells(), 1);
+  EXPECT_EQ(structure->GetCellType(0), VTK_POLYHEDRON);
+  EXPECT_EQ(structure->GetCell(0)->GetNumberOfPoints(), 4);
+  EXPECT_EQ(structure->GetCell(0)->GetNumberOfFaces(), 4);
+  double bounds[6];
+  structure->GetCell(0)->GetBounds(bounds);
+  EXPECT_EQ(std::vector<double>(bounds, bounds + 6), (std::vector<double>{0, 2, 0, 3, 0, 4}));
+  EXPECT_EQ(cell_values(structure, "depth"), std::vector<double>{3});
 }
 
 }  // namespace

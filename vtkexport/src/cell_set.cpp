@@ -5,7 +5,9 @@
 namespace raystep::vtk_export {
 
 namespace {
-double missing(bool integer) { return integer ? -1.0 : std::numeric_limits<double>::quiet_NaN(); }
+double missing(bool integer) {
+  return integer ? -1.0 : std::numeric_limits<double>::quiet_NaN();
+}
 }  // namespace
 
 CellArray& CellSet::array(const std::string& name, bool integer) {

@@ -20,9 +20,11 @@ vtkSmartPointer<vtkUnstructuredGrid> cell_set_grid(const CellSet& cells) {
   for (const Bounds3& b : cells.boxes()) {
     // VTK's hexahedron: the lower face counter-clockwise seen from inside, then the upper face.
     const float x[2] = {b.lo.x, b.hi.x}, y[2] = {b.lo.y, b.hi.y}, z[2] = {b.lo.z, b.hi.z};
-    const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                              {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
     vtkIdType ids[8];
-    for (int c = 0; c < 8; ++c) ids[c] = points->InsertNextPoint(x[corner[c][0]], y[corner[c][1]], z[corner[c][2]]);
+    for (int c = 0; c < 8; ++c)
+      ids[c] = points->InsertNextPoint(x[corner[c][0]], y[corner[c][1]], z[corner[c][2]]);
     grid->InsertNextCell(VTK_HEXAHEDRON, 8, ids);
   }
   for (const ConvexCell& cell : cells.polytopes()) {

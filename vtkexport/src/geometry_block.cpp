@@ -19,7 +19,8 @@ vtkSmartPointer<vtkPolyData> geometry_polydata(const Geometry& geometry) {
     a->SetName(name);
     return a;
   };
-  auto primitive = named("primitive"), object = named("object"), material = named("material"), type = named("type");
+  auto primitive = named("primitive"), object = named("object"), material = named("material"),
+       type = named("type");
   auto add_triangle = [&](uint32_t id, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
     const vtkIdType ids[3] = {points->InsertNextPoint(a.x, a.y, a.z), points->InsertNextPoint(b.x, b.y, b.z),
                               points->InsertNextPoint(c.x, c.y, c.z)};
@@ -44,7 +45,8 @@ vtkSmartPointer<vtkPolyData> geometry_polydata(const Geometry& geometry) {
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(points);
   poly->SetPolys(polys);
-  for (auto* a : {primitive.Get(), object.Get(), material.Get(), type.Get()}) poly->GetCellData()->AddArray(a);
+  for (auto* a : {primitive.Get(), object.Get(), material.Get(), type.Get()})
+    poly->GetCellData()->AddArray(a);
   return poly;
 }
 

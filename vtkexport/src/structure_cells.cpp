@@ -77,7 +77,8 @@ bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* o
   for (int k = 0; k < b[2]; ++k)
     for (int j = 0; j < b[1]; ++j)
       for (int i = 0; i < b[0]; ++i) {
-        const uint32_t prims = f == 1 ? count(i, j, k) : sums[(size_t(k) * b[1] + size_t(j)) * b[0] + size_t(i)];
+        const uint32_t prims =
+            f == 1 ? count(i, j, k) : sums[(size_t(k) * b[1] + size_t(j)) * b[0] + size_t(i)];
         if (prims == 0) continue;
         Bounds3 box = grid->cell_bounds(i * f, j * f, k * f);
         box.extend(grid->cell_bounds(std::min((i + 1) * f, n[0]) - 1, std::min((j + 1) * f, n[1]) - 1,
@@ -90,9 +91,9 @@ bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* o
         cs.set("block", f, true);
       }
   if (f > 1)
-    out->note = "occupied blocks of " + std::to_string(f) + "x" + std::to_string(f) + "x" + std::to_string(f) +
-                " cells (their primitives summed), not single cells (--max-cells " + std::to_string(max_cells) +
-                ")";
+    out->note = "occupied blocks of " + std::to_string(f) + "x" + std::to_string(f) + "x" +
+                std::to_string(f) + " cells (their primitives summed), not single cells (--max-cells " +
+                std::to_string(max_cells) + ")";
   return true;
 }
 
@@ -244,7 +245,8 @@ StructureCells structure_cells(const Accelerator& accel, size_t max_cells) {
       out.cells.finish();
       return out;
     }
-  throw InputError("", 0, "the " + accel.name() + " structure has no VTK export (" + exported_structure_names() + ")");
+  throw InputError(
+      "", 0, "the " + accel.name() + " structure has no VTK export (" + exported_structure_names() + ")");
 }
 
 StructureCells trace_structure_cells(const Trace& trace) {
@@ -272,7 +274,8 @@ StructureCells trace_structure_cells(const Trace& trace) {
   cs.finish();
   out.total = cs.size();
   if (!trace.nodes.empty() || !trace.cells.empty())
-    out.note = "the " + std::to_string(cs.size()) + " cells or nodes the trace names, not the whole structure";
+    out.note =
+        "the " + std::to_string(cs.size()) + " cells or nodes the trace names, not the whole structure";
   return out;
 }
 

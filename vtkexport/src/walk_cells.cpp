@@ -19,7 +19,8 @@ namespace {
 // misses the box, as far along as the box reaches from the origin (the ray stays visible next to it).
 float end_without_hit(const Ray& ray, const Bounds3& bounds, float t0) {
   float t_enter = 0.f, t_exit = 0.f;
-  if (!bounds.empty() && intersect_slabs(bounds, ray, &t_enter, &t_exit) && std::isfinite(t_exit) && t_exit > t0)
+  if (!bounds.empty() && intersect_slabs(bounds, ray, &t_enter, &t_exit) && std::isfinite(t_exit) &&
+      t_exit > t0)
     return t_exit;
   const float speed = glm::length(ray.direction);
   float reach = 1.f;

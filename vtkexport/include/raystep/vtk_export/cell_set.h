@@ -1,7 +1,8 @@
 // A set of cells with named per-cell numbers, in the export's own terms (no VTK type): a structure's cells or
-// nodes (lecture: "spatial subdivision" and "bounding volume hierarchies" drawn as the boxes they are), or the
-// cells a ray visited. Boxes become VTK hexahedra; a convex cell that is not a box (a BSP node's polytope)
-// becomes a VTK polyhedron. The VTK side (cell_set_block.h) turns any CellSet into an unstructured grid.
+// nodes (lecture: "spatial subdivision" and "bounding volume hierarchies" drawn as the boxes they are), or
+// the cells a ray visited. Boxes become VTK hexahedra; a convex cell that is not a box (a BSP node's
+// polytope) becomes a VTK polyhedron. The VTK side (cell_set_block.h) turns any CellSet into an unstructured
+// grid.
 #pragma once
 
 #include <cstddef>

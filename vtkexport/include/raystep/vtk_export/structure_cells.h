@@ -18,10 +18,10 @@
 namespace raystep::vtk_export {
 
 struct StructureCells {
-  std::string kind;   // the accelerator's name ("grid", "kd", "bvh8", ...)
+  std::string kind;  // the accelerator's name ("grid", "kd", "bvh8", ...)
   CellSet cells;
-  size_t total = 0;   // cells (or nodes) the structure has; cells.size() is at most max_cells
-  std::string note;   // what was written when not everything was, for the user ("" when all)
+  size_t total = 0;  // cells (or nodes) the structure has; cells.size() is at most max_cells
+  std::string note;  // what was written when not everything was, for the user ("" when all)
 };
 
 // The default bound on the cells written for a structure: a two-million-triangle kd-tree has millions of

@@ -1,8 +1,8 @@
-// One recorded ray's walk (lecture: "traversal": the cells or nodes a ray visits, front to back) for ParaView:
-// the ray as a polyline from its origin to its hit, or to where it leaves the structure, and every event
-// that names a cell or node (grid cell; tree node, leaf, push, pop; BVH box test, skip) as that cell or node's
-// box with its position in the walk (step, seq), event type and interval [t_enter, t_exit]. Read from a Trace
-// only, so that a trace file exports without the scene's structure being rebuilt.
+// One recorded ray's walk (lecture: "traversal": the cells or nodes a ray visits, front to back) for
+// ParaView: the ray as a polyline from its origin to its hit, or to where it leaves the structure, and every
+// event that names a cell or node (grid cell; tree node, leaf, push, pop; BVH box test, skip) as that cell or
+// node's box with its position in the walk (step, seq), event type and interval [t_enter, t_exit]. Read from
+// a Trace only, so that a trace file exports without the scene's structure being rebuilt.
 #pragma once
 
 #include <cstddef>
@@ -17,10 +17,11 @@
 namespace raystep::vtk_export {
 
 struct RayPath {
-  std::vector<glm::vec3> points;  // the origin (at max(tmin, 0)), the entry into the structure if later, the end
-  std::vector<float> t;           // the ray parameter of each point
+  std::vector<glm::vec3>
+      points;            // the origin (at max(tmin, 0)), the entry into the structure if later, the end
+  std::vector<float> t;  // the ray parameter of each point
   bool hit = false;
-  int32_t prim = -1;              // the primitive hit (-1: a miss)
+  int32_t prim = -1;  // the primitive hit (-1: a miss)
 };
 
 struct RayWalk {
