@@ -297,49 +297,68 @@ TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
   for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb2, trace.rays[i], i);
 }
 
-TEST_F(ExportVtkTest, GridOccupiedCellsAndMergedBlocks) {
+// The grid's primitives per cell, summed over the written cells, equal its references whichever way the
+// bound cuts: every cell, the occupied cells, or merged blocks.
+TEST_F(ExportVtkTest, GridCellsOccupiedCellsAndMergedBlocks) {
   const std::string sc = scene("spheres.json");
   const Scene s = load_scene(sc);
   StructureOptions o;
   o.grid.resolution = std::array<int, 3>{12, 10, 8};
   auto grid_accel = built("grid", s.geometry, o);
   const auto& grid = dynamic_cast<const UniformGrid&>(*grid_accel);
+  const size_t cells = 12 * 10 * 8;
   size_t occupied = 0;
-  for (size_t id = 0; id < 12 * 10 * 8; ++id) occupied += grid.occupied(id);
+  for (size_t id = 0; id < cells; ++id) occupied += grid.occupied(id);
+  ASSERT_LT(occupied, cells);
 
-  Outcome r = run("export-vtk " + sc + " --accel grid --grid-res 12,10,8 -o " + path("out"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  auto mb = read_vtm(path("out"));
-  ASSERT_NE(mb, nullptr);
-  EXPECT_EQ(block_names(mb), (std::vector<std::string>{"geometry", "structure"}));
-  auto* cells = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
-  ASSERT_NE(cells, nullptr);
-  EXPECT_EQ(size_t(cells->GetNumberOfCells()), occupied);
-  std::vector<double> prims = cell_values(cells, "primitives");
-  const std::vector<double> i = cell_values(cells, "i"), j = cell_values(cells, "j"),
-                            k = cell_values(cells, "k");
-  double sum = 0;
+  std::vector<vtkSmartPointer<vtkMultiBlockDataSet>> keep;  // the datasets the returned blocks belong to
+  auto export_grid = [&](const std::string& name, const std::string& extra) -> vtkUnstructuredGrid* {
+    Outcome r = run("export-vtk " + sc + " --accel grid --grid-res 12,10,8 " + extra + " -o " + path(name));
+    EXPECT_EQ(r.code, 0) << r.err;
+    keep.push_back(read_vtm(path(name)));
+    if (!keep.back()) return nullptr;
+    EXPECT_EQ(block_names(keep.back()), (std::vector<std::string>{"geometry", "structure"}));
+    return vtkUnstructuredGrid::SafeDownCast(block(keep.back(), "structure"));
+  };
+  auto reference_sum = [](vtkUnstructuredGrid* g) {
+    double sum = 0;
+    for (double p : cell_values(g, "primitives")) sum += p;
+    return sum;
+  };
+
+  // Every cell, each with its own count.
+  vtkUnstructuredGrid* all = export_grid("all", "");
+  ASSERT_NE(all, nullptr);
+  ASSERT_EQ(size_t(all->GetNumberOfCells()), cells);
+  const std::vector<double> prims = cell_values(all, "primitives");
+  const std::vector<double> i = cell_values(all, "i"), j = cell_values(all, "j"), k = cell_values(all, "k");
+  std::set<std::array<int, 3>> seen;
   for (size_t c = 0; c < prims.size(); ++c) {
-    EXPECT_EQ(prims[c], double(grid.cell_end(int(i[c]), int(j[c]), int(k[c])) -
-                               grid.cell_begin(int(i[c]), int(j[c]), int(k[c]))));
-    sum += prims[c];
+    const int ci = int(i[c]), cj = int(j[c]), ck = int(k[c]);
+    seen.insert({ci, cj, ck});
+    EXPECT_EQ(prims[c], double(grid.cell_end(ci, cj, ck) - grid.cell_begin(ci, cj, ck)));
+    double b[6];
+    all->GetCell(vtkIdType(c))->GetBounds(b);
+    const Bounds3 want = grid.cell_bounds(ci, cj, ck);
+    EXPECT_FLOAT_EQ(float(b[0]), want.lo.x);
+    EXPECT_FLOAT_EQ(float(b[3]), want.hi.y);
   }
-  EXPECT_EQ(sum, double(grid.reference_count()));
+  EXPECT_EQ(seen.size(), cells);
+  EXPECT_EQ(size_t(std::count_if(prims.begin(), prims.end(), [](double p) { return p > 0; })), occupied);
+  EXPECT_EQ(reference_sum(all), double(grid.reference_count()));
 
-  // Bounded: at most 20 cells, merged blocks whose counts still add up to every reference.
-  r = run("export-vtk " + sc + " --accel grid --grid-res 12,10,8 --max-cells 20 -o " + path("small"));
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("blocks of"), std::string::npos) << r.out;
-  auto small = read_vtm(path("small"));
-  ASSERT_NE(small, nullptr);
-  auto* blocks = vtkUnstructuredGrid::SafeDownCast(block(small, "structure"));
+  // Bounded below the lattice: the occupied cells.
+  vtkUnstructuredGrid* busy = export_grid("busy", "--max-cells " + std::to_string(cells - 1));
+  ASSERT_NE(busy, nullptr);
+  EXPECT_EQ(size_t(busy->GetNumberOfCells()), occupied);
+  EXPECT_EQ(reference_sum(busy), double(grid.reference_count()));
+
+  // Bounded at 20: merged blocks.
+  vtkUnstructuredGrid* blocks = export_grid("small", "--max-cells 20");
   ASSERT_NE(blocks, nullptr);
   EXPECT_LE(blocks->GetNumberOfCells(), 20);
   EXPECT_GT(blocks->GetNumberOfCells(), 0);
-  prims = cell_values(blocks, "primitives");
-  sum = 0;
-  for (double p : prims) sum += p;
-  EXPECT_EQ(sum, double(grid.reference_count()));
+  EXPECT_EQ(reference_sum(blocks), double(grid.reference_count()));
   for (double b : cell_values(blocks, "block")) EXPECT_GE(b, 2.0);
 }
 

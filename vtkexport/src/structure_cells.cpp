@@ -44,7 +44,7 @@ std::string depth_note(int cut, const std::vector<int>& depths, size_t written, 
          " deep; --max-cells " + std::to_string(max_cells) + ")";
 }
 
-// ---- uniform grid: the occupied cells, with their primitive counts ----
+// ---- uniform grid: every cell with its primitive count; when they are too many, the occupied ones ----
 
 bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* out) {
   auto* grid = dynamic_cast<const UniformGrid*>(&accel);
@@ -57,7 +57,9 @@ bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* o
     const size_t id = grid->cell_id(i, j, k);
     return grid->cell_start(id + 1) - grid->cell_start(id);
   };
-  // Merge cells into blocks of f x f x f (f = 1, 2, 4, ...) until the occupied blocks fit.
+  // The whole lattice when it fits (empty space is part of the lesson: the walk crosses it); else the
+  // occupied cells; else cells merged into blocks of f x f x f (f = 2, 4, ...) until the occupied blocks fit.
+  const bool every_cell = cells <= max_cells;
   int f = 1;
   size_t occupied = 0;
   for (size_t id = 0; id < cells; ++id) occupied += grid->occupied(id);
@@ -79,7 +81,7 @@ bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* o
       for (int i = 0; i < b[0]; ++i) {
         const uint32_t prims =
             f == 1 ? count(i, j, k) : sums[(size_t(k) * b[1] + size_t(j)) * b[0] + size_t(i)];
-        if (prims == 0) continue;
+        if (prims == 0 && !every_cell) continue;
         Bounds3 box = grid->cell_bounds(i * f, j * f, k * f);
         box.extend(grid->cell_bounds(std::min((i + 1) * f, n[0]) - 1, std::min((j + 1) * f, n[1]) - 1,
                                      std::min((k + 1) * f, n[2]) - 1));
@@ -90,6 +92,9 @@ bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* o
         cs.set("primitives", prims, true);
         cs.set("block", f, true);
       }
+  if (f == 1 && !every_cell)
+    out->note = "the " + std::to_string(cs.size()) +
+                " occupied cells only, not the empty ones (--max-cells " + std::to_string(max_cells) + ")";
   if (f > 1)
     out->note = "occupied blocks of " + std::to_string(f) + "x" + std::to_string(f) + "x" +
                 std::to_string(f) + " cells (their primitives summed), not single cells (--max-cells " +

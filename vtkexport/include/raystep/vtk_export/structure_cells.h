@@ -1,4 +1,4 @@
-// An acceleration structure as cells with data, for ParaView: the grid's occupied cells, the kd-tree's node
+// An acceleration structure as cells with data, for ParaView: the grid's cells, the kd-tree's node
 // cells, the BVHs' node boxes, each with its depth, leaf flag, primitive count and the builder's cost where
 // known. Also the nodes and cells a trace file carries, so that a recorded walk is shown without a rebuild.
 //
@@ -34,8 +34,8 @@ bool exports_structure(const Accelerator& accel);
 std::string exported_structure_names();
 
 // A built accelerator's cells. Trees: the nodes of depth 0..d for the largest d whose nodes number at most
-// max_cells (the note says d); grid: the occupied cells, merged into blocks of 2x2x2, 4x4x4, ... cells while
-// there are more than max_cells (the note says the block size). Throws InputError("", 0, ...) for a
+// max_cells (the note says d); grid: every cell if they number at most max_cells, else the occupied cells,
+// merged into blocks of 2x2x2, 4x4x4, ... cells while there are more than max_cells (the note says which). Throws InputError("", 0, ...) for a
 // structure without a row in the table.
 StructureCells structure_cells(const Accelerator& accel, size_t max_cells = kDefaultMaxCells);
 
