@@ -143,8 +143,8 @@ int run_export_vtk(const ExportVtkArgs& a) {
   if (trace)
     for (size_t r = 0; r < trace->rays.size(); ++r) {
       const TracedRay& ray = trace->rays[r];
-      std::printf("ray %zu: %s, %zu cells or nodes in its walk, ", r, ray_kind_name(ray.kind),
-                  summary.visited[r]);
+      std::printf("ray %zu: %s, %zu cells or nodes in its walk, %zu primitive tests, ", r,
+                  ray_kind_name(ray.kind), summary.visited[r], summary.tests[r]);
       if (!ray.events.empty() && ray.events.back().hit)
         std::printf("hit primitive %d at t = %g\n", ray.events.back().prim, double(ray.events.back().t));
       else

@@ -135,10 +135,11 @@ std::unique_ptr<Accelerator> built(const std::string& name, const Geometry& g, S
 
 // Ray r's "visited" block against the trace's events: one cell per event naming a cell or node, in order,
 // with its seq, type and interval.
-void expect_walk_matches(vtkMultiBlockDataSet* mb, const TracedRay& ray, size_t r) {
+void expect_walk_matches(vtkMultiBlockDataSet* mb, const Trace& trace, size_t r) {
+  const TracedRay& ray = trace.rays[r];
   auto* ray_block = vtkMultiBlockDataSet::SafeDownCast(block(mb, "ray " + std::to_string(r)));
   ASSERT_NE(ray_block, nullptr);
-  EXPECT_EQ(block_names(ray_block), (std::vector<std::string>{"path", "visited"}));
+  EXPECT_EQ(block_names(ray_block), (std::vector<std::string>{"path", "visited", "tests"}));
   auto* path = vtkPolyData::SafeDownCast(block(ray_block, "path"));
   auto* visited = vtkUnstructuredGrid::SafeDownCast(block(ray_block, "visited"));
   ASSERT_NE(path, nullptr);
@@ -177,6 +178,34 @@ void expect_walk_matches(vtkMultiBlockDataSet* mb, const TracedRay& ray, size_t 
     }
   }
   EXPECT_NE(visited->GetFieldData()->GetAbstractArray("event_names"), nullptr);
+
+  // The primitives tested, in event order: a triangle each, a sphere's 320.
+  auto* tests = vtkPolyData::SafeDownCast(block(ray_block, "tests"));
+  ASSERT_NE(tests, nullptr);
+  std::vector<const Event*> tested;
+  for (const Event& e : ray.events)
+    if (e.type == EventType::prim_test || e.type == EventType::mailbox_hit) tested.push_back(&e);
+  const std::vector<double> test_step = cell_values(tests, "step"), test_seq = cell_values(tests, "seq"),
+                            test_prim = cell_values(tests, "prim"), test_hit = cell_values(tests, "hit"),
+                            test_event = cell_values(tests, "event");
+  cell_values(tests, "t");
+  size_t c = 0;
+  for (size_t i = 0; i < tested.size(); ++i) {
+    const Event& e = *tested[i];
+    ASSERT_LT(c, test_seq.size());
+    const auto shape = std::find_if(trace.primitives.begin(), trace.primitives.end(),
+                                    [&](const TracePrimitive& p) { return p.id == e.prim; });
+    ASSERT_NE(shape, trace.primitives.end());
+    const size_t n = shape->type == PrimType::triangle ? 1 : 320;
+    for (size_t k = 0; k < n; ++k, ++c) {
+      EXPECT_EQ(test_step[c], double(i));
+      EXPECT_EQ(test_seq[c], double(e.seq));
+      EXPECT_EQ(test_prim[c], double(e.prim));
+      EXPECT_EQ(test_hit[c], double(e.hit));
+      EXPECT_EQ(test_event[c], double(int(e.type)));
+    }
+  }
+  EXPECT_EQ(c, test_seq.size());
 }
 
 TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
@@ -243,7 +272,7 @@ TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
   EXPECT_FLOAT_EQ(float(bounds[0]), data.info[0].box.lo.x);
   EXPECT_FLOAT_EQ(float(bounds[5]), data.info[0].box.hi.z);
 
-  expect_walk_matches(mb, trace.rays[0], 0);
+  expect_walk_matches(mb, trace, 0);
 }
 
 TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
@@ -280,7 +309,7 @@ TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
     EXPECT_EQ(node[i], trace.nodes[i].id);
     EXPECT_EQ(depth[i], trace.nodes[i].depth);
   }
-  for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb, trace.rays[i], i);
+  for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb, trace, i);
 
   // With --accel as well, the whole BVH is rebuilt (same options) and the walks are the trace's.
   const std::string full = path("full");
@@ -294,7 +323,7 @@ TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
   EXPECT_EQ(size_t(whole->GetNumberOfCells()), dynamic_cast<const Bvh&>(*bvh).data().nodes.size());
   cell_values(whole, "cost");
   cell_values(whole, "primitives");
-  for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb2, trace.rays[i], i);
+  for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb2, trace, i);
 }
 
 // The grid's primitives per cell, summed over the written cells, equal its references whichever way the

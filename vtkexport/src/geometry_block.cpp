@@ -5,10 +5,14 @@
 #include <vtkIntArray.h>
 #include <vtkPoints.h>
 
-#include "raystep/geometry/icosphere.h"
 #include "raystep/vtk_export/vtk_export.h"
 
 namespace raystep::vtk_export {
+
+const Icosphere& unit_sphere() {
+  static const Icosphere unit = make_icosphere(kSphereSubdivisions);
+  return unit;
+}
 
 vtkSmartPointer<vtkPolyData> geometry_polydata(const Geometry& geometry) {
   auto points = vtkSmartPointer<vtkPoints>::New();
@@ -31,7 +35,7 @@ vtkSmartPointer<vtkPolyData> geometry_polydata(const Geometry& geometry) {
     type->InsertNextValue(int(geometry.type(id)));
   };
   // One unit icosphere, scaled and moved onto each sphere.
-  const Icosphere unit = make_icosphere(kSphereSubdivisions);
+  const Icosphere& unit = unit_sphere();
   for (uint32_t id = 0; id < geometry.size(); ++id) {
     if (geometry.type(id) == PrimType::triangle) {
       add_triangle(id, geometry.vertex(id, 0), geometry.vertex(id, 1), geometry.vertex(id, 2));

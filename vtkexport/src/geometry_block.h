@@ -6,10 +6,14 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 
+#include "raystep/geometry/icosphere.h"
 #include "raystep/scene/geometry.h"
 
 namespace raystep::vtk_export {
 
 vtkSmartPointer<vtkPolyData> geometry_polydata(const Geometry& geometry);
+
+// The unit icosphere (kSphereSubdivisions) that stands for a sphere wherever one is drawn.
+const Icosphere& unit_sphere();
 
 }  // namespace raystep::vtk_export

@@ -72,6 +72,10 @@ ExportSummary write_vtk_export(const std::string& dir, const ExportInput& input)
       auto visited = cell_set_grid(walk.visited);
       add_event_names(visited);
       add_block(ray, "visited", visited);
+      auto tests = ray_tests_polydata(walk.tests);
+      add_event_names(tests);
+      add_block(ray, "tests", tests);
+      summary.tests.push_back(walk.tests.size());
       summary.visited.push_back(walk.visited.size());
       const std::string name = "ray " + std::to_string(r);
       add_block(root, name, ray);

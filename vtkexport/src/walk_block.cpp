@@ -1,11 +1,15 @@
 #include "walk_block.h"
 
+#include <limits>
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkFloatArray.h>
 #include <vtkIntArray.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+
+#include "geometry_block.h"
 
 namespace raystep::vtk_export {
 
@@ -39,6 +43,51 @@ vtkSmartPointer<vtkPolyData> ray_path_polydata(const TracedRay& ray, const RayPa
   cell_int("sample", ray.sample);
   cell_int("hit", path.hit);
   cell_int("prim", path.prim);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> ray_tests_polydata(const std::vector<PrimitiveTest>& tests) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToFloat();
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  auto ints = [](const char* name) {
+    auto a = vtkSmartPointer<vtkIntArray>::New();
+    a->SetName(name);
+    return a;
+  };
+  auto step = ints("step"), seq = ints("seq"), event = ints("event"), prim = ints("prim"), hit = ints("hit");
+  auto t = vtkSmartPointer<vtkFloatArray>::New();
+  t->SetName("t");
+  const Icosphere& unit = unit_sphere();
+  for (size_t i = 0; i < tests.size(); ++i) {
+    const PrimitiveTest& test = tests[i];
+    auto add_triangle = [&](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+      const vtkIdType ids[3] = {points->InsertNextPoint(a.x, a.y, a.z),
+                                points->InsertNextPoint(b.x, b.y, b.z),
+                                points->InsertNextPoint(c.x, c.y, c.z)};
+      polys->InsertNextCell(3, ids);
+      step->InsertNextValue(int(i));
+      seq->InsertNextValue(int(test.seq));
+      event->InsertNextValue(int(test.type));
+      prim->InsertNextValue(test.shape.id);
+      hit->InsertNextValue(test.hit);
+      t->InsertNextValue(test.hit ? test.t : std::numeric_limits<float>::quiet_NaN());
+    };
+    const TracePrimitive& p = test.shape;
+    if (p.type == PrimType::triangle) {
+      add_triangle(p.v[0], p.v[1], p.v[2]);
+    } else {
+      for (size_t k = 0; k < unit.triangles.size(); ++k)
+        add_triangle(p.v[0] + p.radius * unit.vertex(k, 0), p.v[0] + p.radius * unit.vertex(k, 1),
+                     p.v[0] + p.radius * unit.vertex(k, 2));
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(polys);
+  for (auto* a : {step.Get(), seq.Get(), event.Get(), prim.Get(), hit.Get()})
+    poly->GetCellData()->AddArray(a);
+  poly->GetCellData()->AddArray(t);
   return poly;
 }
 

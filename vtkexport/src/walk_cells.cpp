@@ -81,9 +81,22 @@ RayWalk ray_walk(const Trace& trace, size_t ray_index, const std::string& trace_
   std::unordered_map<int32_t, size_t> node_of;
   for (size_t i = 0; i < trace.nodes.size(); ++i) node_of[trace.nodes[i].id] = i;
 
+  std::unordered_map<int32_t, size_t> prim_of;
+  for (size_t i = 0; i < trace.primitives.size(); ++i) prim_of[trace.primitives[i].id] = i;
+
   CellSet& cs = walk.visited;
   int step = 0;
   for (const Event& e : tr.events) {
+    if (e.type == EventType::prim_test || e.type == EventType::mailbox_hit) {
+      auto it = prim_of.find(e.prim);
+      if (it == prim_of.end())
+        throw InputError(trace_name, 0,
+                         "ray " + std::to_string(ray_index) + ", event " + std::to_string(e.seq) +
+                             ": primitive " + std::to_string(e.prim) +
+                             " is not among the trace's primitives");
+      walk.tests.push_back(PrimitiveTest{trace.primitives[it->second], e.seq, e.type, e.hit, e.t});
+      continue;
+    }
     if (!names_cell_or_node(e.type)) continue;
     if (e.type == EventType::cell) {
       auto it = cell_of.find({e.cell[0], e.cell[1], e.cell[2]});

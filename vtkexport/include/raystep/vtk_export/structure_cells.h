@@ -35,8 +35,8 @@ std::string exported_structure_names();
 
 // A built accelerator's cells. Trees: the nodes of depth 0..d for the largest d whose nodes number at most
 // max_cells (the note says d); grid: every cell if they number at most max_cells, else the occupied cells,
-// merged into blocks of 2x2x2, 4x4x4, ... cells while there are more than max_cells (the note says which). Throws InputError("", 0, ...) for a
-// structure without a row in the table.
+// merged into blocks of 2x2x2, 4x4x4, ... cells while there are more than max_cells (the note says which).
+// Throws InputError("", 0, ...) for a structure without a row in the table.
 StructureCells structure_cells(const Accelerator& accel, size_t max_cells = kDefaultMaxCells);
 
 // The cells and nodes a trace names (Trace::cells, Trace::nodes): the part of the structure its rays saw.

@@ -1,7 +1,7 @@
 // The ParaView export (issue 16, docs/vtk-export.md): the scene's geometry, a structure's cells and each
 // recorded ray's walk written with VTK's XML writers as one multiblock dataset, DIR/raystep.vtm, whose
-// blocks are named "geometry", "structure" and "ray 0", "ray 1", ... (each ray a multiblock of "path" and
-// "visited"). This library links VTK privately: no header of it names a VTK type (the F3D split).
+// blocks are named "geometry", "structure" and "ray 0", "ray 1", ... (each ray a multiblock of "path",
+// "visited" and "tests"). This library links VTK privately: no header of it names a VTK type (the F3D split).
 #pragma once
 
 #include <string>
@@ -27,6 +27,7 @@ struct ExportSummary {
   std::vector<std::string> blocks;  // the top-level block names, in order
   std::vector<std::string> files;   // every file written, relative to the folder
   std::vector<size_t> visited;      // per ray: the cells in its "visited" block
+  std::vector<size_t> tests;        // per ray: the primitive tests in its "tests" block
 };
 
 // Spheres are written tessellated: an icosphere of this many subdivisions (320 triangles) per sphere.

@@ -24,12 +24,23 @@ struct RayPath {
   int32_t prim = -1;  // the primitive hit (-1: a miss)
 };
 
-struct RayWalk {
-  RayPath path;
-  CellSet visited;  // one cell per event naming a cell or node, in event order
+// A primitive test of the walk (a prim_test, or a mailbox_hit: a test the mailbox saved), with the
+// primitive's shape as the trace carries it.
+struct PrimitiveTest {
+  TracePrimitive shape;
+  uint32_t seq = 0;
+  EventType type = EventType::prim_test;
+  bool hit = false;
+  float t = 0.f;  // prim_test with a hit: where
 };
 
-// Throws InputError(trace_name, 0, ...) if an event names a cell or node the trace does not carry.
+struct RayWalk {
+  RayPath path;
+  CellSet visited;                   // one cell per event naming a cell or node, in event order
+  std::vector<PrimitiveTest> tests;  // in event order
+};
+
+// Throws InputError(trace_name, 0, ...) if an event names a cell, node or primitive the trace does not carry.
 RayWalk ray_walk(const Trace& trace, size_t ray, const std::string& trace_name);
 
 }  // namespace raystep::vtk_export
