@@ -4,6 +4,7 @@
 // intervals), the arrays docs/vtk-export.md names; bad input exits 2 with one line and writes nothing.
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -266,6 +267,17 @@ TEST_F(ExportVtkTest, KdTreeAndAPixelsWalk) {
     EXPECT_EQ(axis[i], data.nodes[i].is_leaf() ? -1 : data.nodes[i].axis());
     if (data.nodes[i].is_leaf()) EXPECT_EQ(prims[i], data.nodes[i].prim_count());
   }
+  // A node's count is the distinct primitives of the leaves below it (a primitive may be in several).
+  std::function<std::set<uint32_t>(size_t)> below = [&](size_t id) {
+    const KdNode& n = data.nodes[id];
+    if (n.is_leaf())
+      return std::set<uint32_t>(data.prim_index.begin() + n.first_prim,
+                                data.prim_index.begin() + n.first_prim + n.prim_count());
+    std::set<uint32_t> all = below(id + 1), above = below(n.above_child());
+    all.insert(above.begin(), above.end());
+    return all;
+  };
+  for (size_t i = 0; i < data.nodes.size(); ++i) EXPECT_EQ(prims[i], double(below(i).size())) << i;
   EXPECT_EQ(prims[0], double(s.geometry.size()));  // the root holds every primitive
   double bounds[6];
   structure->GetCell(0)->GetBounds(bounds);
