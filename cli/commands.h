@@ -203,6 +203,7 @@ struct ExportVtkArgs {
   std::string scene;
   StructureArgs structure;           // accel "": the trace's structure (--trace), else required
   std::optional<std::string> pixel;  // "X,Y": record this pixel's primary ray
+  bool secondary = false;            // with pixel: also its shadow, reflected and refracted rays
   std::optional<std::string> trace;  // a trace file of the same scene: its rays and the nodes it carries
   std::optional<std::string> size;   // image size WxH for --pixel (default: the scene's)
   uint64_t max_cells = 200000;       // bound on the structure's cells written (vtk_export::kDefaultMaxCells)

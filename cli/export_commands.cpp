@@ -74,6 +74,7 @@ void check_same_structure(const Trace& trace, const Trace& rebuilt, const std::s
 
 int run_export_vtk(const ExportVtkArgs& a) {
   if (a.size && !a.pixel) throw InputError("", 0, "export-vtk: --size goes with --pixel");
+  if (a.secondary && !a.pixel) throw InputError("", 0, "export-vtk: --secondary goes with --pixel");
   if (a.max_cells < 1 || a.max_cells > (uint64_t(1) << 26))
     throw InputError("", 0, "--max-cells must be 1..67108864");
   if (!a.trace && a.structure.accel.empty())
@@ -121,8 +122,8 @@ int run_export_vtk(const ExportVtkArgs& a) {
       check_same_structure(*trace, record_trace(scene.geometry, *accel, {}, a.scene, scene_hash), *a.trace);
     structure = vtk_export::structure_cells(*accel, size_t(a.max_cells));
     if (a.pixel)
-      trace = record_trace(scene.geometry, *accel, pixel_rays(scene, *accel, w, h, px, py, false), a.scene,
-                           scene_hash);
+      trace = record_trace(scene.geometry, *accel, pixel_rays(scene, *accel, w, h, px, py, a.secondary),
+                           a.scene, scene_hash);
   } else {
     structure = vtk_export::trace_structure_cells(*trace);
   }
@@ -150,9 +151,17 @@ int run_export_vtk(const ExportVtkArgs& a) {
       else
         std::printf("no hit\n");
     }
+  // The blocks: all of them, or with many rays the first and the last.
   std::printf("wrote %s/%s (%zu files, blocks:", a.output.c_str(), vtk_export::kMultiBlockFile,
               summary.files.size());
-  for (const std::string& b : summary.blocks) std::printf(" \"%s\"", b.c_str());
+  const size_t n = summary.blocks.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (n > 8 && i == 4) {
+      std::printf(" ..");
+      i = n - 2;
+    }
+    std::printf(" \"%s\"", summary.blocks[i].c_str());
+  }
   std::printf(")\n");
   return 0;
 }

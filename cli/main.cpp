@@ -279,6 +279,8 @@ int main(int argc, char** argv) {
       "--trace", export_vtk.trace,
       "a trace of the scene (raystep trace): its rays; without --accel its own nodes");
   export_pixel_opt->excludes(export_trace_opt);
+  export_vtk_cmd->add_flag("--secondary", export_vtk.secondary,
+                           "with --pixel: also the shadow, reflected, refracted rays");
   export_vtk_cmd->add_option("--size", export_vtk.size, "image size WxH for --pixel (default: the scene's)");
   export_vtk_cmd
       ->add_option("--max-cells", export_vtk.max_cells,

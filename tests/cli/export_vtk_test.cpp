@@ -336,6 +336,15 @@ TEST_F(ExportVtkTest, ATraceFileWithoutRebuildingItsStructure) {
   cell_values(whole, "cost");
   cell_values(whole, "primitives");
   for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb2, trace, i);
+
+  // --pixel --secondary records the same rays as `raystep trace --pixel --secondary`, walk for walk.
+  const std::string pixel = path("pixel");
+  r = run("export-vtk " + sc + " --accel bvh --size 40x30 --pixel 20,17 --secondary -o " + pixel);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto mb3 = read_vtm(pixel);
+  ASSERT_NE(mb3, nullptr);
+  EXPECT_EQ(block_names(mb3), want);
+  for (size_t i = 0; i < trace.rays.size(); ++i) expect_walk_matches(mb3, trace, i);
 }
 
 // The grid's primitives per cell, summed over the written cells, equal its references whichever way the
@@ -455,6 +464,7 @@ TEST_F(ExportVtkTest, BadInputExitsTwoWithOneLine) {
                "--pixel '32,0': outside", out);
   expect_error(run("export-vtk " + sc + " --accel kd --pixel 1,2,3 -o " + out), "--pixel", out);
   expect_error(run("export-vtk " + sc + " --accel kd --max-cells 0 -o " + out), "--max-cells", out);
+  expect_error(run("export-vtk " + sc + " --accel kd --secondary -o " + out), "export-vtk: --secondary", out);
   // A trace of another scene, a damaged one, one of another structure or other build options.
   expect_error(run("export-vtk " + scene("spheres.json") + " --trace " + path("t.json") + " -o " + out),
                path("t.json"), out);
