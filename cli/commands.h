@@ -158,6 +158,8 @@ struct CostArgs {
 
 // Shared by the commands (commands.cpp).
 void check_output_folder(const std::string& path);
+// "a,b,c,..." as exactly n finite numbers; InputError naming the option otherwise.
+std::vector<float> parse_numbers(const std::string& option, const std::string& spec, size_t n);
 
 // One node of a binary tree (the first child follows its parent) as the entry-probability report shows it.
 struct EntryNode {
@@ -194,5 +196,19 @@ int run_cost(const CostArgs& args);
 int run_lesson_check(const LessonCheckArgs& args);
 int run_lesson_command(const LessonCommandArgs& args);
 int run_lesson_answers(const LessonAnswersArgs& args);
+
+// export_commands.cpp: `raystep export-vtk`, the scene, a structure and recorded walks for ParaView
+// (docs/vtk-export.md).
+struct ExportVtkArgs {
+  std::string scene;
+  StructureArgs structure;           // accel "": the trace's structure (--trace), else required
+  std::optional<std::string> pixel;  // "X,Y": record this pixel's primary ray
+  bool secondary = false;            // with pixel: also its shadow, reflected and refracted rays
+  std::optional<std::string> trace;  // a trace file of the same scene: its rays and the nodes it carries
+  std::optional<std::string> size;   // image size WxH for --pixel (default: the scene's)
+  uint64_t max_cells = 200000;       // bound on the structure's cells written (vtk_export::kDefaultMaxCells)
+  std::string output;                // the folder (replaced atomically)
+};
+int run_export_vtk(const ExportVtkArgs& args);
 
 }  // namespace raystep::cli

@@ -268,6 +268,28 @@ int main(int argc, char** argv) {
                             "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
       ->required();
 
+  ExportVtkArgs export_vtk;
+  CLI::App* export_vtk_cmd = app.add_subcommand(
+      "export-vtk", "Write the scene, a structure's cells and recorded walks as VTK files for ParaView");
+  export_vtk_cmd->add_option("scene", export_vtk.scene, "scene .json or mesh .obj")->required();
+  add_structure_options(export_vtk_cmd, export_vtk.structure, "");
+  auto* export_pixel_opt = export_vtk_cmd->add_option("--pixel", export_vtk.pixel,
+                                                      "record the primary ray of pixel X,Y (0,0: top left)");
+  auto* export_trace_opt = export_vtk_cmd->add_option(
+      "--trace", export_vtk.trace,
+      "a trace of the scene (raystep trace): its rays; without --accel its own nodes");
+  export_pixel_opt->excludes(export_trace_opt);
+  export_vtk_cmd->add_flag("--secondary", export_vtk.secondary,
+                           "with --pixel: also the shadow, reflected, refracted rays");
+  export_vtk_cmd->add_option("--size", export_vtk.size, "image size WxH for --pixel (default: the scene's)");
+  export_vtk_cmd
+      ->add_option("--max-cells", export_vtk.max_cells,
+                   "at most this many structure cells: trees cut by depth, grids merged into blocks")
+      ->capture_default_str();
+  export_vtk_cmd
+      ->add_option("-o,--output", export_vtk.output, "output folder (replaced): raystep.vtm and raystep/")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -298,6 +320,7 @@ int main(int argc, char** argv) {
     if (*lesson_check_cmd) return run_lesson_check(lesson_check);
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);
     if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);
+    if (*export_vtk_cmd) return run_export_vtk(export_vtk);
   } catch (const raystep::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

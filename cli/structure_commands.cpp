@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "output_folder.h"
 #include "plot.h"
 #include "raystep/accel/accelerator.h"
 #include "raystep/report/cost_report.h"
@@ -52,46 +53,6 @@ std::vector<float> parse_densities(const std::string& spec) {
   }
   return out;
 }
-
-// A report folder written atomically: everything goes into DIR.tmp.PID, which replaces DIR at commit().
-// A failed or interrupted run removes its temporary folder and leaves DIR as it was.
-class ReportFolder {
- public:
-  explicit ReportFolder(std::string dir) : dir_(std::move(dir)) {
-    while (dir_.size() > 1 && dir_.back() == '/') dir_.pop_back();
-    if (dir_.empty()) throw InputError("", 0, "-o: an empty folder name");
-    fs::path parent = fs::path(dir_).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent))
-      throw InputError(dir_, 0, "cannot write: folder '" + parent.string() + "' does not exist");
-    if (fs::exists(dir_) && !fs::is_directory(dir_))
-      throw InputError(dir_, 0, "cannot write the report: a file of that name exists");
-    temp_ = dir_ + ".tmp." + std::to_string(::getpid());
-    std::error_code ec;
-    fs::remove_all(temp_, ec);
-    if (!fs::create_directory(temp_, ec)) throw InputError(temp_, 0, "cannot create the report folder");
-  }
-  ~ReportFolder() {
-    std::error_code ec;
-    if (!committed_) fs::remove_all(temp_, ec);
-  }
-  const std::string& path() const { return temp_; }  // where to write until commit()
-  std::string file(const std::string& name) const { return (fs::path(temp_) / name).string(); }
-  void commit() {
-    std::error_code ec;
-    const std::string old = dir_ + ".old." + std::to_string(::getpid());
-    bool had_old = fs::exists(dir_);
-    if (had_old) fs::rename(dir_, old, ec);
-    if (ec) throw InputError(dir_, 0, "cannot replace the old report: " + ec.message());
-    fs::rename(temp_, dir_, ec);
-    if (ec) throw InputError(dir_, 0, "cannot move the report into place: " + ec.message());
-    committed_ = true;
-    if (had_old) fs::remove_all(old, ec);
-  }
-
- private:
-  std::string dir_, temp_;
-  bool committed_ = false;
-};
 
 // A progress bar on stderr, only when it is a terminal; redrawn at most ten times a second, erased at the
 // end.

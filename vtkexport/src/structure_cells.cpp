@@ -1,0 +1,287 @@
+// Each structure's cells for the export: one describe_* function per structure and one row in kStructures.
+// A new structure (octree, BSP tree) adds its function and its row here; the rest of the export works from
+// the CellSet it fills. Arrays common to the trees: node, parent, depth, leaf, primitives, cost, split_axis
+// (docs/vtk-export.md lists them per structure).
+#include "raystep/vtk_export/structure_cells.h"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include "raystep/accel/bvh.h"
+#include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/wide_bvh.h"
+#include "raystep/util/error.h"
+
+namespace raystep::vtk_export {
+
+namespace {
+
+constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+
+// The deepest level d such that the nodes of depth 0..d number at most max_cells (-1: not even the root).
+int depth_cut(const std::vector<int>& depths, size_t max_cells) {
+  int max_depth = 0;
+  for (int d : depths) max_depth = std::max(max_depth, d);
+  std::vector<size_t> per_depth(size_t(max_depth) + 1, 0);
+  for (int d : depths) ++per_depth[size_t(d)];
+  size_t total = 0;
+  for (int d = 0; d <= max_depth; ++d) {
+    total += per_depth[size_t(d)];
+    if (total > max_cells) return d - 1;
+  }
+  return max_depth;
+}
+
+// The note for a tree cut at depth `cut`.
+std::string depth_note(int cut, const std::vector<int>& depths, size_t written, size_t max_cells) {
+  int max_depth = 0;
+  for (int d : depths) max_depth = std::max(max_depth, d);
+  if (cut >= max_depth) return "";
+  return "nodes of depth 0.." + std::to_string(cut) + " only (" + std::to_string(written) + " of " +
+         std::to_string(depths.size()) + " nodes, the tree is " + std::to_string(max_depth) +
+         " deep; --max-cells " + std::to_string(max_cells) + ")";
+}
+
+// ---- uniform grid: every cell with its primitive count; when they are too many, the occupied ones ----
+
+bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* grid = dynamic_cast<const UniformGrid*>(&accel);
+  if (!grid || !out) return grid != nullptr;
+  const std::array<int, 3> n = grid->resolution();
+  const size_t cells = size_t(n[0]) * size_t(n[1]) * size_t(n[2]);
+  out->total = cells;
+  if (grid->empty()) return true;
+  auto count = [&](int i, int j, int k) {
+    const size_t id = grid->cell_id(i, j, k);
+    return grid->cell_start(id + 1) - grid->cell_start(id);
+  };
+  // The whole lattice when it fits (empty space is part of the lesson: the walk crosses it); else the
+  // occupied cells; else cells merged into blocks of f x f x f (f = 2, 4, ...) until the occupied blocks fit.
+  const bool every_cell = cells <= max_cells;
+  int f = 1;
+  size_t occupied = 0;
+  for (size_t id = 0; id < cells; ++id) occupied += grid->occupied(id);
+  std::vector<uint32_t> sums;
+  std::array<int, 3> b = n;
+  while (occupied > max_cells) {
+    f *= 2;
+    for (int a = 0; a < 3; ++a) b[a] = (n[a] + f - 1) / f;
+    sums.assign(size_t(b[0]) * size_t(b[1]) * size_t(b[2]), 0);
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+          sums[(size_t(k / f) * b[1] + size_t(j / f)) * b[0] + size_t(i / f)] += count(i, j, k);
+    occupied = size_t(std::count_if(sums.begin(), sums.end(), [](uint32_t s) { return s > 0; }));
+  }
+  CellSet& cs = out->cells;
+  for (int k = 0; k < b[2]; ++k)
+    for (int j = 0; j < b[1]; ++j)
+      for (int i = 0; i < b[0]; ++i) {
+        const uint32_t prims =
+            f == 1 ? count(i, j, k) : sums[(size_t(k) * b[1] + size_t(j)) * b[0] + size_t(i)];
+        if (prims == 0 && !every_cell) continue;
+        Bounds3 box = grid->cell_bounds(i * f, j * f, k * f);
+        box.extend(grid->cell_bounds(std::min((i + 1) * f, n[0]) - 1, std::min((j + 1) * f, n[1]) - 1,
+                                     std::min((k + 1) * f, n[2]) - 1));
+        cs.add_box(box);
+        cs.set("i", i * f, true);
+        cs.set("j", j * f, true);
+        cs.set("k", k * f, true);
+        cs.set("primitives", prims, true);
+        cs.set("block", f, true);
+      }
+  if (f == 1 && !every_cell)
+    out->note = "the " + std::to_string(cs.size()) +
+                " occupied cells only, not the empty ones (--max-cells " + std::to_string(max_cells) + ")";
+  if (f > 1)
+    out->note = "occupied blocks of " + std::to_string(f) + "x" + std::to_string(f) + "x" +
+                std::to_string(f) + " cells (their primitives summed), not single cells (--max-cells " +
+                std::to_string(max_cells) + ")";
+  return true;
+}
+
+// ---- kd-tree: every node's cell, its split plane and cost ----
+
+bool describe_kdtree(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* kd = dynamic_cast<const KdTree*>(&accel);
+  if (!kd || !out) return kd != nullptr;
+  const KdTreeData& t = kd->data();
+  const size_t n = t.nodes.size();
+  out->total = n;
+  // An inner node's primitive count: the distinct primitives of its leaves (a primitive may be in several),
+  // merged bottom-up; preorder ids put every child after its parent.
+  std::vector<uint32_t> prims(n, 0);
+  {
+    std::vector<std::vector<uint32_t>> sets(n);
+    for (size_t id = n; id-- > 0;) {
+      const KdNode& node = t.nodes[id];
+      if (node.is_leaf()) {
+        sets[id].assign(t.prim_index.begin() + node.first_prim,
+                        t.prim_index.begin() + node.first_prim + node.prim_count());
+      } else {
+        std::vector<uint32_t>& below = sets[id + 1];
+        std::vector<uint32_t>& above = sets[node.above_child()];
+        std::set_union(below.begin(), below.end(), above.begin(), above.end(), std::back_inserter(sets[id]));
+        std::vector<uint32_t>().swap(below);
+        std::vector<uint32_t>().swap(above);
+      }
+      prims[id] = uint32_t(sets[id].size());
+    }
+  }
+  std::vector<int> depths(n);
+  for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
+  const int cut = depth_cut(depths, max_cells);
+  CellSet& cs = out->cells;
+  for (size_t id = 0; id < n; ++id) {
+    if (depths[id] > cut) continue;
+    const KdNode& node = t.nodes[id];
+    const KdNodeInfo& info = t.info[id];
+    cs.add_box(info.box);
+    cs.set("node", double(id), true);
+    cs.set("parent", info.parent, true);
+    cs.set("depth", info.depth, true);
+    cs.set("leaf", node.is_leaf(), true);
+    cs.set("primitives", prims[id], true);
+    cs.set("cost", info.cost, false);
+    cs.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
+    cs.set("split_position", node.is_leaf() ? kUnknown : double(node.split), false);
+  }
+  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  return true;
+}
+
+// ---- binary BVH (bvh, bvh-sweep, bvh-median): every node's tight box and cost ----
+
+bool describe_bvh(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* bvh = dynamic_cast<const Bvh*>(&accel);
+  if (!bvh || !out) return bvh != nullptr;
+  const BvhData& t = bvh->data();
+  const size_t n = t.nodes.size();
+  out->total = n;
+  std::vector<int> depths(n);
+  for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
+  const int cut = depth_cut(depths, max_cells);
+  CellSet& cs = out->cells;
+  for (size_t id = 0; id < n; ++id) {
+    if (depths[id] > cut) continue;
+    const BvhNode& node = t.nodes[id];
+    const BvhNodeInfo& info = t.info[id];
+    cs.add_box(node.box);
+    cs.set("node", double(id), true);
+    cs.set("parent", info.parent, true);
+    cs.set("depth", info.depth, true);
+    cs.set("leaf", node.is_leaf(), true);
+    cs.set("primitives", info.prims, true);
+    cs.set("cost", info.cost, false);
+    cs.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
+  }
+  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  return true;
+}
+
+// ---- wide BVH (bvh4, bvh8): the collapsed nodes as traces name them; the collapse keeps no cost ----
+
+bool describe_wide_bvh(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* wide = dynamic_cast<const WideBvh*>(&accel);
+  if (!wide || !out) return wide != nullptr;
+  const WideBvhView view = wide->describe();
+  const size_t n = view.nodes.size();
+  out->total = n;
+  // Primitives under each node, children first (preorder ids: a child after its parent).
+  std::vector<uint32_t> prims(n, 0);
+  for (size_t id = n; id-- > 0;) {
+    const WideBvhView::Node& node = view.nodes[id];
+    prims[id] = uint32_t(node.prims.size());
+    for (int32_t c : node.children) prims[id] += prims[size_t(c)];
+  }
+  std::vector<int> depths(n);
+  for (size_t id = 0; id < n; ++id) depths[id] = view.nodes[id].depth;
+  const int cut = depth_cut(depths, max_cells);
+  CellSet& cs = out->cells;
+  for (size_t id = 0; id < n; ++id) {
+    if (depths[id] > cut) continue;
+    const WideBvhView::Node& node = view.nodes[id];
+    cs.add_box(node.box);
+    cs.set("node", double(id), true);
+    cs.set("parent", node.parent, true);
+    cs.set("depth", node.depth, true);
+    cs.set("leaf", node.leaf, true);
+    cs.set("primitives", prims[id], true);
+    cs.set("children", double(node.children.size()), true);
+  }
+  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  return true;
+}
+
+// describe(accel, max_cells, out): false if accel is not this row's structure; with out null, only that test.
+struct StructureRow {
+  const char* names;
+  bool (*describe)(const Accelerator&, size_t, StructureCells*);
+};
+const StructureRow kStructures[] = {
+    {"grid", describe_grid},
+    {"kd, kd-median", describe_kdtree},
+    {"bvh, bvh-sweep, bvh-median", describe_bvh},
+    {"bvh4, bvh8", describe_wide_bvh},
+};
+
+}  // namespace
+
+bool exports_structure(const Accelerator& accel) {
+  for (const StructureRow& row : kStructures)
+    if (row.describe(accel, 0, nullptr)) return true;
+  return false;
+}
+
+std::string exported_structure_names() {
+  std::string s;
+  for (const StructureRow& row : kStructures) s += (s.empty() ? "" : ", ") + std::string(row.names);
+  return s;
+}
+
+StructureCells structure_cells(const Accelerator& accel, size_t max_cells) {
+  if (max_cells == 0) throw InputError("", 0, "--max-cells must be at least 1");
+  StructureCells out;
+  out.kind = accel.name();
+  for (const StructureRow& row : kStructures)
+    if (row.describe(accel, max_cells, &out)) {
+      out.cells.finish();
+      return out;
+    }
+  throw InputError(
+      "", 0, "the " + accel.name() + " structure has no VTK export (" + exported_structure_names() + ")");
+}
+
+StructureCells trace_structure_cells(const Trace& trace) {
+  StructureCells out;
+  out.kind = trace.structure.kind;
+  CellSet& cs = out.cells;
+  for (const TraceCell& c : trace.cells) {
+    cs.add_box(c.box);
+    cs.set("i", c.cell[0], true);
+    cs.set("j", c.cell[1], true);
+    cs.set("k", c.cell[2], true);
+  }
+  // The BVHs' nodes carry their children, the kd-tree's their split plane (TraceNode in trace_file.h).
+  const bool kd = trace.structure.kind.rfind("kd", 0) == 0;
+  for (const TraceNode& node : trace.nodes) {
+    cs.add_box(node.box);
+    cs.set("node", node.id, true);
+    cs.set("parent", node.parent, true);
+    cs.set("depth", node.depth, true);
+    cs.set("leaf", node.leaf, true);
+    if (node.leaf) cs.set("primitives", double(node.prims.size()), true);
+    cs.set("split_axis", node.leaf ? -1 : node.axis, true);
+    if (kd) cs.set("split_position", node.leaf ? kUnknown : double(node.split), false);
+  }
+  cs.finish();
+  out.total = cs.size();
+  if (!trace.nodes.empty() || !trace.cells.empty())
+    out.note =
+        "the " + std::to_string(cs.size()) + " cells or nodes the trace names, not the whole structure";
+  return out;
+}
+
+}  // namespace raystep::vtk_export
