@@ -67,7 +67,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const StructureOptions& options) {
   if (name == "brute") return std::make_unique<BruteForce>();
-  if (name == "bvol") return std::make_unique<BoundingVolumes>();
+  if (std::optional<BvolKind> kind = parse_bvol_kind(name)) return std::make_unique<BoundingVolumes>(*kind);
   if (name == "grid") return std::make_unique<UniformGrid>(options.grid);
   if (name == "kd" || name == "kd-median") {
     KdOptions kd = options.kd;
@@ -84,6 +84,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
   if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
+  for (size_t i = 1; i < bvol_kind_names().size(); ++i) known += ", " + bvol_kind_names()[i];
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");
 }
 
