@@ -17,7 +17,8 @@ namespace raystep {
 
 enum class BvolKind : uint8_t {
   box,     // axis-aligned bounding box: 3 slab pairs (Kay and Kajiya), the default
-  sphere,  // the smallest enclosing sphere (Welzl): the cheapest test, the loosest fit around long objects
+  sphere,  // the smallest enclosing sphere (Welzl): one distance to the line; loose around long or flat
+           // objects
   kdop,    // 14-DOP: slab pairs along the 3 axes and the 4 body diagonals, cutting the box's corners
   obb,     // oriented box: 3 slab pairs along the object's principal axes (PCA of its points)
 };
