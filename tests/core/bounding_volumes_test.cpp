@@ -82,6 +82,23 @@ std::vector<Ray> probe_rays(const Geometry& g, size_t count, uint32_t seed) {
         at_vertex.origin = origin();
         at_vertex.direction = a - at_vertex.origin;
         rays.push_back(at_vertex);
+        // Along an axis through the vertex, the other components +0 or -0 (the slab tests' sign bits).
+        Ray axis;
+        const float zero = (id + k) % 2 ? 0.f : -0.f;
+        axis.direction = glm::vec3(zero);
+        axis.direction[k] = (id % 2) ? 1.f : -1.f;
+        axis.origin = a - 3.f * (ob.hi[k] - ob.lo[k]) * axis.direction;
+        rays.push_back(axis);
+      }
+      // In the triangle's plane when it lies in z = const (the flat clusters): direction z = +0 or -0.
+      const glm::vec3 p0 = g.vertex(id, 0), p1 = g.vertex(id, 1), p2 = g.vertex(id, 2);
+      if (p0.z == p1.z && p1.z == p2.z) {
+        Ray in_plane;
+        in_plane.origin = glm::vec3(ob.lo.x, ob.lo.y, p0.z);
+        const glm::vec3 target = (p0 + p1 + p2) / 3.f;
+        in_plane.direction =
+            glm::vec3(target.x - in_plane.origin.x, target.y - in_plane.origin.y, id % 2 ? 0.f : -0.f);
+        rays.push_back(in_plane);
       }
     } else {
       const Sphere& s = g.sphere(id);
