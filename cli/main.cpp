@@ -209,7 +209,8 @@ int main(int argc, char** argv) {
                               "camera rays: image size WxH (default: the scene's, at most 160 on a side)");
   bvol_report_cmd->add_option("--reps", bvol_report.reps, "timed passes; the median is reported")
       ->capture_default_str();
-  bvol_report_cmd->add_option("-o,--output", bvol_report.output, "report folder (bvol_report.csv, bvol_report.md)");
+  bvol_report_cmd->add_option("-o,--output", bvol_report.output,
+                              "report folder (bvol_report.csv, bvol_report.md)");
 
   GridSweepArgs sweep;
   CLI::App* sweep_cmd = app.add_subcommand(

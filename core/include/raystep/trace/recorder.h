@@ -61,8 +61,8 @@ struct NullRecorder {
   void box_test(const BoxTest&) {}  // BVH: a child's box tested
   void skip(const TreeStep&) {}  // BVH: a popped entry not visited, its t_near being beyond the nearest hit
   void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
-  void volume_test(uint32_t /*object*/, bool /*hit*/) {}     // bvol: an object's bounding volume tested
-  void volume_false_positive(uint32_t /*object*/) {}  // bvol: a volume entered, its object missed
+  void volume_test(uint32_t /*object*/, bool /*hit*/) {}  // bvol: an object's bounding volume tested
+  void volume_false_positive(uint32_t /*object*/) {}      // bvol: a volume entered, its object missed
   void mailbox_hit(uint32_t /*prim*/) {}
   void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
   void hit_accepted(uint32_t /*prim*/, float /*t*/, AcceptReason) {}
