@@ -5,6 +5,7 @@
 // whose exact segment meets the polytope.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>

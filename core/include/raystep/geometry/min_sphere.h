@@ -3,6 +3,8 @@
 // and the ray test of a bounding sphere made conservative by error bounds, as the slab test is (bounds.h).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
