@@ -211,4 +211,13 @@ struct ExportVtkArgs {
 };
 int run_export_vtk(const ExportVtkArgs& args);
 
+// bvol_commands.cpp: `raystep bvol-report`, the kinds of bounding volumes on each scene's camera rays.
+struct BvolReportArgs {
+  std::vector<std::string> scenes;  // empty: scenes/*.json in the current folder
+  std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, at most 160 on a side)
+  int reps = 3;
+  std::string output;  // report folder (bvol_report.csv, bvol_report.md); empty: the table on stdout only
+};
+int run_bvol_report(const BvolReportArgs& args);
+
 }  // namespace raystep::cli

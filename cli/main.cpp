@@ -15,6 +15,7 @@ namespace {
 std::string accel_help() {
   std::string s = "acceleration structure:";
   for (const std::string& n : raystep::accelerator_names()) s += " " + n;
+  s += " (bounding-volume kinds: bvol-sphere bvol-kdop bvol-obb)";
   return s;
 }
 
@@ -199,6 +200,18 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
       ->required();
 
+  BvolReportArgs bvol_report;
+  CLI::App* bvol_report_cmd = app.add_subcommand(
+      "bvol-report", "Kinds of bounding volumes (bvol, bvol-sphere, bvol-kdop, bvol-obb) on camera rays: volume "
+                     "tests, false positives, primitive tests, build time and time per ray");
+  bvol_report_cmd->add_option("scenes", bvol_report.scenes, "scene .json files (default: scenes/*.json)");
+  bvol_report_cmd->add_option("--size", bvol_report.size,
+                              "camera rays: image size WxH (default: the scene's, at most 160 on a side)");
+  bvol_report_cmd->add_option("--reps", bvol_report.reps, "timed passes; the median is reported")
+      ->capture_default_str();
+  bvol_report_cmd->add_option("-o,--output", bvol_report.output,
+                              "report folder (bvol_report.csv, bvol_report.md)");
+
   GridSweepArgs sweep;
   CLI::App* sweep_cmd = app.add_subcommand(
       "grid-sweep",
@@ -316,6 +329,7 @@ int main(int argc, char** argv) {
     if (*bvh_stats_cmd) return run_bvh_stats(bvh_stats);
     if (*compare_cmd) return run_compare(compare);
     if (*sweep_cmd) return run_grid_sweep_command(sweep);
+    if (*bvol_report_cmd) return run_bvol_report(bvol_report);
     if (*cost_cmd) return run_cost(cost);
     if (*lesson_check_cmd) return run_lesson_check(lesson_check);
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);

@@ -37,7 +37,8 @@ constexpr size_t kCancelStride = 4096;
 const char* step_name(const Accelerator& accel) {
   if (dynamic_cast<const UniformGrid*>(&accel)) return "cells";
   if (dynamic_cast<const KdTree*>(&accel)) return "nodes";
-  if (dynamic_cast<const BoundingVolumes*>(&accel)) return "boxes";
+  if (auto* bvol = dynamic_cast<const BoundingVolumes*>(&accel))
+    return bvol->kind() == BvolKind::box ? "boxes" : "volumes";
   return "-";
 }
 

@@ -51,7 +51,7 @@ struct StructureRaySet {
 
 struct StructureCompareRow {
   std::string name;
-  std::string steps;           // what steps_per_ray counts: "cells", "nodes", "boxes" or "-"
+  std::string steps;           // steps_per_ray counts "cells", "nodes", "boxes", "volumes" (bvol kinds), "-"
   double build_seconds = 0.0;  // median of reps builds
   uint64_t memory_bytes = 0;   // Accelerator::memory_bytes()
   StructureRaySet camera, random;

@@ -62,6 +62,8 @@ struct NullRecorder {
   void box_test(const BoxTest&) {}  // BVH: a child's box tested
   void skip(const TreeStep&) {}  // BVH: a popped entry not visited, its t_near being beyond the nearest hit
   void prim_test(uint32_t /*prim*/, bool /*hit*/, float /*t*/) {}
+  void volume_test(uint32_t /*object*/, bool /*hit*/) {}  // bvol: an object's bounding volume tested
+  void volume_false_positive(uint32_t /*object*/) {}      // bvol: a volume entered, its object missed
   void mailbox_hit(uint32_t /*prim*/) {}
   void hit_deferred(uint32_t /*prim*/, float /*t*/, float /*t_cell_exit*/) {}
   void hit_accepted(uint32_t /*prim*/, float /*t*/, AcceptReason) {}
@@ -74,6 +76,7 @@ struct CountingRecorder {
   uint64_t rays = 0, cells = 0, nodes = 0, leaves = 0, pushes = 0, pops = 0;
   uint64_t prim_tests = 0, prim_hits = 0, mailbox_hits = 0, deferred = 0;
   uint64_t box_tests = 0, skips = 0;
+  uint64_t volume_tests = 0, volume_hits = 0, volume_false_positives = 0;  // bvol
   void ray_begin(const Ray&) { ++rays; }
   void cell(const GridCellStep&) { ++cells; }
   void box_entered(uint32_t, float) { ++nodes; }
@@ -87,6 +90,11 @@ struct CountingRecorder {
     ++prim_tests;
     prim_hits += hit;
   }
+  void volume_test(uint32_t, bool hit) {
+    ++volume_tests;
+    volume_hits += hit;
+  }
+  void volume_false_positive(uint32_t) { ++volume_false_positives; }
   void mailbox_hit(uint32_t) { ++mailbox_hits; }
   void hit_deferred(uint32_t, float, float) { ++deferred; }
   void hit_accepted(uint32_t, float, AcceptReason) {}
