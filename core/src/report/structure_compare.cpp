@@ -7,6 +7,7 @@
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
@@ -37,6 +38,7 @@ constexpr size_t kCancelStride = 4096;
 const char* step_name(const Accelerator& accel) {
   if (dynamic_cast<const UniformGrid*>(&accel)) return "cells";
   if (dynamic_cast<const KdTree*>(&accel)) return "nodes";
+  if (dynamic_cast<const Octree*>(&accel)) return "nodes";
   if (dynamic_cast<const BoundingVolumes*>(&accel)) return "boxes";
   return "-";
 }
