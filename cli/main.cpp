@@ -46,7 +46,7 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
       ->capture_default_str();
   cmd->add_option("--max-depth", s.kd_max_depth,
                   "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); "
-                  "bvh: 0..64 (0: 64); octree: 0..20 (0: ceil(log2(N) / 2) + 2 in 4..16)")
+                  "bvh: 0..64 (0: 64); octree: 0..20 (0: ceil(log2(N) / 2) + 6 in 8..20)")
       ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();

@@ -23,11 +23,14 @@ const std::string kScene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/torus_knot
 TEST_F(OctreeCli, CastsLikeBruteForceUnderEveryOption) {
   ASSERT_EQ(run("rays " + kScene + " --kind random --count 3000 --seed 5 -o " + path("r.rays")).code, 0);
   ASSERT_EQ(
-      run("cast " + kScene + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute").code,
+      run("cast " + kScene + " --rays " + path("r.rays") + " --hits " + path("b.hits") + " --accel brute")
+          .code,
       0);
-  for (const char* opts : {"--accel octree", "--accel octree --octree-leaf 1", "--accel octree --octree-leaf 64",
-                           "--accel octree --max-depth 3", "--accel octree --octree-leaf 2 --max-depth 20"}) {
-    Outcome c = run("cast " + kScene + " --rays " + path("r.rays") + " --hits " + path("o.hits") + " " + opts);
+  for (const char* opts :
+       {"--accel octree", "--accel octree --octree-leaf 1", "--accel octree --octree-leaf 64",
+        "--accel octree --max-depth 3", "--accel octree --octree-leaf 2 --max-depth 20"}) {
+    Outcome c =
+        run("cast " + kScene + " --rays " + path("r.rays") + " --hits " + path("o.hits") + " " + opts);
     ASSERT_EQ(c.code, 0) << c.err;
     EXPECT_NE(c.out.find("structure: octree"), std::string::npos) << c.out;
     EXPECT_EQ(slurp(path("o.hits")), slurp(path("b.hits"))) << opts;
@@ -51,7 +54,8 @@ TEST_F(OctreeCli, RenderHeatmapAndCompareAcceptIt) {
   Outcome h = run("render " + kScene + " --accel octree --size 32x24 --heatmap nodes -o " + path("h.png"));
   ASSERT_EQ(h.code, 0) << h.err;
   EXPECT_TRUE(fs::exists(path("h.png")));
-  Outcome c = run("compare " + kScene + " --accel grid,octree --rays 2000 --size 16x16 --reps 1 -o " + path("cmp"));
+  Outcome c =
+      run("compare " + kScene + " --accel grid,octree --rays 2000 --size 16x16 --reps 1 -o " + path("cmp"));
   ASSERT_EQ(c.code, 0) << c.err;
   EXPECT_NE(slurp(path("cmp/report.csv")).find("octree"), std::string::npos);
 }

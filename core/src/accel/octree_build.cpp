@@ -11,18 +11,22 @@ namespace raystep {
 
 const char* to_string(OctreeLeafReason r) {
   switch (r) {
-    case OctreeLeafReason::few_primitives: return "few primitives";
-    case OctreeLeafReason::max_depth: return "depth limit";
-    case OctreeLeafReason::no_reduction: return "no reduction";
-    case OctreeLeafReason::budget: return "budget";
+    case OctreeLeafReason::few_primitives:
+      return "few primitives";
+    case OctreeLeafReason::max_depth:
+      return "depth limit";
+    case OctreeLeafReason::no_reduction:
+      return "no reduction";
+    case OctreeLeafReason::budget:
+      return "budget";
   }
   return "?";
 }
 
 int octree_max_depth(const OctreeOptions& options, size_t prim_count) {
   if (options.max_depth > 0) return options.max_depth;
-  int d = int(std::ceil(0.5 * std::log2(double(std::max<size_t>(prim_count, 1))))) + 2;
-  return std::clamp(d, 4, 16);
+  int d = int(std::ceil(0.5 * std::log2(double(std::max<size_t>(prim_count, 1))))) + 6;
+  return std::clamp(d, 8, kOctreeMaxDepth);
 }
 
 size_t octree_reference_budget(size_t prim_count) {
@@ -42,8 +46,8 @@ Bounds3 root_cube(const Bounds3& scene) {
   glm::vec3 c = scene.center(), e = scene.extent();
   float side = std::max({e.x, e.y, e.z});
   float magnitude = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
-  // 2^-10 of the side, and enough ulps of the position that the cube strictly contains the box after rounding;
-  // a point scene (every primitive at one spot) gets a small cube of its own.
+  // 2^-10 of the side, and enough ulps of the position that the cube strictly contains the box after
+  // rounding; a point scene (every primitive at one spot) gets a small cube of its own.
   float half = 0.5f * side * (1.f + 1.f / 1024.f) + magnitude * 1e-6f + 1e-30f;
   Bounds3 b;
   b.lo = c - glm::vec3(half);
@@ -125,7 +129,7 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
       make_leaf(OctreeLeafReason::budget);
       continue;
     }
-    size_t added = 0, largest = 0, occupied = 0;
+    size_t added = 0, unreduced = 0;
     const Bounds3 box = info.box;
     for (int c = 0; c < 8; ++c) {
       children[c].clear();
@@ -133,14 +137,15 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
       for (uint32_t p : prims)
         if (overlaps(geometry, p, cb)) children[c].push_back(p);
       added += children[c].size();
-      largest = std::max(largest, children[c].size());
-      occupied += !children[c].empty();
+      unreduced += children[c].size() == prims.size();
     }
-    added -= prims.size();  // each primitive is in at least one child (the conservative tests), so no underflow
-    // Children that all hold every primitive gain nothing (identical or coplanar primitives across the centre):
-    // the split would only copy the references. A single occupied child is a pure shrink of the cell, which
-    // copies nothing and stops at the depth limit.
-    if (largest == prims.size() && occupied > 1) {
+    added -=
+        prims.size();  // each primitive is in at least one child (the conservative tests), so no underflow
+    // Two or more children that each hold every primitive of the cell gain nothing (identical primitives, or
+    // a stack of coplanar ones, across the centre): the split would copy all of them and test them again. One
+    // such child is fine: the others hold only what reaches them (a floor under a dense object), or nothing
+    // (a pure shrink of the cell, which copies nothing and stops at the depth limit).
+    if (unreduced >= 2) {
       make_leaf(OctreeLeafReason::no_reduction);
       continue;
     }

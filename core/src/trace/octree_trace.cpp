@@ -12,7 +12,9 @@ Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const st
   Trace t = detail::begin_trace(geometry, tree.name(), scene_path, scene_hash);
   t.structure.bounds = data.bounds;
   const OctreeStats st = octree_stats(data);
-  auto param = [&](const char* key, double number) { t.structure.params.push_back({key, false, number, ""}); };
+  auto param = [&](const char* key, double number) {
+    t.structure.params.push_back({key, false, number, ""});
+  };
   param("leaf_size", tree.options().leaf_size);
   param("max_depth", octree_max_depth(tree.options(), geometry.size()));
   param("nodes", double(st.nodes));

@@ -1,10 +1,10 @@
 // The octree accelerator (lecture: "oct-tree"), walked front to back by the parametric algorithm of Revelles,
-// Urena and Lastra ("An efficient parametric algorithm for octree traversal", 2000): a node is the ray's entry
-// and exit parameters on its three pairs of planes; its children's parameters are those and the centre planes'
-// t; the first child follows from the entry plane, the next from the exit plane (a table), so the children are
-// met in the order the ray crosses them. A negative direction is reflected (the paper's trick), here on the
-// child indices, so that no coordinate is rounded. An explicit stack of nodes, mailboxes as in the grid, and
-// "traverse until tmin(cell) > tmax(ray)".
+// Urena and Lastra ("An efficient parametric algorithm for octree traversal", 2000): a node is the ray's
+// entry and exit parameters on its three pairs of planes; its children's parameters are those and the centre
+// planes' t; the first child follows from the entry plane, the next from the exit plane (a table), so the
+// children are met in the order the ray crosses them. A negative direction is reflected (the paper's trick),
+// here on the child indices, so that no coordinate is rounded. An explicit stack of nodes, mailboxes as in
+// the grid, and "traverse until tmin(cell) > tmax(ray)".
 #pragma once
 
 #include <algorithm>
@@ -45,8 +45,8 @@ class Octree final : public Accelerator {
   const Geometry& geometry() const { return *geometry_; }
 
   // The paper's exit table: from child c (reflected indices, bit a = upper half on axis a) leaving by the
-  // plane normal to axis a, the next child is c with bit a set; 8 when that bit is set already: the ray leaves
-  // the parent.
+  // plane normal to axis a, the next child is c with bit a set; 8 when that bit is set already: the ray
+  // leaves the parent.
   static constexpr uint8_t kNextChild[8][3] = {{1, 2, 4}, {8, 3, 5}, {3, 8, 6}, {8, 8, 7},
                                                {5, 6, 8}, {8, 7, 8}, {7, 8, 8}, {8, 8, 8}};
   // The paper's first child: entering by the plane normal to axis `entry` at t_in, the child is upper on each
@@ -76,14 +76,14 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     return false;
   }
   // Computed t values stray a few ulps from the exact plane distances: a child whose computed interval is
-  // empty by less than select_margin is still walked (the ray may graze it), and a hit is accepted, or a child
-  // skipped, only beyond hit_margin (primitive t values stray further: slivers ~1e-5), as in kdtree.h.
+  // empty by less than select_margin is still walked (the ray may graze it), and a hit is accepted, or a
+  // child skipped, only beyond hit_margin (primitive t values stray further: slivers ~1e-5), as in kdtree.h.
   const float scale = std::max(std::fabs(t_enter), std::fabs(t_exit));
   const float select_margin = scale * (1.f / 65536.f), hit_margin = scale * (1.f / 4096.f);
 
   // The reflection: bit a of `mask` is set for a negative direction (also -0) on axis a; reflected child c is
-  // real child c ^ mask, and t0, t1 below are the entry and exit parameters in the reflected frame. An axis the
-  // ray does not move along (0, or so small that 1/d overflows) has t0 = -inf, t1 = +inf and its centre
+  // real child c ^ mask, and t0, t1 below are the entry and exit parameters in the reflected frame. An axis
+  // the ray does not move along (0, or so small that 1/d overflows) has t0 = -inf, t1 = +inf and its centre
   // plane's t is -inf or +inf by the origin's side: never 0 * inf.
   int mask = 0;
   bool moving[3];
@@ -119,7 +119,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   WatertightRay wray(ray);
   Hit nearest;
   float t_nearest = ray.tmax;
-  float t_limit = ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
+  float t_limit =
+      ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
   AcceptReason reason = AcceptReason::structure_done;
   const OctreeNode* nodes = tree_.nodes.data();
   const uint32_t* prim_ids = tree_.prim_index.data();
@@ -139,8 +140,9 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         f.t0[a] = t0[a];
         f.t1[a] = t1[a];
         float mid = 0.5f * (box.lo[a] + box.hi[a]);  // the build's centre (octree_build.cpp)
-        bool upper_side = ray.origin[a] >= mid;       // a ray in the centre plane goes to the upper half
-        f.mid_t[a] = moving[a] ? plane_t(mid, a) : (upper_side != bool((mask >> a) & 1) ? -kInfinity : kInfinity);
+        bool upper_side = ray.origin[a] >= mid;      // a ray in the centre plane goes to the upper half
+        f.mid_t[a] =
+            moving[a] ? plane_t(mid, a) : (upper_side != bool((mask >> a) & 1) ? -kInfinity : kInfinity);
       }
       // The children in the order the ray crosses them: the first by the entry plane, each next by the plane
       // it leaves by (ties to the lowest axis).
@@ -160,8 +162,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       // entry order (a rounded t must never skip a cell the exact ray passes through).
       for (int i = 0; i < f.count; ++i) {
         int c = f.order[i];
-        c_in[i] = std::max({(c & 1) ? f.mid_t[0] : f.t0[0], (c & 2) ? f.mid_t[1] : f.t0[1],
-                            (c & 4) ? f.mid_t[2] : f.t0[2]});
+        c_in[i] = std::max(
+            {(c & 1) ? f.mid_t[0] : f.t0[0], (c & 2) ? f.mid_t[1] : f.t0[1], (c & 4) ? f.mid_t[2] : f.t0[2]});
       }
       for (int c = 0; c < 8; ++c) {
         if (on_path[c]) continue;
@@ -198,7 +200,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
         rec.prim_test(prim, found, candidate.t);
         if (!found) continue;
-        // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute force.
+        // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute
+        // force.
         if (candidate.t == t_nearest && int32_t(prim) > nearest.prim) continue;
         nearest = candidate;
         t_nearest = candidate.t;

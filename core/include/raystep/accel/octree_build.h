@@ -1,8 +1,8 @@
 // Building the octree (lecture: "oct-tree: split a cell at its centre into eight while it holds too many
 // primitives"): over a cube around the scene's bounds, a cell holding more than K primitives and above the
 // depth limit is cut into eight; each primitive goes into every child it really overlaps (the grid's exact
-// triangle-box and sphere-box tests). Bounded memory on any input: the depth limit, a split that puts every
-// primitive into two or more children is not made, and a reference and node budget.
+// triangle-box and sphere-box tests). Bounded memory on any input: the depth limit, no split in which two or
+// more children would each hold every primitive of the cell, and a reference and node budget.
 #pragma once
 
 #include <cstddef>
@@ -18,9 +18,10 @@ struct OctreeOptions {
   int max_depth = 0;  // 0: automatic (octree_max_depth); else 1..kOctreeMaxDepth
 };
 
-// The depth limit a build uses: the explicit one, or clamp(ceil(log2(N) / 2) + 2, 4, 16) (a surface of N
-// primitives meets about 4^d cells at depth d, so N / K leaves of a surface need about log4(N / K) levels,
-// and a few more let dense parts adapt).
+// The depth limit a build uses: the explicit one, or clamp(ceil(log2(N) / 2) + 6, 8, 20) (a surface of N
+// primitives meets about 4^d cells at depth d, so N / K leaves of an even surface need about log4(N / K)
+// levels; six more let a small dense part of a large scene adapt, a teapot in a stadium; where K cannot be
+// reached the budgets and the no-reduction rule stop the splitting).
 int octree_max_depth(const OctreeOptions& options, size_t prim_count);
 
 // The references (primitive ids in leaves) a build may store: min(2^28, max(2^22, 32 N)), as the grid's.

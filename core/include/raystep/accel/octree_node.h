@@ -1,7 +1,8 @@
-// The octree as data (lecture: "Non-uniform subdivision: oct-tree"): a cube cut at its centre into eight equal
-// cells, recursively, where the primitives are dense. Compact 8-byte nodes; the eight children of a node are
-// consecutive (child index bit 0: upper half in x, bit 1: in y, bit 2: in z); a cold side table per node (cell,
-// parent, depth) for traces, statistics and the debugger. Built by octree_build.h, walked by octree.h.
+// The octree as data (lecture: "Non-uniform subdivision: oct-tree"): a cube cut at its centre into eight
+// equal cells, recursively, where the primitives are dense. Compact 8-byte nodes; the eight children of a
+// node are consecutive (child index bit 0: upper half in x, bit 1: in y, bit 2: in z); a cold side table per
+// node (cell, parent, depth) for traces, statistics and the debugger. Built by octree_build.h, walked by
+// octree.h.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +33,7 @@ static_assert(sizeof(OctreeNode) == 8, "OctreeNode is 8 bytes");
 enum class OctreeLeafReason : uint8_t {
   few_primitives,  // at most K: the ordinary leaf
   max_depth,       // the depth limit (or cells too small for a float to halve)
-  no_reduction,    // splitting would put every primitive into two or more children: nothing gained
+  no_reduction,    // two or more children would each hold every primitive: nothing gained
   budget,          // the reference or node budget would be exceeded
 };
 const char* to_string(OctreeLeafReason r);
@@ -42,14 +43,14 @@ struct OctreeNodeInfo {
   Bounds3 box;          // the node's cell
   int32_t parent = -1;  // -1 for the root (node 0)
   int32_t depth = 0;
-  uint32_t prims = 0;   // primitives overlapping the cell (before the split, for an inner node)
+  uint32_t prims = 0;  // primitives overlapping the cell (before the split, for an inner node)
   OctreeLeafReason reason = OctreeLeafReason::few_primitives;  // leaves only
 };
 
 // A built octree. nodes[0] is the root; node ids are positions in `nodes` (breadth first), the same ids that
 // trace events use.
 struct OctreeData {
-  Bounds3 bounds;                    // the root's cell: a cube around the scene's bounds
+  Bounds3 bounds;  // the root's cell: a cube around the scene's bounds
   std::vector<OctreeNode> nodes;
   std::vector<OctreeNodeInfo> info;  // one per node
   std::vector<uint32_t> prim_index;  // leaves' primitive ids, in increasing id order within a leaf

@@ -1,7 +1,8 @@
 // Recording rays through the octree into a Trace (kind "octree", format version 3): each ray walked with the
-// event recorder (a node event per cell visited with its depth and [t_enter, t_exit], push and pop of the nodes
-// whose children are walked, leaf, prim_test, mailbox_hit, hit_deferred, hit_accepted), plus every node its
-// events name and the chain of parents of each up to the root (cell, the eight children or the primitives).
+// event recorder (a node event per cell visited with its depth and [t_enter, t_exit], push and pop of the
+// nodes whose children are walked, leaf, prim_test, mailbox_hit, hit_deferred, hit_accepted), plus every node
+// its events name and the chain of parents of each up to the root (cell, the eight children or the
+// primitives).
 #pragma once
 
 #include <string>
