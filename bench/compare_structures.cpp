@@ -187,7 +187,8 @@ int main(int argc, char** argv) {
         } else {
           if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
             bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
-                              std::to_string(kKdMaxDepth) + ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, octree:leafK, octree:depthD");
+                              std::to_string(kKdMaxDepth) +
+                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, octree:leafK, octree:depthD");
           options.kd.max_depth = int(depth);
         }
       }

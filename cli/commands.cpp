@@ -135,7 +135,8 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
     if (s.octree_leaf < 1 || s.octree_leaf > (1 << 24))
       throw InputError("", 0, "--octree-leaf must be 1..16777216");
     if (s.kd_max_depth < 0 || s.kd_max_depth > kOctreeMaxDepth)
-      throw InputError("", 0, "--max-depth must be 0.." + std::to_string(kOctreeMaxDepth) + " for the octree (0: automatic)");
+      throw InputError("", 0,
+                       "--max-depth must be 0.." + std::to_string(kOctreeMaxDepth) + " for the octree (0: automatic)");
     options.octree.leaf_size = s.octree_leaf;
     options.octree.max_depth = s.kd_max_depth;
   }
