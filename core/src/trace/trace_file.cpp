@@ -994,7 +994,9 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         if (octree && (ids.size() != 8 || n.axis != -1))
           rd.fail(cp, "an inner octree node has 8 children and axis null");
       } else {
-        if (lists_children) rd.fail(np, "missing \"children\" (an inner BVH or octree node lists its children)");
+        if (lists_children)
+          rd.fail(np, octree ? "missing \"children\" (an inner octree node lists its 8 children)"
+                             : "missing \"children\" (an inner BVH node lists its children)");
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
         if (n.axis < 0) rd.fail(np.key("axis"), "an inner node has a split axis");
         n.split = rd.real_at(jn, np, "split");
