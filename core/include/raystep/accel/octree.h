@@ -149,23 +149,28 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       int entry = t0[0] >= t0[1] && t0[0] >= t0[2] ? 0 : (t0[1] >= t0[2] ? 1 : 2);
       float c_in[8];
       bool on_path[8] = {};
+      // A near tie (a centre plane crossed within select_margin of the entry, or two exit planes within it of
+      // each other: the ray passes close to an edge or corner of the children) may hide a grazed child.
+      bool tie = false;
+      for (int b = 0; b < 3; ++b) tie |= b != entry && !(std::fabs(f.mid_t[b] - t_in) > select_margin);
       f.count = 0;
       for (int c = first_child(f.mid_t, t_in, entry); c < 8;) {
         float ct1[3];
         for (int a = 0; a < 3; ++a) ct1[a] = (c >> a) & 1 ? f.t1[a] : f.mid_t[a];
         int exit = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
+        for (int a = 0; a < 3; ++a) tie |= a != exit && !(ct1[a] - ct1[exit] > select_margin);
         on_path[c] = true;
         f.order[f.count++] = uint8_t(c);
         c = kNextChild[c][exit];
       }
-      // A child off the path whose interval is empty only by a rounding margin is grazed: walk it too, in
+      // Then a child off the path whose interval is empty only by a rounding margin is grazed: walk it too, in
       // entry order (a rounded t must never skip a cell the exact ray passes through).
-      for (int i = 0; i < f.count; ++i) {
+      for (int i = 0; tie && i < f.count; ++i) {
         int c = f.order[i];
         c_in[i] = std::max(
             {(c & 1) ? f.mid_t[0] : f.t0[0], (c & 2) ? f.mid_t[1] : f.t0[1], (c & 4) ? f.mid_t[2] : f.t0[2]});
       }
-      for (int c = 0; c < 8; ++c) {
+      for (int c = 0; tie && c < 8; ++c) {
         if (on_path[c]) continue;
         float ct0[3], ct1[3];
         for (int a = 0; a < 3; ++a) {
