@@ -132,6 +132,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
 
     if (!node.is_leaf()) {
+      // The eight children are one 64-byte block: start loading it now, while their order is worked out.
+      __builtin_prefetch(&nodes[node.first]);
       Frame& f = stack[stack_size++];
       f.node = node_id;
       f.depth = depth;
@@ -163,8 +165,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         f.order[f.count++] = uint8_t(c);
         c = kNextChild[c][exit];
       }
-      // Then a child off the path whose interval is empty only by a rounding margin is grazed: walk it too, in
-      // entry order (a rounded t must never skip a cell the exact ray passes through).
+      // Then a child off the path whose interval is empty only by a rounding margin is grazed: walk it too,
+      // in entry order (a rounded t must never skip a cell the exact ray passes through).
       for (int i = 0; tie && i < f.count; ++i) {
         int c = f.order[i];
         c_in[i] = std::max(
