@@ -188,6 +188,40 @@ TEST(Octree, SignedZeroDirectionsAgreeWithBruteForce) {
   EXPECT_EQ(count_disagreements(*tree, brute, rays), 0);
 }
 
+TEST(Octree, FarOriginsAimedAtCellEdgesAgreeWithBruteForce) {
+  // From far away (10 to 10^4 scene sizes) t is large and rounds coarsely, so which child comes next is
+  // decided by a near tie when the ray passes a cell's edge or corner: no cell the ray grazes may be lost.
+  Geometry g;
+  add_to_geometry(make_icosphere(3), g);
+  g.begin_object("soup", 0);
+  Geometry soup = make_soup(7, 300, 0);
+  for (uint32_t i = 0; i < soup.size(); ++i)
+    g.add_triangle(soup.vertex(i, 0), soup.vertex(i, 1), soup.vertex(i, 2));
+  BruteForce brute;
+  brute.build(g);
+  auto tree = make_octree(g, 1);
+  const OctreeData& d = tree->data();
+  std::mt19937 rng(17);
+  std::normal_distribution<float> nd;
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<Ray> rays;
+  for (size_t id = 0; id < d.nodes.size() && rays.size() < 4000; ++id) {
+    const Bounds3& box = d.info[id].box;
+    glm::vec3 mid = 0.5f * (box.lo + box.hi);
+    for (int k = 0; k < 2; ++k) {
+      glm::vec3 target = mid;  // the centre (a corner of all eight children), or a point on an edge
+      if (k == 1) target[int(rng() % 3)] = box.lo.x + (box.hi.x - box.lo.x) * u(rng);
+      glm::vec3 dir = glm::normalize(glm::vec3(nd(rng), nd(rng), nd(rng)));
+      float distance = std::pow(10.f, 1.f + 3.f * u(rng)) * 4.f;
+      Ray r;
+      r.origin = target - distance * dir;
+      r.direction = dir;
+      rays.push_back(r);
+    }
+  }
+  EXPECT_EQ(count_disagreements(*tree, brute, rays), 0);
+}
+
 TEST(Octree, NonFiniteRaysMissAndTerminate) {
   Geometry g = make_soup(8, 50, 1);
   auto tree = make_octree(g, 1);
