@@ -97,6 +97,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     uint32_t node;
     int32_t depth;
     Bounds3 box;
+    float mid[3];  // the centre planes' coordinates
     float t0[3], t1[3], mid_t[3];
     uint8_t order[8];  // reflected child indices in visit order
     uint8_t count, next;
@@ -107,12 +108,13 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   // The node about to be visited.
   uint32_t node_id = 0;
   int32_t depth = 0;
-  Bounds3 box = tree_.bounds;
+  const Frame* parent = nullptr;  // the node's parent frame (none for the root), and which child it is
+  int real_child = 0;
   float t0[3], t1[3];
   for (int a = 0; a < 3; ++a) {
     bool neg = (mask >> a) & 1;
-    t0[a] = moving[a] ? plane_t(neg ? box.hi[a] : box.lo[a], a) : -kInfinity;
-    t1[a] = moving[a] ? plane_t(neg ? box.lo[a] : box.hi[a], a) : kInfinity;
+    t0[a] = moving[a] ? plane_t(neg ? tree_.bounds.hi[a] : tree_.bounds.lo[a], a) : -kInfinity;
+    t1[a] = moving[a] ? plane_t(neg ? tree_.bounds.lo[a] : tree_.bounds.hi[a], a) : kInfinity;
   }
 
   MailboxStamp mailbox = mailboxes_.begin_ray();
@@ -137,12 +139,17 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       Frame& f = stack[stack_size++];
       f.node = node_id;
       f.depth = depth;
-      f.box = box;
+      // The cell, worked out only for an inner node: the octant of its parent's cell its bits name.
+      for (int a = 0; a < 3; ++a) {
+        bool up = (real_child >> a) & 1;
+        f.box.lo[a] = !parent ? tree_.bounds.lo[a] : up ? parent->mid[a] : parent->box.lo[a];
+        f.box.hi[a] = !parent ? tree_.bounds.hi[a] : up ? parent->box.hi[a] : parent->mid[a];
+      }
       for (int a = 0; a < 3; ++a) {
         f.t0[a] = t0[a];
         f.t1[a] = t1[a];
-        float mid = 0.5f * (box.lo[a] + box.hi[a]);  // the build's centre (octree_build.cpp)
-        bool upper_side = ray.origin[a] >= mid;      // a ray in the centre plane goes to the upper half
+        float mid = f.mid[a] = 0.5f * (f.box.lo[a] + f.box.hi[a]);  // the build's centre (octree_build.cpp)
+        bool upper_side = ray.origin[a] >= mid;  // a ray in the centre plane goes to the upper half
         f.mid_t[a] =
             moving[a] ? plane_t(mid, a) : (upper_side != bool((mask >> a) & 1) ? -kInfinity : kInfinity);
       }
@@ -262,15 +269,10 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         f.next = f.count;
         continue;
       }
-      const int real = c ^ mask;
-      node_id = nodes[f.node].child(real);
+      real_child = c ^ mask;
+      parent = &f;
+      node_id = nodes[f.node].child(real_child);
       depth = f.depth + 1;
-      for (int a = 0; a < 3; ++a) {
-        float mid = 0.5f * (f.box.lo[a] + f.box.hi[a]);
-        bool up = (real >> a) & 1;
-        box.lo[a] = up ? mid : f.box.lo[a];
-        box.hi[a] = up ? f.box.hi[a] : mid;
-      }
       more = true;
       break;
     }
