@@ -121,8 +121,8 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   WatertightRay wray(ray);
   Hit nearest;
   float t_nearest = ray.tmax;
-  float t_limit =
-      ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
+  // The primitive tests' bound: once there is a hit, just above it, so that ties are seen.
+  float t_limit = ray.tmax;
   AcceptReason reason = AcceptReason::structure_done;
   const OctreeNode* nodes = tree_.nodes.data();
   const uint32_t* prim_ids = tree_.prim_index.data();
