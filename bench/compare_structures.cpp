@@ -3,7 +3,8 @@
 // Usage: raystep_bench_structures [MESH.obj|SCENE.json] [--accel a,b,...] [--size N] [--random N] [--reps N]
 //        [--embree-robust]
 // (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D; bvh:axis / bvh:entry the
-// BVH's child order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median).
+// BVH's child order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median;
+// octree:leafK and octree:depthD the octree's leaf size and depth limit).
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <embree3/rtcore.h>
@@ -179,10 +180,15 @@ int main(int argc, char** argv) {
           options.bvh.max_leaf_size = std::max(options.bvh.max_leaf_size, options.bvh.leaf_size);
         } else if (is_bvh && tail.rfind("ti", 0) == 0) {
           options.bvh.t_i = float(std::atof(tail.c_str() + 2));
+        } else if (kind == "octree" && tail.rfind("leaf", 0) == 0) {  // octree:leafK, the leaf size K
+          options.octree.leaf_size = std::atoi(tail.c_str() + 4);
+        } else if (kind == "octree" && tail.rfind("depth", 0) == 0) {  // octree:depthD, the depth limit D
+          options.octree.max_depth = std::atoi(tail.c_str() + 5);
         } else {
           if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
             bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
-                              std::to_string(kKdMaxDepth) + ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX");
+                              std::to_string(kKdMaxDepth) +
+                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, octree:leafK, octree:depthD");
           options.kd.max_depth = int(depth);
         }
       }

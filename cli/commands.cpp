@@ -20,6 +20,7 @@
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/io/image_io.h"
@@ -129,6 +130,15 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   if (s.accel.rfind("bvh", 0) == 0) {
     options.bvh = bvh_options(s);
     options.bvh_order = s.bvh_order == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  }
+  if (s.accel == "octree") {
+    if (s.octree_leaf < 1 || s.octree_leaf > (1 << 24))
+      throw InputError("", 0, "--octree-leaf must be 1..16777216");
+    if (s.kd_max_depth < 0 || s.kd_max_depth > kOctreeMaxDepth)
+      throw InputError("", 0,
+                       "--max-depth must be 0.." + std::to_string(kOctreeMaxDepth) + " for the octree (0: automatic)");
+    options.octree.leaf_size = s.octree_leaf;
+    options.octree.max_depth = s.kd_max_depth;
   }
   try {
     return make_accelerator(s.accel, options);
@@ -251,6 +261,15 @@ void print_structure_summary(const Accelerator& accel, size_t prims) {
                 "bytes\n",
                 bvh->name().c_str(), st.nodes, st.leaves, st.mean_leaf_prims, st.max_depth, st.sah_cost,
                 bvh->memory_bytes());
+  } else if (auto* octree = dynamic_cast<const Octree*>(&accel)) {
+    OctreeStats st = octree_stats(octree->data());
+    std::printf("structure: octree %zu nodes (%zu leaves, %zu empty), depth %d (limit %d), %zu references (%.3f "
+                "per primitive), leaves over K: %zu at the depth limit, %zu not reduced, %zu over budget\n",
+                st.nodes, st.leaves, st.empty_leaves, st.max_depth, octree_max_depth(octree->options(), prims),
+                st.references, double(st.references) * per_prim,
+                st.leaves_by_reason[int(OctreeLeafReason::max_depth)],
+                st.leaves_by_reason[int(OctreeLeafReason::no_reduction)],
+                st.leaves_by_reason[int(OctreeLeafReason::budget)]);
   } else if (auto* wide = dynamic_cast<const WideBvh*>(&accel)) {
     // The kernel in use matters as much as the tree: the same walk runs at half the speed without AVX2.
     std::printf("structure: %s (%d-wide nodes, %s kernel), %zu bytes\n", wide->name().c_str(), wide->width(),

@@ -36,6 +36,8 @@ struct StructureArgs {
   int bvh_leaf = 1;
   int bvh_max_leaf = 16;
   std::string bvh_order = "entry";  // entry | axis
+  // octree: K, the leaf size (its depth limit is --max-depth, kd_max_depth: 0 automatic, else 1..20)
+  int octree_leaf = 8;
 };
 
 struct RenderArgs {

@@ -34,6 +34,9 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
   add_bvh_options(cmd, s);
+  cmd->add_option("--octree-leaf", s.octree_leaf,
+                  "octree: K, a cell with more than K primitives is split into eight (1..16777216)")
+      ->capture_default_str();
 }
 
 // The kd-tree's build options (also for the sah and kdtree-stats commands).
@@ -44,7 +47,7 @@ void add_kd_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
       ->capture_default_str();
   cmd->add_option("--max-depth", s.kd_max_depth,
                   "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); "
-                  "bvh: 0..64 (0: 64)")
+                  "bvh: 0..64 (0: 64); octree: 0..20 (0: ceil(log2(N) / 2) + 6 in 8..20)")
       ->capture_default_str();
   cmd->add_option("--leaf-size", s.kd_leaf_size, "kd: a node with at most this many primitives is a leaf")
       ->capture_default_str();

@@ -171,8 +171,8 @@ TEST_F(StructureReports, AnExistingReportIsReplacedWhole) {
 TEST_F(StructureReports, BadInputExitsTwoWithOneLine) {
   const std::string scene = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
   const std::string out = " -o " + path("r");
-  expect_error(run("compare " + scene + " --accel grid,octree" + out),
-               "--accel: unknown accelerator 'octree'");
+  expect_error(run("compare " + scene + " --accel grid,quadtree" + out),
+               "--accel: unknown accelerator 'quadtree'");
   expect_error(run("compare " + scene + " --accel grid,,kd" + out), "--accel");
   expect_error(run("compare " + scene + " --accel ''" + out), "--accel");
   expect_error(run("compare " + scene + " --reps 0" + out), "--reps");
@@ -184,7 +184,7 @@ TEST_F(StructureReports, BadInputExitsTwoWithOneLine) {
   expect_error(run("grid-sweep " + scene + " --densities 65" + out), "--densities");
   expect_error(run("grid-sweep " + scene + " --densities nan" + out), "--densities");
   expect_error(run("grid-sweep " + scene + " --densities 1," + out), "--densities");
-  expect_error(run("cost " + scene + " --accel octree" + out), "--accel: unknown accelerator 'octree'");
+  expect_error(run("cost " + scene + " --accel quadtree" + out), "--accel: unknown accelerator 'quadtree'");
   expect_error(run("cost " + scene + " --aa jitter:0" + out), "");
   expect_error(run("cost " + scene + " --threads -1"), "--threads");
   std::ofstream(path("bad.json")) << "{ \"objects\": 3 }";

@@ -227,7 +227,7 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   const Event& e = ev[size_t(s.nodeEvent)];
   const TraceNode* n = findNode(trace, e.node);
   size_t next = size_t(s.nodeEvent) + 1;
-  if (!n || n->leaf || next >= ev.size()) return c;
+  if (!n || n->leaf || n->axis < 0 || next >= ev.size()) return c;  // no split plane (octree): no crossing
   c.nodeEvent = s.nodeEvent;
   c.node = e.node;
   c.axis = n->axis;

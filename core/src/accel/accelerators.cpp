@@ -6,6 +6,7 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/util/error.h"
@@ -58,7 +59,7 @@ bool BruteForce::occluded_counted(const Ray& ray, CountingRecorder& counters) co
 // ---- Factory ----
 
 std::vector<std::string> accelerator_names() {
-  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"};
+  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8", "octree"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -81,6 +82,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
                                          : BvhBuilder::binned;
     return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
+  if (name == "octree") return std::make_unique<Octree>(options.octree);
   if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;

@@ -7,6 +7,7 @@
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
@@ -39,6 +40,7 @@ const char* step_name(const Accelerator& accel) {
   if (dynamic_cast<const KdTree*>(&accel)) return "nodes";
   if (auto* bvol = dynamic_cast<const BoundingVolumes*>(&accel))
     return bvol->kind() == BvolKind::box ? "boxes" : "volumes";
+  if (dynamic_cast<const Octree*>(&accel)) return "nodes";
   return "-";
 }
 

@@ -4,18 +4,20 @@
 #include "raystep/trace/bvh_trace.h"
 #include "raystep/trace/grid_trace.h"
 #include "raystep/trace/kd_trace.h"
+#include "raystep/trace/octree_trace.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
 
 namespace {
-const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8";
+const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8 or octree";
 }  // namespace
 
 bool records_events(const Accelerator& accel) {
   return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel) ||
-         dynamic_cast<const Bvh*>(&accel) || dynamic_cast<const WideBvh*>(&accel);
+         dynamic_cast<const Bvh*>(&accel) || dynamic_cast<const WideBvh*>(&accel) ||
+         dynamic_cast<const Octree*>(&accel);
 }
 
 Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std::vector<RayRequest>& rays,
@@ -28,6 +30,8 @@ Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std
     return record_bvh_trace(geometry, *bvh, rays, scene_path, scene_hash);
   if (auto* wide = dynamic_cast<const WideBvh*>(&accel))
     return record_wide_bvh_trace(geometry, *wide, rays, scene_path, scene_hash);
+  if (auto* octree = dynamic_cast<const Octree*>(&accel))
+    return record_octree_trace(geometry, *octree, rays, scene_path, scene_hash);
   throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
 }
 

@@ -787,8 +787,10 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     t.structure.params.push_back(p);
   }
 
-  // Version 3's bounding volume hierarchies: "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8".
-  const bool bvh = version >= 3 && t.structure.kind.rfind("bvh", 0) == 0;
+  // Version 3's bounding volume hierarchies: "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"; and the
+  // octree (version 3 too), whose inner nodes list their eight children the same way.
+  const bool octree = version >= 3 && t.structure.kind == "octree";
+  const bool lists_children = (version >= 3 && t.structure.kind.rfind("bvh", 0) == 0) || octree;
   const int64_t max_prim = int64_t(t.scene_primitives) - 1;
   int64_t max_node = INT32_MAX;  // trees: ids below the structure's node count, when it gives one
   for (const TraceParam& p : t.structure.params)
@@ -989,8 +991,12 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
           n.children.push_back(c);
         }
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
+        if (octree && (ids.size() != 8 || n.axis != -1))
+          rd.fail(cp, "an inner octree node has 8 children and axis null");
       } else {
-        if (bvh) rd.fail(np, "missing \"children\" (an inner BVH node lists its children)");
+        if (lists_children)
+          rd.fail(np, octree ? "missing \"children\" (an inner octree node lists its 8 children)"
+                             : "missing \"children\" (an inner BVH node lists its children)");
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
         if (n.axis < 0) rd.fail(np.key("axis"), "an inner node has a split axis");
         n.split = rd.real_at(jn, np, "split");
@@ -1002,7 +1008,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   // names it among its children, and lies one level above it.
   std::unordered_map<int32_t, size_t> node_at;
   for (size_t i = 0; i < t.nodes.size(); ++i) node_at.emplace(t.nodes[i].id, i);
-  if (bvh) {
+  if (lists_children) {
     const Path nodes_path = gp.key("nodes");
     for (size_t i = 0; i < t.nodes.size(); ++i) {
       const TraceNode& n = t.nodes[i];

@@ -9,6 +9,7 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree_build.h"
+#include "raystep/accel/octree_build.h"
 
 namespace raystep {
 
@@ -18,6 +19,7 @@ struct StructureOptions {
   bool kd_mailboxes = true;
   BvhOptions bvh;  // the builder is chosen by the name: "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
   BvhOrder bvh_order = BvhOrder::entry_distance;
+  OctreeOptions octree;
 };
 
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.

@@ -31,8 +31,8 @@ struct TraceParam {
 };
 
 struct TraceStructure {
-  // "grid", "kd", "kd-median", and since version 3 "bvh", "bvh-sweep", "bvh-median" (binary) and "bvh4",
-  // "bvh8"
+  // "grid", "kd", "kd-median", and since version 3 "bvh", "bvh-sweep", "bvh-median" (binary), "bvh4", "bvh8"
+  // and "octree"
   std::string kind;
   Bounds3 bounds;
   std::array<int, 3> resolution{1, 1, 1};  // grid only
@@ -57,7 +57,8 @@ struct TraceCell {
 // A tree node that an event names (visited, pushed, popped or, in a BVH, its box tested), for a BVH also the
 // chain of its parents up to the root: its cell, and its split plane or its primitives. kd-tree: the box is
 // the cell, axis and split the plane. BVH (version 3): the box is the node's tight bounding box, axis the
-// builder's split axis (-1: none, the wide BVH), split unused, and an inner node lists its children.
+// builder's split axis (-1: none, the wide BVH), split unused, and an inner node lists its children. Octree:
+// the box is the cell, axis -1, and an inner node lists its eight children (child i: bit 0 upper in x, 1 y, 2 z).
 struct TraceNode {
   int32_t id = 0;
   int32_t parent = -1;  // -1: the root
@@ -67,7 +68,7 @@ struct TraceNode {
   int axis = 0;        // inner: the split plane's axis (0, 1, 2) and position
   float split = 0.f;
   std::vector<int32_t> prims;     // leaf: its primitive ids
-  std::vector<int32_t> children;  // BVH inner node: its children's ids (2 binary, up to 8 wide); else empty
+  std::vector<int32_t> children;  // BVH inner node: its children's ids (2 binary, up to 8 wide); octree: 8
 };
 struct TracePrimitive {
   int32_t id = 0;

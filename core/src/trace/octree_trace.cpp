@@ -1,0 +1,61 @@
+#include "raystep/trace/octree_trace.h"
+
+#include <set>
+
+#include "trace_recording.h"
+
+namespace raystep {
+
+Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const std::vector<RayRequest>& rays,
+                          const std::string& scene_path, const std::string& scene_hash) {
+  const OctreeData& data = tree.data();
+  Trace t = detail::begin_trace(geometry, tree.name(), scene_path, scene_hash);
+  t.structure.bounds = data.bounds;
+  const OctreeStats st = octree_stats(data);
+  auto param = [&](const char* key, double number) {
+    t.structure.params.push_back({key, false, number, ""});
+  };
+  param("leaf_size", tree.options().leaf_size);
+  param("max_depth", octree_max_depth(tree.options(), geometry.size()));
+  param("nodes", double(st.nodes));
+  param("leaves", double(st.leaves));
+  param("references", double(st.references));
+  t.structure.params.push_back({"mailboxes", true, 0.0, "on"});
+  detail::sort_params(&t.structure);
+
+  detail::record_rays(
+      geometry, rays,
+      [&](const RayRequest& req, EventRecorder& rec) {
+        Hit hit;
+        tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
+      },
+      &t);
+  // The named nodes and their parents up to the root, so that a reader sees each cell's place in the tree.
+  std::set<int32_t> ids = detail::named_nodes(t);
+  std::vector<int32_t> todo(ids.begin(), ids.end());
+  while (!todo.empty()) {
+    int32_t p = data.info[size_t(todo.back())].parent;
+    todo.pop_back();
+    if (p >= 0 && ids.insert(p).second) todo.push_back(p);
+  }
+  for (int32_t id : ids) {
+    const OctreeNode& n = data.nodes[size_t(id)];
+    const OctreeNodeInfo& info = data.info[size_t(id)];
+    TraceNode tn;
+    tn.id = id;
+    tn.parent = info.parent;
+    tn.depth = info.depth;
+    tn.box = info.box;
+    tn.leaf = n.is_leaf();
+    tn.axis = -1;
+    if (tn.leaf) {
+      for (uint32_t i = 0; i < n.prim_count(); ++i) tn.prims.push_back(int32_t(data.prim_index[n.first + i]));
+    } else {
+      for (int c = 0; c < 8; ++c) tn.children.push_back(int32_t(n.child(c)));
+    }
+    t.nodes.push_back(std::move(tn));
+  }
+  return t;
+}
+
+}  // namespace raystep
