@@ -34,7 +34,7 @@ namespace raystep::bench {
   Entry stack[kBvhMaxDepth + 1];
   int stack_size = 0;
 
-  WatertightRay wray(ray);
+  std::optional<WatertightRay> wray;  // prepared at the first leaf: many rays reach none
   Hit nearest;
   float t_nearest = ray.tmax;
   float t_limit =
@@ -71,13 +71,14 @@ namespace raystep::bench {
       }
     } else {
       // Leaf: test its primitives.
+      if (!wray) wray.emplace(ray);
       const uint32_t* prims = prim_ids + node.index;
       const uint32_t n = node.count;
       for (uint32_t i = 0; i < n; ++i) geometry_->prefetch(prims[i]);
       for (uint32_t i = 0; i < n; ++i) {
         uint32_t prim = prims[i];
         Hit candidate;
-        bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
+        bool found = geometry_->intersect(prim, ray, *wray, t_limit, &candidate);
         if (!found) continue;
         // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute
         // force.

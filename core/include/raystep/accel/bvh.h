@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bvh_box_ray.h"
@@ -85,7 +86,7 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
   Entry stack[kBvhMaxDepth + 1];
   int stack_size = 0;
 
-  WatertightRay wray(ray);
+  std::optional<WatertightRay> wray;  // prepared at the first leaf: many rays reach none
   Hit nearest;
   float t_nearest = ray.tmax;
   float t_limit =
@@ -132,13 +133,14 @@ bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const 
     } else {
       // Leaf: test its primitives.
       rec.leaf(TreeStep{node_id, depth, t_min, t_max});
+      if (!wray) wray.emplace(ray);
       const uint32_t* prims = prim_ids + node.index;
       const uint32_t n = node.count;
       for (uint32_t i = 0; i < n; ++i) geometry_->prefetch(prims[i]);
       for (uint32_t i = 0; i < n; ++i) {
         uint32_t prim = prims[i];
         Hit candidate;
-        bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
+        bool found = geometry_->intersect(prim, ray, *wray, t_limit, &candidate);
         rec.prim_test(prim, found, candidate.t);
         if (!found) continue;
         // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute
