@@ -3,6 +3,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
@@ -126,7 +127,7 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 // ---- Factory ----
 
 std::vector<std::string> accelerator_names() {
-  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"};
+  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8", "bsp"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -150,6 +151,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
   if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
+  if (name == "bsp") return std::make_unique<BspTree>(options.bsp);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

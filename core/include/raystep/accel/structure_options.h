@@ -6,6 +6,7 @@
 #include <string>
 
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/bsp_build.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree_build.h"
@@ -18,6 +19,7 @@ struct StructureOptions {
   bool kd_mailboxes = true;
   BvhOptions bvh;  // the builder is chosen by the name: "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
   BvhOrder bvh_order = BvhOrder::entry_distance;
+  BspOptions bsp;  // the general BSP tree ("bsp")
 };
 
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.
