@@ -36,6 +36,9 @@ struct StructureArgs {
   int bvh_leaf = 1;
   int bvh_max_leaf = 16;
   std::string bvh_order = "entry";  // entry | axis
+  // General BSP tree (bsp); t_i, t_t, --max-depth, --leaf-size and --mailbox are the kd-tree's options
+  std::string bsp_directions = "both";  // both | kdop | autopartition
+  int bsp_candidates = 16;
 };
 
 struct RenderArgs {

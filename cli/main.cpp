@@ -33,6 +33,13 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
   add_bvh_options(cmd, s);
+  cmd->add_option("--bsp-directions", s.bsp_directions,
+                  "bsp: candidate plane directions: both | kdop (13 k-DOP directions) | autopartition (the "
+                  "primitives' own planes)")
+      ->capture_default_str();
+  cmd->add_option("--bsp-candidates", s.bsp_candidates,
+                  "bsp: at most this many candidate positions per direction and primitive planes per node, 1..4096")
+      ->capture_default_str();
 }
 
 // The kd-tree's build options (also for the sah and kdtree-stats commands).

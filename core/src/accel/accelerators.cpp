@@ -151,7 +151,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     return std::make_unique<Bvh>(bvh, options.bvh_order);
   }
   if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
-  if (name == "bsp") return std::make_unique<BspTree>(options.bsp);
+  if (name == "bsp") return std::make_unique<BspTree>(options.bsp, options.kd_mailboxes);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");

@@ -16,7 +16,7 @@ namespace raystep {
 struct StructureOptions {
   GridOptions grid;
   KdOptions kd;  // the builder is chosen by the name: "kd" (SAH) or "kd-median"
-  bool kd_mailboxes = true;
+  bool kd_mailboxes = true;  // also the BSP tree's
   BvhOptions bvh;  // the builder is chosen by the name: "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
   BvhOrder bvh_order = BvhOrder::entry_distance;
   BspOptions bsp;  // the general BSP tree ("bsp")
