@@ -3,7 +3,8 @@
 // Usage: raystep_bench_structures [MESH.obj|SCENE.json] [--accel a,b,...] [--size N] [--random N] [--reps N]
 //        [--embree-robust]
 // (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D; bvh:axis / bvh:entry the
-// BVH's child order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median).
+// BVH's child order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median; bsp:kdop,
+// bsp:autopartition, bsp:both the BSP tree's candidate directions, bsp:cN its candidates per direction).
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <embree3/rtcore.h>
@@ -179,10 +180,14 @@ int main(int argc, char** argv) {
           options.bvh.max_leaf_size = std::max(options.bvh.max_leaf_size, options.bvh.leaf_size);
         } else if (is_bvh && tail.rfind("ti", 0) == 0) {
           options.bvh.t_i = float(std::atof(tail.c_str() + 2));
+        } else if (kind == "bsp" && parse_bsp_directions(tail, &options.bsp.directions)) {
+        } else if (kind == "bsp" && tail.rfind("c", 0) == 0 && std::atoi(tail.c_str() + 1) >= 1) {
+          options.bsp.candidates = std::atoi(tail.c_str() + 1);
         } else {
           if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
             bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
-                              std::to_string(kKdMaxDepth) + ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX");
+                              std::to_string(kKdMaxDepth) +
+                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, bsp:kdop, bsp:autopartition, bsp:cN");
           options.kd.max_depth = int(depth);
         }
       }
