@@ -26,6 +26,10 @@ int bsp_plane_side(const BspPlane& plane, const glm::vec3& p) {
   if (s > bound) return 1;
   if (s < -bound) return -1;
   if (!std::isfinite(s)) return 0;
+  // With at most one product non-zero (an axis plane, a point on a coordinate plane) the sum is exact and the
+  // one subtraction left keeps its sign (x - d rounds to zero only when x = d): the common case of a vertex
+  // lying on an axis plane needs no rationals.
+  if ((a != 0.0) + (b != 0.0) + (c != 0.0) <= 1) return (s > 0.0) - (s < 0.0);
   // Too close to call in double: the four exact terms summed as rationals.
   mpq_class e = mpq_class(a) + mpq_class(b) + mpq_class(c) - mpq_class(d);
   return sgn(e);
