@@ -141,6 +141,7 @@ struct CompareArgs {
   std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, capped at 512)
   int reps = 3;
   std::string output;  // report folder
+  StructureArgs structure;  // the BSP tree's options (--bsp-directions, --bsp-candidates); the others default
 };
 struct GridSweepArgs {
   std::string scene;
@@ -176,6 +177,7 @@ struct EntryNode {
 void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
                               uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv);
 KdOptions kd_options(const StructureArgs& s);
+BspOptions bsp_options(const StructureArgs& s);
 BvhOptions bvh_options(const StructureArgs& s);  // InputError naming the option for a bad value
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);
 

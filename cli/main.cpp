@@ -205,6 +205,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
       ->required();
+  compare_cmd->add_option("--bsp-directions", compare.structure.bsp_directions, "bsp: both | kdop | autopartition")
+      ->capture_default_str();
+  compare_cmd->add_option("--bsp-candidates", compare.structure.bsp_candidates,
+                          "bsp: candidate positions per direction and primitive planes per node, 1..4096")
+      ->capture_default_str();
 
   GridSweepArgs sweep;
   CLI::App* sweep_cmd = app.add_subcommand(

@@ -148,6 +148,7 @@ int run_compare(const CompareArgs& a) {
   ReportFolder folder(a.output);
   StructureCompareOptions options;
   options.structures = parse_names("--accel", a.accel);
+  options.build.bsp = bsp_options(a.structure);
   if (a.rays > (uint64_t(1) << 26)) throw InputError("", 0, "--rays must be at most 67108864");
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
