@@ -185,9 +185,10 @@ int main(int argc, char** argv) {
           options.bsp.candidates = std::atoi(tail.c_str() + 1);
         } else {
           if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
-            bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
-                              std::to_string(kKdMaxDepth) +
-                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, bsp:kdop, bsp:autopartition, bsp:cN");
+            bench::Args::fail(
+                "--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
+                std::to_string(kKdMaxDepth) +
+                ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, bsp:kdop, bsp:autopartition, bsp:cN");
           options.kd.max_depth = int(depth);
         }
       }

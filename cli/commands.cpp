@@ -111,7 +111,8 @@ BspOptions bsp_options(const StructureArgs& s) {
   BspOptions bsp;
   if (!parse_bsp_directions(s.bsp_directions, &bsp.directions))
     throw InputError("", 0, "--bsp-directions '" + s.bsp_directions + "': both | kdop | autopartition");
-  if (s.bsp_candidates < 1 || s.bsp_candidates > 4096) throw InputError("", 0, "--bsp-candidates must be 1..4096");
+  if (s.bsp_candidates < 1 || s.bsp_candidates > 4096)
+    throw InputError("", 0, "--bsp-candidates must be 1..4096");
   bsp.candidates = s.bsp_candidates;
   bsp.t_i = s.kd_ti;
   bsp.t_t = s.kd_tt;

@@ -37,8 +37,9 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
                   "bsp: candidate plane directions: both | kdop (13 k-DOP directions) | autopartition (the "
                   "primitives' own planes)")
       ->capture_default_str();
-  cmd->add_option("--bsp-candidates", s.bsp_candidates,
-                  "bsp: at most this many candidate positions per direction and primitive planes per node, 1..4096")
+  cmd->add_option(
+         "--bsp-candidates", s.bsp_candidates,
+         "bsp: at most this many candidate positions per direction and primitive planes per node, 1..4096")
       ->capture_default_str();
 }
 
@@ -205,10 +206,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
       ->required();
-  compare_cmd->add_option("--bsp-directions", compare.structure.bsp_directions, "bsp: both | kdop | autopartition")
+  compare_cmd
+      ->add_option("--bsp-directions", compare.structure.bsp_directions, "bsp: both | kdop | autopartition")
       ->capture_default_str();
-  compare_cmd->add_option("--bsp-candidates", compare.structure.bsp_candidates,
-                          "bsp: candidate positions per direction and primitive planes per node, 1..4096")
+  compare_cmd
+      ->add_option("--bsp-candidates", compare.structure.bsp_candidates,
+                   "bsp: candidate positions per direction and primitive planes per node, 1..4096")
       ->capture_default_str();
 
   GridSweepArgs sweep;

@@ -184,8 +184,8 @@ int run_compare(const CompareArgs& a) {
                     r.name.c_str(), r.steps.c_str(), r.build_seconds * 1e3, r.memory_bytes,
                     r.camera.mrays_per_second, r.random.mrays_per_second, r.camera.steps_per_ray,
                     r.random.steps_per_ray, r.camera.tests_per_ray, r.random.tests_per_ray, r.camera.rays,
-                    r.random.rays, r.camera.checked + r.random.checked, r.disagreements(), r.ties(), r.tree_nodes,
-                    r.tree_depth);
+                    r.random.rays, r.camera.checked + r.random.checked, r.disagreements(), r.ties(),
+                    r.tree_nodes, r.tree_depth);
       out << buf;
     }
   });
@@ -211,7 +211,8 @@ int run_compare(const CompareArgs& a) {
        << (r.steps == "-" ? std::string("-") : fmt("%.2f", r.random.steps_per_ray) + " " + r.steps) << " | "
        << fmt("%.2f", r.camera.tests_per_ray) << " | " << fmt("%.2f", r.random.tests_per_ray) << " | "
        << r.disagreements() << " | " << r.ties() << " | "
-       << (r.tree_depth < 0 ? std::string("-") : std::to_string(r.tree_nodes) + " (" + std::to_string(r.tree_depth) + ")")
+       << (r.tree_depth < 0 ? std::string("-")
+                            : std::to_string(r.tree_nodes) + " (" + std::to_string(r.tree_depth) + ")")
        << " |\n";
   }
   std::string subset_only;

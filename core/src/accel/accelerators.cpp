@@ -127,7 +127,8 @@ bool BoundingVolumes::occluded_counted(const Ray& ray, CountingRecorder& counter
 // ---- Factory ----
 
 std::vector<std::string> accelerator_names() {
-  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8", "bsp"};
+  return {"brute",     "bvol",       "grid", "kd",   "kd-median", "bvh",
+          "bvh-sweep", "bvh-median", "bvh4", "bvh8", "bsp"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {

@@ -998,7 +998,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         // Version 4: a BSP node's plane, a finite unit normal (to float rounding) and a finite offset.
         n.has_plane = true;
         n.normal = rd.vec_at(jn, np, "normal");
-        const float len = std::sqrt(n.normal.x * n.normal.x + n.normal.y * n.normal.y + n.normal.z * n.normal.z);
+        const float len =
+            std::sqrt(n.normal.x * n.normal.x + n.normal.y * n.normal.y + n.normal.z * n.normal.z);
         if (!is_finite(n.normal) || !(std::fabs(len - 1.f) <= 1e-3f))
           rd.fail(np.key("normal"), "expected a finite unit normal");
         n.offset = rd.real_at(jn, np, "offset");

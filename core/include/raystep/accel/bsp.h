@@ -67,20 +67,22 @@ struct BspCrossing {
 // magnitudes summed (bounded here by 2^-50 of them). t* = (d - n.o) / (n.dir) is then known to within
 // (e_num + |t*| e_den) / (|den| - e_den), plus its own rounding; the interval is rounded outward to floats.
 // t_extent: max(|t_min|, |t_max|) of the node's interval, for the parallel case.
-inline BspCrossing bsp_crossing(const BspPlane& plane, const glm::vec3& o, const glm::vec3& dir, float t_extent) {
+inline BspCrossing bsp_crossing(const BspPlane& plane, const glm::vec3& o, const glm::vec3& dir,
+                                float t_extent) {
   constexpr double k2m50 = 0x1p-50;  // the bound's factor (a multiplication, not a call to ldexp)
   const double nx = plane.normal.x, ny = plane.normal.y, nz = plane.normal.z;
   const double ox = nx * o.x, oy = ny * o.y, oz = nz * o.z;
   const double dx = nx * dir.x, dy = ny * dir.y, dz = nz * dir.z;
   const double num = double(plane.offset) - ((ox + oy) + oz);
   const double den = (dx + dy) + dz;
-  const double e_num = (std::fabs(ox) + std::fabs(oy) + std::fabs(oz) + std::fabs(double(plane.offset))) * k2m50;
+  const double e_num =
+      (std::fabs(ox) + std::fabs(oy) + std::fabs(oz) + std::fabs(double(plane.offset))) * k2m50;
   const double e_den = (std::fabs(dx) + std::fabs(dy) + std::fabs(dz)) * k2m50;
   BspCrossing c;
   if (std::fabs(den) > 2.0 * e_den) {
     const double t = num / den;
-    // The error of t*, its own rounding, and the rounding to float of t* -+ err: 2^-22 |t| is two float ulps of
-    // t (more than half an ulp of t -+ err), 1e-37 an ulp near zero; so the float ends still bound t*.
+    // The error of t*, its own rounding, and the rounding to float of t* -+ err: 2^-22 |t| is two float ulps
+    // of t (more than half an ulp of t -+ err), 1e-37 an ulp near zero; so the float ends still bound t*.
     const double err =
         (e_num + std::fabs(t) * e_den) / (std::fabs(den) - e_den) + std::fabs(t) * 0x1p-22 + 1e-37;
     c.kind = BspCrossing::crosses;

@@ -66,8 +66,8 @@ struct TraceNode {
   bool leaf = false;
   int axis = 0;        // inner: the split plane's axis (0, 1, 2) and position
   float split = 0.f;
-  // Version 4, a BSP inner node: its plane dot(normal, p) = offset (then axis and split are unused; the box is
-  // the bounding box of the node's convex cell). The child below (dot < offset) is the next node.
+  // Version 4, a BSP inner node: its plane dot(normal, p) = offset (then axis and split are unused; the box
+  // is the bounding box of the node's convex cell). The child below (dot < offset) is the next node.
   bool has_plane = false;
   glm::vec3 normal{0.f};
   float offset = 0.f;
