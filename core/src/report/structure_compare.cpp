@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "camera_size.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/bsp.h"
 #include "raystep/accel/grid.h"
@@ -12,6 +11,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
+#include "camera_size.h"
 #include "timing.h"
 
 namespace raystep {
