@@ -156,6 +156,25 @@ TEST(Bsp, SlantedScenesWithHardRays) {
   }
 }
 
+TEST(Bsp, NoFixedEpsilonAtLargeOrSmallScale) {
+  // The same slanted scene far from the origin and large, and tiny: every bound is relative to the numbers.
+  const Geometry base = make_rotated_boxes();
+  for (auto [scale, offset] : {std::pair{1e4f, 1e6f}, std::pair{1e-5f, 0.f}, std::pair{1e-3f, 3e-2f}}) {
+    Geometry g;
+    g.begin_object("scaled", 0);
+    for (uint32_t i = 0; i < base.size(); ++i)
+      g.add_triangle(base.vertex(i, 0) * scale + offset, base.vertex(i, 1) * scale + offset,
+                     base.vertex(i, 2) * scale + offset);
+    BruteForce brute;
+    brute.build(g);
+    auto tree = make_bsp(g);
+    EXPECT_GT(tree->data().nodes.size(), 50u) << scale;
+    std::vector<Ray> rays = random_rays(g.bounds(), 6000, 55), hard = plane_rays(*tree, 56);
+    rays.insert(rays.end(), hard.begin(), hard.end());
+    EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << "scale " << scale << " offset " << offset;
+  }
+}
+
 TEST(Bsp, WatertightOnEdgeAimedRays) {
   Geometry g;
   add_to_geometry(make_icosphere(3), g);
