@@ -247,7 +247,12 @@ class Builder {
   void primitive_candidates(const ConvexCell& cell, double area, const std::vector<uint32_t>& prims,
                             Candidate* best) {
     const size_t N = prims.size();
-    const size_t K = std::min(N, size_t(options_.candidates));
+    // Beside the 13 directions a quarter as many primitive planes: the SAH, greedy, takes the planes through
+    // single triangles too eagerly and builds worse trees with more (bench/README.md, issue 16).
+    const int planes = options_.directions == BspDirections::autopartition
+                           ? options_.candidates
+                           : std::max(1, options_.candidates / 4);
+    const size_t K = std::min(N, size_t(planes));
     for (size_t j = 0; j < K; ++j) {
       uint32_t src = prims[(2 * j + 1) * N / (2 * K)];
       if (geometry_.type(src) != PrimType::triangle) continue;

@@ -25,8 +25,9 @@ bool parse_bsp_directions(const std::string& text, BspDirections* d);
 struct BspOptions {
   BspDirections directions = BspDirections::both;
   // The cap on candidates per node that keeps the build O(N log N)-like: at most this many positions per
-  // k-DOP direction (all of the 2N extents when 2N fits, else an even sample of them) and this many
-  // primitive planes (an even sample of the node's primitives). 1..4096.
+  // k-DOP direction (all of the 2N extents when 2N fits, else an even sample of them) and this many primitive
+  // planes (an even sample of the node's triangles) with autopartition alone, a quarter as many (at least 1)
+  // with both (measured better: bench/README.md). 1..4096.
   int candidates = 16;
   float t_i = 80.f;  // the kd-tree's cost constants (kdtree_build.h)
   float t_t = 1.f;
