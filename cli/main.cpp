@@ -39,7 +39,8 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
       ->capture_default_str();
   cmd->add_option(
          "--bsp-candidates", s.bsp_candidates,
-         "bsp: at most this many candidate positions per direction and primitive planes per node, 1..4096")
+         "bsp: at most this many candidate positions per direction per node (and a quarter as many primitive "
+         "planes; as many with autopartition alone), 1..4096")
       ->capture_default_str();
 }
 
@@ -211,7 +212,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   compare_cmd
       ->add_option("--bsp-candidates", compare.structure.bsp_candidates,
-                   "bsp: candidate positions per direction and primitive planes per node, 1..4096")
+                   "bsp: candidate positions per direction per node (a quarter as many primitive planes), 1..4096")
       ->capture_default_str();
 
   GridSweepArgs sweep;
