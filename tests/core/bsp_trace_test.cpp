@@ -64,6 +64,15 @@ TEST(BspTrace, RecordedWalksMatchTheKernelAndNameTheirPlanes) {
     }
   }
   EXPECT_GT(planes, 20);
+  // The plane counts by source add up to the tree's inner nodes.
+  double inner = 0, nodes = 0, leaves = 0;
+  for (const TraceParam& p : t.structure.params) {
+    if (p.key.rfind("planes_", 0) == 0) inner += p.number;
+    if (p.key == "nodes") nodes = p.number;
+    if (p.key == "leaves") leaves = p.number;
+  }
+  EXPECT_EQ(inner, nodes - leaves);
+  EXPECT_GT(inner, 0);
 }
 
 TEST(BspTrace, RoundTripsWithTheSamePlanes) {

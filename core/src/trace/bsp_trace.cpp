@@ -28,6 +28,12 @@ Trace record_bsp_trace(const Geometry& geometry, const BspTree& tree, const std:
   param("nodes", double(data.nodes.size()));
   param("leaves", double(leaves));
   param("references", double(data.prim_index.size()));
+  // How adaptive the tree is: its inner nodes by where their planes came from.
+  const BspTreeStats stats = bsp_tree_stats(data, o);
+  param("planes_axis", double(stats.inner_by_source[int(BspPlaneSource::axis)]));
+  param("planes_face_diagonal", double(stats.inner_by_source[int(BspPlaneSource::face_diagonal)]));
+  param("planes_body_diagonal", double(stats.inner_by_source[int(BspPlaneSource::body_diagonal)]));
+  param("planes_primitive", double(stats.inner_by_source[int(BspPlaneSource::primitive)]));
   detail::sort_params(&t.structure);
 
   detail::record_rays(
