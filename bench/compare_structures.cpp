@@ -4,7 +4,8 @@
 //        [--embree-robust]
 // (an --accel entry kd:D or kd-median:D sets the kd-tree's depth limit to D; bvh:axis / bvh:entry the
 // BVH's child order, bvh:leafN its leaf size, bvh:tiX its t_i, for bvh, bvh-sweep and bvh-median;
-// octree:leafK and octree:depthD the octree's leaf size and depth limit).
+// octree:leafK and octree:depthD the octree's leaf size and depth limit; bsp:kdop, bsp:autopartition, bsp:both
+// the BSP tree's candidate directions, bsp:cN its candidates per direction).
 // Without a mesh argument it uses ../shared/meshes/stanford-bunny.obj beside the repository, and skips
 // (exit 0, with a message) when that file is absent.
 #include <embree3/rtcore.h>
@@ -184,11 +185,15 @@ int main(int argc, char** argv) {
           options.octree.leaf_size = std::atoi(tail.c_str() + 4);
         } else if (kind == "octree" && tail.rfind("depth", 0) == 0) {  // octree:depthD, the depth limit D
           options.octree.max_depth = std::atoi(tail.c_str() + 5);
+        } else if (kind == "bsp" && parse_bsp_directions(tail, &options.bsp.directions)) {
+        } else if (kind == "bsp" && tail.rfind("c", 0) == 0 && std::atoi(tail.c_str() + 1) >= 1) {
+          options.bsp.candidates = std::atoi(tail.c_str() + 1);
         } else {
           if ((kind != "kd" && kind != "kd-median") || *end != '\0' || depth < 1 || depth > kKdMaxDepth)
             bench::Args::fail("--accel " + name + ": expected kd:D or kd-median:D with D in 1.." +
                               std::to_string(kKdMaxDepth) +
-                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, octree:leafK, octree:depthD");
+                              ", or bvh:axis, bvh:entry, bvh:leafN, bvh:tiX, octree:leafK, octree:depthD, " +
+                              "bsp:kdop, bsp:autopartition, bsp:cN");
           options.kd.max_depth = int(depth);
         }
       }

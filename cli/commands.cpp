@@ -108,6 +108,22 @@ BvhOptions bvh_options(const StructureArgs& s) {
   return bvh;
 }
 
+BspOptions bsp_options(const StructureArgs& s) {
+  BspOptions bsp;
+  if (!parse_bsp_directions(s.bsp_directions, &bsp.directions))
+    throw InputError("", 0, "--bsp-directions '" + s.bsp_directions + "': both | kdop | autopartition");
+  if (s.bsp_candidates < 1 || s.bsp_candidates > 4096)
+    throw InputError("", 0, "--bsp-candidates must be 1..4096");
+  bsp.candidates = s.bsp_candidates;
+  bsp.t_i = s.kd_ti;
+  bsp.t_t = s.kd_tt;
+  if (s.kd_max_depth < 0 || s.kd_max_depth > kBspMaxDepth)
+    throw InputError("", 0, "--max-depth must be 0.." + std::to_string(kBspMaxDepth) + " (0: automatic)");
+  bsp.max_depth = s.kd_max_depth;
+  bsp.leaf_size = s.kd_leaf_size;
+  return bsp;
+}
+
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
   StructureOptions options;
   if (!(s.grid_density > 0.f && s.grid_density <= 64.f))
@@ -140,6 +156,7 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
     options.octree.leaf_size = s.octree_leaf;
     options.octree.max_depth = s.kd_max_depth;
   }
+  if (s.accel == "bsp") options.bsp = bsp_options(s);
   try {
     return make_accelerator(s.accel, options);
   } catch (const InputError& e) {

@@ -38,6 +38,9 @@ struct StructureArgs {
   std::string bvh_order = "entry";  // entry | axis
   // octree: K, the leaf size (its depth limit is --max-depth, kd_max_depth: 0 automatic, else 1..20)
   int octree_leaf = 8;
+  // General BSP tree (bsp); t_i, t_t, --max-depth, --leaf-size and --mailbox are the kd-tree's options
+  std::string bsp_directions = "both";  // both | kdop | autopartition
+  int bsp_candidates = 16;
 };
 
 struct RenderArgs {
@@ -140,6 +143,7 @@ struct CompareArgs {
   std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, capped at 512)
   int reps = 3;
   std::string output;  // report folder
+  StructureArgs structure;  // the BSP tree's options (--bsp-directions, --bsp-candidates); the others default
 };
 struct GridSweepArgs {
   std::string scene;
@@ -177,6 +181,7 @@ struct EntryNode {
 void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
                               uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv);
 KdOptions kd_options(const StructureArgs& s);
+BspOptions bsp_options(const StructureArgs& s);
 BvhOptions bvh_options(const StructureArgs& s);  // InputError naming the option for a bad value
 std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);
 

@@ -37,6 +37,15 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--octree-leaf", s.octree_leaf,
                   "octree: K, a cell with more than K primitives is split into eight (1..16777216)")
       ->capture_default_str();
+  cmd->add_option("--bsp-directions", s.bsp_directions,
+                  "bsp: candidate plane directions: both | kdop (13 k-DOP directions) | autopartition (the "
+                  "primitives' own planes)")
+      ->capture_default_str();
+  cmd->add_option(
+         "--bsp-candidates", s.bsp_candidates,
+         "bsp: at most this many candidate positions per direction per node (and a quarter as many primitive "
+         "planes; as many with autopartition alone), 1..4096")
+      ->capture_default_str();
 }
 
 // The kd-tree's build options (also for the sah and kdtree-stats commands).
@@ -202,6 +211,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   compare_cmd->add_option("-o,--output", compare.output, "report folder (report.csv, report.md, PNG plots)")
       ->required();
+  compare_cmd
+      ->add_option("--bsp-directions", compare.structure.bsp_directions, "bsp: both | kdop | autopartition")
+      ->capture_default_str();
+  compare_cmd
+      ->add_option("--bsp-candidates", compare.structure.bsp_candidates,
+                   "bsp: candidate positions per direction per node (a quarter as many primitive planes), 1..4096")
+      ->capture_default_str();
 
   BvolReportArgs bvol_report;
   CLI::App* bvol_report_cmd = app.add_subcommand(

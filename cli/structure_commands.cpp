@@ -109,6 +109,7 @@ int run_compare(const CompareArgs& a) {
   ReportFolder folder(a.output);
   StructureCompareOptions options;
   options.structures = parse_names("--accel", a.accel);
+  options.build.bsp = bsp_options(a.structure);
   if (a.rays > (uint64_t(1) << 26)) throw InputError("", 0, "--rays must be at most 67108864");
   options.random_rays = a.rays;
   if (a.reps < 1 || a.reps > 1000) throw InputError("", 0, "--reps must be 1..1000");
@@ -135,16 +136,17 @@ int run_compare(const CompareArgs& a) {
   write_file_atomically(folder.file("report.csv"), [&](std::ostream& out) {
     out << "structure,steps,build_ms,memory_bytes,camera_mrays_per_s,random_mrays_per_s,camera_steps_per_ray,"
            "random_steps_per_ray,camera_tests_per_ray,random_tests_per_ray,camera_rays,random_rays,"
-           "checked_rays,disagreements,ties\n";
+           "checked_rays,disagreements,ties,nodes,max_depth\n";
     char buf[512];
     for (const StructureCompareRow& r : c.rows) {
       std::snprintf(buf, sizeof buf,
                     "%s,%s,%.4f,%" PRIu64 ",%.5g,%.5g,%.4f,%.4f,%.4f,%.4f,%" PRIu64 ",%" PRIu64 ",%" PRIu64
-                    ",%" PRIu64 ",%" PRIu64 "\n",
+                    ",%" PRIu64 ",%" PRIu64 ",%" PRIu64 ",%d\n",
                     r.name.c_str(), r.steps.c_str(), r.build_seconds * 1e3, r.memory_bytes,
                     r.camera.mrays_per_second, r.random.mrays_per_second, r.camera.steps_per_ray,
                     r.random.steps_per_ray, r.camera.tests_per_ray, r.random.tests_per_ray, r.camera.rays,
-                    r.random.rays, r.camera.checked + r.random.checked, r.disagreements(), r.ties());
+                    r.random.rays, r.camera.checked + r.random.checked, r.disagreements(), r.ties(),
+                    r.tree_nodes, r.tree_depth);
       out << buf;
     }
   });
@@ -160,8 +162,8 @@ int run_compare(const CompareArgs& a) {
      << c.camera_checked << " camera and " << c.random_checked
      << " random rays; a tie (another primitive at exactly the same t) is not an error.\n\n"
      << "| structure | build ms | memory | Mrays/s camera | Mrays/s random | steps/ray camera | "
-        "steps/ray random | tests/ray camera | tests/ray random | disagreements | ties |\n"
-     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "steps/ray random | tests/ray camera | tests/ray random | disagreements | ties | nodes (depth) |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const StructureCompareRow& r : c.rows) {
     md << "| " << r.name << " | " << fmt("%.2f", r.build_seconds * 1e3) << " | "
        << human_bytes(double(r.memory_bytes)) << " | " << fmt("%.3g", r.camera.mrays_per_second) << " | "
@@ -169,7 +171,10 @@ int run_compare(const CompareArgs& a) {
        << (r.steps == "-" ? std::string("-") : fmt("%.2f", r.camera.steps_per_ray) + " " + r.steps) << " | "
        << (r.steps == "-" ? std::string("-") : fmt("%.2f", r.random.steps_per_ray) + " " + r.steps) << " | "
        << fmt("%.2f", r.camera.tests_per_ray) << " | " << fmt("%.2f", r.random.tests_per_ray) << " | "
-       << r.disagreements() << " | " << r.ties() << " |\n";
+       << r.disagreements() << " | " << r.ties() << " | "
+       << (r.tree_depth < 0 ? std::string("-")
+                            : std::to_string(r.tree_nodes) + " (" + std::to_string(r.tree_depth) + ")")
+       << " |\n";
   }
   std::string subset_only;
   for (const StructureCompareRow& r : c.rows)

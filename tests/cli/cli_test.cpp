@@ -236,7 +236,7 @@ TEST_F(Cli, TraceWritesAValidTraceThatTraceInfoReads) {
   Outcome r = run("trace " + mesh + " --ray -3,0.1,0.2,1,0,0 -o " + path("t.json"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::string text = slurp(path("t.json"));
-  EXPECT_EQ(text.rfind("{\n \"format\": \"raystep-trace\",\n \"version\": 3,", 0), 0u) << text.substr(0, 80);
+  EXPECT_EQ(text.rfind("{\n \"format\": \"raystep-trace\",\n \"version\": 4,", 0), 0u) << text.substr(0, 80);
   EXPECT_NE(text.find("\"type\":\"cell\""), std::string::npos);
   EXPECT_NE(text.find("\"type\":\"hit_accepted\""), std::string::npos);
   Outcome info = run("trace-info " + path("t.json"));
@@ -560,7 +560,7 @@ TEST_F(Cli, TraceThroughABvhReadsBackWithTraceInfo) {
     EXPECT_NE(text.find("\"children\":[1,"), std::string::npos);
     Outcome info = run("trace-info " + path("b.json"));
     ASSERT_EQ(info.code, 0) << info.err;
-    EXPECT_NE(info.out.find("valid raystep trace, version 3"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("valid raystep trace, version 4"), std::string::npos) << info.out;
     EXPECT_NE(info.out.find(" box tests, "), std::string::npos) << info.out;
     EXPECT_NE(info.out.find("hit primitive"), std::string::npos) << info.out;
   }

@@ -37,7 +37,7 @@ TEST_F(PixelTraceCli, AdaptivePixelWithItsSquaresAndEverySamplesRays) {
   Outcome r = run("trace " + scene("aliasing.json") + " --pixel 30,38 --aa adaptive:0.1:2 -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string text = slurp(out);
-  EXPECT_EQ(text.rfind("{\n \"format\": \"raystep-trace\",\n \"version\": 3,", 0), 0u) << text.substr(0, 80);
+  EXPECT_EQ(text.rfind("{\n \"format\": \"raystep-trace\",\n \"version\": 4,", 0), 0u) << text.substr(0, 80);
   EXPECT_NE(
       text.find(
           " \"pixel\": {\"x\":30,\"y\":38,\"width\":64,\"height\":48,\"seed\":0,\"aa\":\"adaptive:0.1:2\""),
@@ -53,7 +53,7 @@ TEST_F(PixelTraceCli, AdaptivePixelWithItsSquaresAndEverySamplesRays) {
 
   Outcome info = run("trace-info " + out);
   ASSERT_EQ(info.code, 0) << info.err;
-  EXPECT_NE(info.out.find("valid raystep trace, version 3"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("valid raystep trace, version 4"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find(std::to_string(samples) + " sample(s)"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("adaptive: "), std::string::npos) << info.out;
   EXPECT_NE(info.out.find(" squares, depth 2 reached (limit 2)"), std::string::npos) << info.out;

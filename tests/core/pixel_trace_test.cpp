@@ -115,7 +115,7 @@ TEST(PixelTrace, JsonRoundTripIsIdenticalForEveryPattern) {
       const std::string once = trace_to_json(t);
       const Trace back = parse_trace_json(once, "mem.json");
       EXPECT_EQ(trace_to_json(back), once);
-      EXPECT_EQ(back.version, 3);
+      EXPECT_EQ(back.version, kTraceVersion);
       ASSERT_TRUE(back.pixel);
       const PixelSampling &a = t.pixel->sampling, &b = back.pixel->sampling;
       ASSERT_EQ(a.samples.size(), b.samples.size());
@@ -200,9 +200,9 @@ TEST(PixelTrace, Version1DocumentsStillRead) {
   EXPECT_EQ(t.rays[0].sample, -1);
   EXPECT_EQ(t.rays[0].pixel[0], 12);
   EXPECT_EQ(t.rays[0].events.size(), 9u);
-  // Written back it is a version 3 document that differs in the version and the box_tests counter only.
+  // Written back it is a version 4 document that differs in the version and the box_tests counter only.
   std::string v3 = kVersion1;
-  v3.replace(v3.find("\"version\": 1"), 12, "\"version\": 3");
+  v3.replace(v3.find("\"version\": 1"), 12, "\"version\": 4");
   v3.replace(v3.find("\"pops\":0}"), 9, "\"pops\":0,\"box_tests\":0}");
   EXPECT_EQ(trace_to_json(t), v3);
   // The same document as version 2 reads the same.

@@ -186,8 +186,8 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   TrapScene s;
   std::string text = trace_to_json(s.trace());
   expect_rejected(text, "\"raystep-trace\"", "\"other-trace\"", "not a raystep trace");
-  expect_rejected(text, "\"version\": 3", "\"version\": 7", "unsupported trace version 7");
-  expect_rejected(text, "\"version\": 3", "\"version\": 0", "unsupported trace version 0");
+  expect_rejected(text, "\"version\": 4", "\"version\": 7", "unsupported trace version 7");
+  expect_rejected(text, "\"version\": 4", "\"version\": 0", "unsupported trace version 0");
   expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"", "unknown event type \"teleport\"",
                   line_of(text, "\"type\":\"mailbox_hit\""));
   expect_rejected(text, "\"prim\":1", "\"prim\":99", "rays[0].events[6].prim: value 99 out of range 0..2");
@@ -323,7 +323,7 @@ TEST(TraceFile, Version3BvhTraceRoundTripsWithBoxTestsSkipsAndChildren) {
   const std::string once = trace_to_json(t);
   const Trace back = parse_trace_json(once, "bvh.json");
   EXPECT_EQ(trace_to_json(back), once);
-  EXPECT_EQ(back.version, 3);
+  EXPECT_EQ(back.version, kTraceVersion);
   EXPECT_NE(once.find("{\"seq\":3,\"type\":\"box_test\",\"parent\":0,\"node\":1,\"depth\":1,\"hit\":true,"
                       "\"t_near\":2.0,\"t_far\":2.0}"),
             std::string::npos)
@@ -443,7 +443,7 @@ TEST(TraceFile, DamagedVersion3TracesAreRefusedWithLineAndPath) {
   expect_rejected(text, "\"prims\":[1]}", "\"prims\":[1],\"children\":[0]}",
                   "geometry.nodes[2].children: a leaf has no children");
   // Box tests and skips are version 3's: a version 2 document with one is refused.
-  expect_rejected(text, "\"version\": 3", "\"version\": 2",
+  expect_rejected(text, "\"version\": 4", "\"version\": 2",
                   "rays[0].events[1].type: event type \"box_test\" needs version 3",
                   line_of(text, "\"type\":\"box_test\""));
 }

@@ -3,6 +3,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/brute_force.h"
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
@@ -59,7 +60,8 @@ bool BruteForce::occluded_counted(const Ray& ray, CountingRecorder& counters) co
 // ---- Factory ----
 
 std::vector<std::string> accelerator_names() {
-  return {"brute", "bvol", "grid", "kd", "kd-median", "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8", "octree"};
+  return {"brute",     "bvol",       "grid", "kd",   "kd-median", "bvh",
+          "bvh-sweep", "bvh-median", "bvh4", "bvh8", "octree",    "bsp"};
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -84,6 +86,7 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
   }
   if (name == "octree") return std::make_unique<Octree>(options.octree);
   if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
+  if (name == "bsp") return std::make_unique<BspTree>(options.bsp, options.kd_mailboxes);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   for (size_t i = 1; i < bvol_kind_names().size(); ++i) known += ", " + bvol_kind_names()[i];

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "raystep/accel/bounding_volumes.h"
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
@@ -37,11 +38,27 @@ constexpr size_t kCancelStride = 4096;
 
 const char* step_name(const Accelerator& accel) {
   if (dynamic_cast<const UniformGrid*>(&accel)) return "cells";
-  if (dynamic_cast<const KdTree*>(&accel)) return "nodes";
+  if (dynamic_cast<const KdTree*>(&accel) || dynamic_cast<const BspTree*>(&accel)) return "nodes";
   if (auto* bvol = dynamic_cast<const BoundingVolumes*>(&accel))
     return bvol->kind() == BvolKind::box ? "boxes" : "volumes";
   if (dynamic_cast<const Octree*>(&accel)) return "nodes";
   return "-";
+}
+
+// A binary space partition's shape (kd-trees, the BSP tree: the lecture's "tradeoff" in nodes and depth).
+void tree_shape(const Accelerator& accel, StructureCompareRow* row) {
+  auto deepest = [](const auto& info) {
+    int d = 0;
+    for (const auto& i : info) d = std::max(d, int(i.depth));
+    return d;
+  };
+  if (auto* kd = dynamic_cast<const KdTree*>(&accel)) {
+    row->tree_nodes = kd->data().nodes.size();
+    row->tree_depth = deepest(kd->data().info);
+  } else if (auto* bsp = dynamic_cast<const BspTree*>(&accel)) {
+    row->tree_nodes = bsp->data().nodes.size();
+    row->tree_depth = deepest(bsp->data().info);
+  }
 }
 
 // One ray set, and the evenly spread subset brute force traces (every stride-th ray).
@@ -152,6 +169,7 @@ StructureComparison compare_structures(const Scene& scene, const StructureCompar
       }
       row.build_seconds = median(builds);
       row.memory_bytes = accel->memory_bytes();
+      tree_shape(*accel, &row);
       for (int k = 0; k < 2; ++k) {
         RaySet& s = sets[k];
         StructureRaySet& out = k == 0 ? row.camera : row.random;

@@ -1,6 +1,7 @@
 #include "raystep/trace/record_trace.h"
 
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/bsp_trace.h"
 #include "raystep/trace/bvh_trace.h"
 #include "raystep/trace/grid_trace.h"
 #include "raystep/trace/kd_trace.h"
@@ -11,13 +12,13 @@
 namespace raystep {
 
 namespace {
-const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8 or octree";
+const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp";
 }  // namespace
 
 bool records_events(const Accelerator& accel) {
   return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel) ||
          dynamic_cast<const Bvh*>(&accel) || dynamic_cast<const WideBvh*>(&accel) ||
-         dynamic_cast<const Octree*>(&accel);
+         dynamic_cast<const Octree*>(&accel) || dynamic_cast<const BspTree*>(&accel);
 }
 
 Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std::vector<RayRequest>& rays,
@@ -32,6 +33,8 @@ Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std
     return record_wide_bvh_trace(geometry, *wide, rays, scene_path, scene_hash);
   if (auto* octree = dynamic_cast<const Octree*>(&accel))
     return record_octree_trace(geometry, *octree, rays, scene_path, scene_hash);
+  if (auto* bsp = dynamic_cast<const BspTree*>(&accel))
+    return record_bsp_trace(geometry, *bsp, rays, scene_path, scene_hash);
   throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
 }
 

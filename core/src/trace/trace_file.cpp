@@ -357,6 +357,9 @@ std::string trace_json_rest(const Trace& t) {
       jn["leaf"] = n.leaf;
       if (n.leaf) {
         jn["prims"] = n.prims;
+      } else if (n.has_plane) {  // a BSP node (version 4): its general plane
+        jn["normal"] = vec(n.normal);
+        jn["offset"] = number(n.offset);
       } else if (!n.children.empty()) {  // a BVH node: its children; its axis, if the builder split on one
         jn["axis"] = n.axis >= 0 && n.axis < 3 ? ordered(kAxes[n.axis]) : ordered(nullptr);
         jn["children"] = n.children;
@@ -791,6 +794,8 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   // octree (version 3 too), whose inner nodes list their eight children the same way.
   const bool octree = version >= 3 && t.structure.kind == "octree";
   const bool lists_children = (version >= 3 && t.structure.kind.rfind("bvh", 0) == 0) || octree;
+  // Version 4's general BSP tree: every inner node has a plane.
+  const bool bsp = version >= 4 && t.structure.kind == "bsp";
   const int64_t max_prim = int64_t(t.scene_primitives) - 1;
   int64_t max_node = INT32_MAX;  // trees: ids below the structure's node count, when it gives one
   for (const TraceParam& p : t.structure.params)
@@ -993,6 +998,16 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
         n.axis = axis_index(rd.member(jn, np, "axis"), np.key("axis"));
         if (octree && (ids.size() != 8 || n.axis != -1))
           rd.fail(cp, "an inner octree node has 8 children and axis null");
+      } else if (bsp || (version >= 4 && jn.contains("normal"))) {
+        // Version 4: a BSP node's plane, a finite unit normal (to float rounding) and a finite offset.
+        n.has_plane = true;
+        n.normal = rd.vec_at(jn, np, "normal");
+        const float len =
+            std::sqrt(n.normal.x * n.normal.x + n.normal.y * n.normal.y + n.normal.z * n.normal.z);
+        if (!is_finite(n.normal) || !(std::fabs(len - 1.f) <= 1e-3f))
+          rd.fail(np.key("normal"), "expected a finite unit normal");
+        n.offset = rd.real_at(jn, np, "offset");
+        if (!std::isfinite(n.offset)) rd.fail(np.key("offset"), "expected a finite number");
       } else {
         if (lists_children)
           rd.fail(np, octree ? "missing \"children\" (an inner octree node lists its 8 children)"

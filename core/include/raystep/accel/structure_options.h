@@ -6,6 +6,7 @@
 #include <string>
 
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/bsp_build.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree_build.h"
@@ -16,10 +17,11 @@ namespace raystep {
 struct StructureOptions {
   GridOptions grid;
   KdOptions kd;  // the builder is chosen by the name: "kd" (SAH) or "kd-median"
-  bool kd_mailboxes = true;
+  bool kd_mailboxes = true;  // also the BSP tree's
   BvhOptions bvh;  // the builder is chosen by the name: "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
   BvhOrder bvh_order = BvhOrder::entry_distance;
   OctreeOptions octree;
+  BspOptions bsp;  // the general BSP tree ("bsp")
 };
 
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.

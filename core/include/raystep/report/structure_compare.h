@@ -54,6 +54,8 @@ struct StructureCompareRow {
   std::string steps;           // steps_per_ray counts "cells", "nodes", "boxes", "volumes" (bvol kinds), "-"
   double build_seconds = 0.0;  // median of reps builds
   uint64_t memory_bytes = 0;   // Accelerator::memory_bytes()
+  uint64_t tree_nodes = 0;  // kd-trees and the BSP tree: nodes and the deepest node's depth (else 0 and -1)
+  int tree_depth = -1;
   StructureRaySet camera, random;
   uint64_t disagreements() const { return camera.disagreements + random.disagreements; }
   uint64_t ties() const { return camera.ties + random.ties; }

@@ -1,8 +1,8 @@
 // Trace files: the recorded traversal of one or more rays, the contract between core and the debugger and
-// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 3: version 2 added an
+// the way students take a traversal elsewhere. JSON (format "raystep-trace", version 4: version 2 added an
 // anti-aliased pixel's samples, version 3 the bounding volume hierarchies' box tests, skips and node
-// children; docs/trace-format.md lists every field) read back by a validating reader that also reads versions
-// 1 and 2, and CSV with one event per row.
+// children, version 4 the general BSP tree's planes; docs/trace-format.md lists every field) read back by a
+// validating reader that also reads versions 1 to 3, and CSV with one event per row.
 #pragma once
 
 #include <array>
@@ -19,7 +19,7 @@
 namespace raystep {
 
 constexpr const char* kTraceFormat = "raystep-trace";
-constexpr int kTraceVersion = 3;        // what the writer writes
+constexpr int kTraceVersion = 4;        // what the writer writes
 constexpr int kTraceOldestVersion = 1;  // the oldest version the reader reads
 
 // A build parameter of the structure: a number or a text.
@@ -32,7 +32,7 @@ struct TraceParam {
 
 struct TraceStructure {
   // "grid", "kd", "kd-median", and since version 3 "bvh", "bvh-sweep", "bvh-median" (binary), "bvh4", "bvh8"
-  // and "octree"
+  // and "octree", since version 4 "bsp"
   std::string kind;
   Bounds3 bounds;
   std::array<int, 3> resolution{1, 1, 1};  // grid only
@@ -67,6 +67,11 @@ struct TraceNode {
   bool leaf = false;
   int axis = 0;        // inner: the split plane's axis (0, 1, 2) and position
   float split = 0.f;
+  // Version 4, a BSP inner node: its plane dot(normal, p) = offset (then axis and split are unused; the box
+  // is the bounding box of the node's convex cell). The child below (dot < offset) is the next node.
+  bool has_plane = false;
+  glm::vec3 normal{0.f};
+  float offset = 0.f;
   std::vector<int32_t> prims;     // leaf: its primitive ids
   std::vector<int32_t> children;  // BVH inner node: its children's ids (2 binary, up to 8 wide); octree: 8
 };

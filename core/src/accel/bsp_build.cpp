@@ -1,0 +1,393 @@
+// General BSP tree construction (accel/bsp_build.h): per node, the k-DOP directions' candidate positions and
+// a sample of the primitives' own planes, each weighed by the SAH with the children's polytope areas; the
+// chosen plane then classifies the node's primitives exactly.
+#include "raystep/accel/bsp_build.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gmpxx.h>
+#include <glm/geometric.hpp>
+
+#include "raystep/accel/bsp_cell.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+
+int bsp_plane_side(const BspPlane& plane, const glm::vec3& p) {
+  // Each product of two floats is exact in double (24 + 24 significant bits); the three additions that
+  // follow err by at most gamma(3) of the sum of magnitudes. Outside that bound the double's sign is right.
+  const double a = double(plane.normal.x) * p.x, b = double(plane.normal.y) * p.y,
+               c = double(plane.normal.z) * p.z;
+  const double d = plane.offset;
+  const double s = ((a + b) + c) - d;
+  const double bound = std::ldexp(std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d), -50);
+  if (s > bound) return 1;
+  if (s < -bound) return -1;
+  if (!std::isfinite(s)) return 0;
+  // With at most one product non-zero (an axis plane, a point on a coordinate plane) the sum is exact and the
+  // one subtraction left keeps its sign (x - d rounds to zero only when x = d): the common case of a vertex
+  // lying on an axis plane needs no rationals.
+  if ((a != 0.0) + (b != 0.0) + (c != 0.0) <= 1) return (s > 0.0) - (s < 0.0);
+  // Too close to call in double: the four exact terms summed as rationals.
+  mpq_class e = mpq_class(a) + mpq_class(b) + mpq_class(c) - mpq_class(d);
+  return sgn(e);
+}
+
+const char* bsp_plane_source_name(BspPlaneSource source) {
+  switch (source) {
+    case BspPlaneSource::axis:
+      return "axis";
+    case BspPlaneSource::face_diagonal:
+      return "face_diagonal";
+    case BspPlaneSource::body_diagonal:
+      return "body_diagonal";
+    case BspPlaneSource::primitive:
+      return "primitive";
+  }
+  return "unknown";
+}
+
+const char* bsp_directions_name(BspDirections d) {
+  switch (d) {
+    case BspDirections::autopartition:
+      return "autopartition";
+    case BspDirections::kdop:
+      return "kdop";
+    case BspDirections::both:
+      return "both";
+  }
+  return "unknown";
+}
+
+bool parse_bsp_directions(const std::string& text, BspDirections* d) {
+  for (BspDirections c : {BspDirections::autopartition, BspDirections::kdop, BspDirections::both})
+    if (text == bsp_directions_name(c)) {
+      *d = c;
+      return true;
+    }
+  return false;
+}
+
+int bsp_max_depth(const BspOptions& options, size_t prim_count) {
+  if (options.max_depth > 0) return std::min(options.max_depth, kBspMaxDepth);
+  double n = double(std::max<size_t>(prim_count, 1));
+  return std::min(kBspMaxDepth, std::max(8, int(std::lround(1.2 * std::log2(n)))));
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) {
+  throw InputError("", 0, "bsp: " + what);
+}
+
+void validate(const Geometry& geometry, const BspOptions& o) {
+  if (o.directions != BspDirections::autopartition && o.directions != BspDirections::kdop &&
+      o.directions != BspDirections::both)
+    fail("unknown directions");
+  if (o.candidates < 1 || o.candidates > 4096) fail("candidates must be in 1..4096");
+  if (!std::isfinite(o.t_i) || !(o.t_i > 0.f)) fail("t_i must be a finite number > 0");
+  if (!std::isfinite(o.t_t) || !(o.t_t >= 0.f)) fail("t_t must be a finite number >= 0");
+  if (o.max_depth < 0 || o.max_depth > kBspMaxDepth)
+    fail("max_depth must be in 0.." + std::to_string(kBspMaxDepth) + " (0: automatic)");
+  if (o.leaf_size < 1) fail("leaf_size must be at least 1");
+  if (!std::isfinite(o.reference_budget) || !(o.reference_budget >= 1.f))
+    fail("reference_budget must be a finite number >= 1");
+  if (geometry.size() >= BspNode::kInner) fail("too many primitives");
+  for (uint32_t id = 0; id < geometry.size(); ++id) {
+    Bounds3 b = geometry.prim_bounds(id);
+    if (!is_finite(b.lo) || !is_finite(b.hi)) fail("primitive " + std::to_string(id) + " is not finite");
+  }
+}
+
+// The 13 k-DOP directions, unit length in float, in the tie order: axes, face diagonals, body diagonals.
+struct Direction {
+  glm::vec3 normal;
+  BspPlaneSource source;
+};
+std::vector<Direction> kdop_directions() {
+  const float v[13][3] = {{1, 0, 0}, {0, 1, 0},  {0, 0, 1}, {1, 1, 0},  {1, -1, 0}, {1, 0, 1}, {1, 0, -1},
+                          {0, 1, 1}, {0, 1, -1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+  std::vector<Direction> out;
+  for (int i = 0; i < 13; ++i) {
+    glm::vec3 n = glm::normalize(glm::vec3(v[i][0], v[i][1], v[i][2]));
+    out.push_back({n, i < 3   ? BspPlaneSource::axis
+                      : i < 9 ? BspPlaneSource::face_diagonal
+                              : BspPlaneSource::body_diagonal});
+  }
+  return out;
+}
+
+struct Candidate {
+  BspPlane plane;
+  BspPlaneSource source = BspPlaneSource::axis;
+  uint32_t n_below = 0, n_above = 0;
+  double cost = kInfinity;
+};
+
+class Builder {
+ public:
+  Builder(const Geometry& g, const BspOptions& o) : geometry_(g), options_(o) {
+    max_depth_ = bsp_max_depth(o, g.size());
+    double budget = std::ceil(double(o.reference_budget) * double(g.size()));
+    budget_ = std::max(g.size(), size_t(std::min(budget, double(BspNode::kInner - 1))));
+    if (o.directions != BspDirections::autopartition) directions_ = kdop_directions();
+    // Every primitive as the points whose convex hull contains it: a triangle's vertices, a sphere's box.
+    point_start_.push_back(0);
+    for (uint32_t id = 0; id < g.size(); ++id) {
+      if (g.type(id) == PrimType::triangle) {
+        for (int k = 0; k < 3; ++k) points_.push_back(g.vertex(id, k));
+      } else {
+        Bounds3 b = g.prim_bounds(id);
+        for (int c = 0; c < 8; ++c)
+          points_.push_back(
+              glm::vec3(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z));
+      }
+      point_start_.push_back(uint32_t(points_.size()));
+    }
+  }
+
+  BspTreeData build() {
+    tree_.bounds = geometry_.bounds();
+    std::vector<uint32_t> all(geometry_.size());
+    for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    build_node(ConvexCell::box(tree_.bounds), -1, 0, budget_, std::move(all));
+    tree_.nodes.shrink_to_fit();
+    tree_.info.shrink_to_fit();
+    tree_.prim_index.shrink_to_fit();
+    return std::move(tree_);
+  }
+
+ private:
+  // min and max of dot(n, point) over a primitive's points, in double.
+  void project(uint32_t prim, const glm::dvec3& n, double d, double* lo, double* hi) const {
+    double a = kInfinity, b = -kInfinity;
+    for (uint32_t k = point_start_[prim]; k < point_start_[prim + 1]; ++k) {
+      double s = glm::dot(n, glm::dvec3(points_[k])) - d;
+      a = std::min(a, s);
+      b = std::max(b, s);
+    }
+    *lo = a;
+    *hi = b;
+  }
+
+  double cost(double area_below, double area_above, double area, uint32_t nb, uint32_t na) const {
+    return double(options_.t_t) +
+           double(options_.t_i) * (area_below / area * double(nb) + area_above / area * double(na));
+  }
+
+  // Weigh one candidate plane (with its counts) and keep it if strictly cheaper than the best.
+  void offer(const ConvexCell& cell, double area, const BspPlane& plane, BspPlaneSource source, uint32_t nb,
+             uint32_t na, Candidate* best) const {
+    // The two areas add up to at least the node's (the cap counts twice), so the cost is at least
+    // t_t + t_i min(nb, na): skip the clipping when even that is no better.
+    if (cost(area, area, 2.0 * area, std::min(nb, na), std::min(nb, na)) >= best->cost) return;
+    double ab, aa;
+    cell.split_areas(glm::dvec3(plane.normal), double(plane.offset), &ab, &aa);
+    if (!(ab > 0.0 && aa > 0.0)) return;  // the plane does not cut the cell
+    double c = cost(ab, aa, area, nb, na);
+    if (c < best->cost) *best = Candidate{plane, source, nb, na, c};
+  }
+
+  // The candidates along a fixed direction: positions at the primitives' extents (all, or an even sample).
+  void direction_candidates(const ConvexCell& cell, double area, const Direction& dir,
+                            const std::vector<uint32_t>& prims, Candidate* best) {
+    const glm::dvec3 n(dir.normal);
+    const size_t N = prims.size();
+    lo_.resize(N);
+    hi_.resize(N);
+    for (size_t i = 0; i < N; ++i) project(prims[i], n, 0.0, &lo_[i], &hi_[i]);
+    double clo, chi;
+    cell.extent(n, &clo, &chi);
+    const size_t K = size_t(options_.candidates);
+    pos_.clear();
+    auto add = [&](double s) {
+      float f = float(s);  // the plane's offset is a float: weigh the plane that would be stored
+      if (double(f) > clo && double(f) < chi) pos_.push_back(f);
+    };
+    if (2 * N <= K) {
+      for (size_t i = 0; i < N; ++i) {
+        add(lo_[i]);
+        add(hi_[i]);
+      }
+    } else {
+      const size_t half = std::max<size_t>(1, K / 2);
+      for (size_t j = 0; j < half; ++j) {
+        size_t i = (2 * j + 1) * N / (2 * half);
+        add(lo_[i]);
+        add(hi_[i]);
+      }
+    }
+    std::sort(pos_.begin(), pos_.end());
+    pos_.erase(std::unique(pos_.begin(), pos_.end()), pos_.end());
+    const size_t P = pos_.size();
+    if (P == 0) return;
+    // Counts at every position by histograms: below where some point is below (lo < s), above where some
+    // point is above (hi > s); planar ones (lo = hi = s) below.
+    hist_below_.assign(P + 1, 0);
+    hist_above_.assign(P + 1, 0);
+    planar_.assign(P, 0);
+    for (size_t i = 0; i < N; ++i) {
+      size_t jb = size_t(std::upper_bound(pos_.begin(), pos_.end(), lo_[i]) - pos_.begin());
+      ++hist_below_[jb];
+      size_t ja = size_t(std::lower_bound(pos_.begin(), pos_.end(), hi_[i]) - pos_.begin());
+      ++hist_above_[ja];
+      if (lo_[i] == hi_[i] && ja < P && pos_[ja] == hi_[i]) ++planar_[ja];
+    }
+    uint32_t below = 0, above = uint32_t(N);
+    for (size_t k = 0; k < P; ++k) {
+      below += hist_below_[k];
+      above -= hist_above_[k];
+      offer(cell, area, BspPlane{dir.normal, float(pos_[k])}, dir.source, below + planar_[k], above, best);
+    }
+  }
+
+  // The primitives' own planes: an even sample of the node's triangles.
+  void primitive_candidates(const ConvexCell& cell, double area, const std::vector<uint32_t>& prims,
+                            Candidate* best) {
+    const size_t N = prims.size();
+    // Beside the 13 directions a quarter as many primitive planes: the SAH, greedy, takes the planes through
+    // single triangles too eagerly and builds worse trees with more (bench/README.md, issue 16).
+    const int planes = options_.directions == BspDirections::autopartition
+                           ? options_.candidates
+                           : std::max(1, options_.candidates / 4);
+    const size_t K = std::min(N, size_t(planes));
+    for (size_t j = 0; j < K; ++j) {
+      uint32_t src = prims[(2 * j + 1) * N / (2 * K)];
+      if (geometry_.type(src) != PrimType::triangle) continue;
+      glm::dvec3 p0(geometry_.vertex(src, 0)), p1(geometry_.vertex(src, 1)), p2(geometry_.vertex(src, 2));
+      glm::dvec3 nd = glm::cross(p1 - p0, p2 - p0);
+      double len = glm::length(nd);
+      if (!(len > 0.0) || !std::isfinite(len)) continue;  // a degenerate triangle has no plane
+      BspPlane plane;
+      plane.normal = glm::vec3(nd / len);
+      plane.offset = float(glm::dot(glm::dvec3(plane.normal), (p0 + p1 + p2) / 3.0));
+      const glm::dvec3 n(plane.normal);
+      double clo, chi;
+      cell.extent(n, &clo, &chi);
+      if (!(double(plane.offset) > clo && double(plane.offset) < chi)) continue;
+      uint32_t nb = 0, na = 0;
+      for (uint32_t prim : prims) {
+        double lo, hi;
+        project(prim, n, double(plane.offset), &lo, &hi);
+        bool above = hi > 0.0;
+        nb += lo < 0.0 || !above;
+        na += above;
+      }
+      offer(cell, area, plane, BspPlaneSource::primitive, nb, na, best);
+    }
+  }
+
+  uint32_t add_node(const ConvexCell& cell, double area, int32_t parent, int32_t depth) {
+    if (tree_.nodes.size() >= BspNode::kInner - 1) fail("too many nodes");
+    tree_.nodes.push_back(BspNode{});
+    BspNodeInfo info;
+    info.box = cell.bounds();
+    info.area = float(area);
+    info.parent = parent;
+    info.depth = depth;
+    tree_.info.push_back(info);
+    return uint32_t(tree_.nodes.size() - 1);
+  }
+
+  void make_leaf(uint32_t node, std::vector<uint32_t>& prims) {
+    std::sort(prims.begin(), prims.end());
+    BspNode& n = tree_.nodes[node];
+    n.child_or_first = uint32_t(tree_.prim_index.size());
+    n.count = uint32_t(prims.size());
+    tree_.prim_index.insert(tree_.prim_index.end(), prims.begin(), prims.end());
+    tree_.info[node].cost = options_.t_i * float(prims.size());
+  }
+
+  void build_node(const ConvexCell& cell, int32_t parent, int32_t depth, size_t budget,
+                  std::vector<uint32_t> prims) {
+    const double area = cell.area();
+    const uint32_t node = add_node(cell, area, parent, depth);
+    const uint32_t N = uint32_t(prims.size());
+    const double leaf_cost = double(options_.t_i) * N;
+    if (N <= uint32_t(options_.leaf_size) || depth >= max_depth_ || !(area > 0.0))
+      return make_leaf(node, prims);
+
+    Candidate best;
+    best.cost = leaf_cost;  // a split must be strictly cheaper than the leaf
+    for (const Direction& dir : directions_) direction_candidates(cell, area, dir, prims, &best);
+    if (options_.directions != BspDirections::kdop) primitive_candidates(cell, area, prims, &best);
+    if (!(best.cost < leaf_cost)) return make_leaf(node, prims);
+
+    // The chosen plane classifies every primitive exactly (bsp_build.h): no point of one may be lost.
+    std::vector<uint32_t> below, above;
+    for (uint32_t prim : prims) {
+      bool b = false, a = false;
+      for (uint32_t k = point_start_[prim]; k < point_start_[prim + 1] && !(a && b); ++k) {
+        int s = bsp_plane_side(best.plane, points_[k]);
+        b |= s < 0;
+        a |= s > 0;
+      }
+      if (b || !a) below.push_back(prim);
+      if (a) above.push_back(prim);
+    }
+    if ((below.size() == N && above.size() == N) || below.size() + above.size() > budget)
+      return make_leaf(node, prims);
+
+    tree_.info[node].cost = float(best.cost);
+    tree_.info[node].source = best.source;
+    tree_.nodes[node].plane = best.plane;
+    ConvexCell cell_below, cell_above;
+    cell.split(glm::dvec3(best.plane.normal), double(best.plane.offset), &cell_below, &cell_above);
+    prims.clear();
+    prims.shrink_to_fit();
+    // The budget shared as the kd-tree shares it (kdtree_build_common.h, build_children).
+    const uint32_t nb = uint32_t(below.size()), na = uint32_t(above.size());
+    const size_t refs_before = tree_.prim_index.size();
+    build_node(cell_below, int32_t(node), depth + 1, size_t(uint64_t(budget) * nb / (uint64_t(nb) + na)),
+               std::move(below));
+    const size_t used_below = tree_.prim_index.size() - refs_before;
+    tree_.nodes[node].child_or_first = uint32_t(tree_.nodes.size());
+    build_node(cell_above, int32_t(node), depth + 1, budget - used_below, std::move(above));
+  }
+
+  const Geometry& geometry_;
+  BspOptions options_;
+  int max_depth_ = 0;
+  size_t budget_ = 0;
+  std::vector<Direction> directions_;
+  std::vector<glm::vec3> points_;
+  std::vector<uint32_t> point_start_;
+  BspTreeData tree_;
+  // Scratch arrays of the candidate search, reused from node to node.
+  std::vector<double> lo_, hi_, pos_;
+  std::vector<uint32_t> hist_below_, hist_above_, planar_;
+};
+
+}  // namespace
+
+BspTreeData build_bsp(const Geometry& geometry, const BspOptions& options) {
+  validate(geometry, options);
+  return Builder(geometry, options).build();
+}
+
+BspTreeStats bsp_tree_stats(const BspTreeData& tree, const BspOptions& options) {
+  BspTreeStats s;
+  s.nodes = tree.nodes.size();
+  s.references = tree.prim_index.size();
+  const double root_area = tree.info.empty() ? 0.0 : double(tree.info[0].area);
+  for (size_t i = 0; i < tree.nodes.size(); ++i) {
+    const BspNode& node = tree.nodes[i];
+    const BspNodeInfo& info = tree.info[i];
+    s.max_depth = std::max(s.max_depth, int(info.depth));
+    double p = root_area > 0.0 ? double(info.area) / root_area : 1.0;
+    if (node.is_leaf()) {
+      ++s.leaves;
+      if (node.prim_count() == 0) ++s.empty_leaves;
+      s.max_leaf_prims = std::max<size_t>(s.max_leaf_prims, node.prim_count());
+      s.sah_cost += p * double(options.t_i) * double(node.prim_count());
+    } else {
+      ++s.inner_by_source[int(info.source)];
+      s.sah_cost += p * double(options.t_t);
+    }
+  }
+  return s;
+}
+
+}  // namespace raystep
