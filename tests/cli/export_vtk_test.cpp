@@ -3,6 +3,7 @@
 // trace files `raystep trace` writes (rays, the cells and nodes each ray's events name, their order and
 // intervals), the arrays docs/vtk-export.md names; bad input exits 2 with one line and writes nothing.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -19,6 +20,7 @@
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
@@ -27,8 +29,10 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include "cli_test_util.h"
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/scene/scene_loader.h"
@@ -448,6 +452,272 @@ TEST_F(ExportVtkTest, WideBvhCutByDepth) {
   EXPECT_EQ(top_depth.size(), upto_d);
   EXPECT_LE(upto_d, max_cells);
   EXPECT_GT(upto_d1, max_cells);
+}
+
+// The octree's cells: every node's cube with its depth, leaf flag, children and primitives (an inner node's:
+// those it was split with, which are its leaves' union); a pixel's walk as `raystep trace` records it; the
+// trace alone gives its named nodes with their children; --max-cells keeps whole levels.
+TEST_F(ExportVtkTest, OctreeCellsAndWalks) {
+  const std::string sc = scene("cornell.json");
+  const Scene s = load_scene(sc);
+  auto octree = built("octree", s.geometry);
+  const OctreeData& data = dynamic_cast<const Octree&>(*octree).data();
+  ASSERT_GT(data.nodes.size(), 9u);
+
+  Outcome r = run("export-vtk " + sc + " --accel octree --size 32x24 --pixel 16,12 -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  Outcome tr = run("trace " + sc + " --accel octree --size 32x24 --pixel 16,12 -o " + path("t.json"));
+  ASSERT_EQ(tr.code, 0) << tr.err;
+  const Trace trace = read_trace_json(path("t.json"));
+  auto mb = read_vtm(path("out"));
+  ASSERT_NE(mb, nullptr);
+  EXPECT_EQ(block_names(mb), (std::vector<std::string>{"geometry", "structure", "ray 0"}));
+  expect_pieces_readable(path("out"), mb);
+
+  auto* structure = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
+  ASSERT_NE(structure, nullptr);
+  ASSERT_EQ(size_t(structure->GetNumberOfCells()), data.nodes.size());
+  const std::vector<double> node = cell_values(structure, "node"), parent = cell_values(structure, "parent"),
+                            depth = cell_values(structure, "depth"), leaf = cell_values(structure, "leaf"),
+                            prims = cell_values(structure, "primitives"),
+                            children = cell_values(structure, "children"),
+                            reason = cell_values(structure, "leaf_reason");
+  std::function<std::set<uint32_t>(size_t)> below = [&](size_t id) {
+    const OctreeNode& n = data.nodes[id];
+    if (n.is_leaf())
+      return std::set<uint32_t>(data.prim_index.begin() + n.first,
+                                data.prim_index.begin() + n.first + n.prim_count());
+    std::set<uint32_t> all;
+    for (int c = 0; c < 8; ++c) {
+      const std::set<uint32_t> part = below(n.child(c));
+      all.insert(part.begin(), part.end());
+    }
+    return all;
+  };
+  for (size_t i = 0; i < data.nodes.size(); ++i) {
+    const OctreeNode& n = data.nodes[i];
+    EXPECT_EQ(node[i], double(i));
+    EXPECT_EQ(parent[i], data.info[i].parent);
+    EXPECT_EQ(depth[i], data.info[i].depth);
+    EXPECT_EQ(leaf[i], double(n.is_leaf()));
+    EXPECT_EQ(children[i], n.is_leaf() ? 0.0 : 8.0);
+    EXPECT_EQ(reason[i], n.is_leaf() ? double(int(data.info[i].reason)) : -1.0);
+    EXPECT_EQ(prims[i], double(below(i).size())) << i;
+    double b[6];
+    structure->GetCell(vtkIdType(i))->GetBounds(b);
+    EXPECT_EQ(std::vector<double>(b, b + 6),
+              (std::vector<double>{data.info[i].box.lo.x, data.info[i].box.hi.x, data.info[i].box.lo.y,
+                                   data.info[i].box.hi.y, data.info[i].box.lo.z, data.info[i].box.hi.z}))
+        << i;
+  }
+  EXPECT_EQ(prims[0], double(s.geometry.size()));
+  expect_walk_matches(mb, trace, 0);
+
+  // The trace alone: its named nodes, each with its 8 (or no) children.
+  r = run("export-vtk " + sc + " --trace " + path("t.json") + " -o " + path("named"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto named = read_vtm(path("named"));
+  ASSERT_NE(named, nullptr);
+  auto* nodes = vtkUnstructuredGrid::SafeDownCast(block(named, "structure"));
+  ASSERT_NE(nodes, nullptr);
+  ASSERT_EQ(size_t(nodes->GetNumberOfCells()), trace.nodes.size());
+  const std::vector<double> named_children = cell_values(nodes, "children");
+  for (size_t i = 0; i < trace.nodes.size(); ++i)
+    EXPECT_EQ(named_children[i], trace.nodes[i].leaf ? 0.0 : 8.0) << trace.nodes[i].id;
+  expect_walk_matches(named, trace, 0);
+
+  // A bound below the node count: the levels 0..d that fit.
+  const size_t max_cells = data.nodes.size() - 1;
+  r = run("export-vtk " + sc + " --accel octree --max-cells " + std::to_string(max_cells) + " -o " +
+          path("cut"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto cut = read_vtm(path("cut"));
+  ASSERT_NE(cut, nullptr);
+  auto* top = vtkUnstructuredGrid::SafeDownCast(block(cut, "structure"));
+  ASSERT_NE(top, nullptr);
+  const std::vector<double> top_depth = cell_values(top, "depth");
+  ASSERT_FALSE(top_depth.empty());
+  const double d = *std::max_element(top_depth.begin(), top_depth.end());
+  EXPECT_EQ(top_depth.size(),
+            size_t(std::count_if(depth.begin(), depth.end(), [&](double x) { return x <= d; })));
+  EXPECT_LE(top_depth.size(), max_cells);
+}
+
+// A polyhedron cell's volume from its faces (divergence theorem, faces as fans): positive when every face
+// runs counter-clockwise seen from outside.
+double polyhedron_volume(vtkCell* cell) {
+  double v = 0.0;
+  for (int f = 0; f < cell->GetNumberOfFaces(); ++f) {
+    vtkCell* face = cell->GetFace(f);
+    vtkPoints* p = face->GetPoints();
+    double a[3], b[3], c[3];
+    p->GetPoint(0, a);
+    for (vtkIdType k = 1; k + 1 < p->GetNumberOfPoints(); ++k) {
+      p->GetPoint(k, b);
+      p->GetPoint(k + 1, c);
+      v += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+            a[2] * (b[0] * c[1] - b[1] * c[0])) /
+           6.0;
+    }
+  }
+  return v;
+}
+
+// The BSP tree's cells: every node's convex cell as a VTK polyhedron inside (and up to rounding equal to)
+// the box the builder records, the leaves tiling the root box (volumes), each inner node's plane as cell
+// data and its polygon in the "planes" block on that plane; a pixel's walk as `raystep trace` records it;
+// the trace alone gives its named nodes as cells rebuilt from the planes it carries.
+TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
+  const std::string sc = scene("rotated_box.json");
+  const Scene s = load_scene(sc);
+  auto bsp = built("bsp", s.geometry);
+  const BspTreeData& data = dynamic_cast<const BspTree&>(*bsp).data();
+  size_t inner = 0;
+  for (const BspNode& n : data.nodes) inner += !n.is_leaf();
+  ASSERT_GT(inner, 3u);
+
+  Outcome r = run("export-vtk " + sc + " --accel bsp --size 32x24 --pixel 16,12 -o " + path("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  Outcome tr = run("trace " + sc + " --accel bsp --size 32x24 --pixel 16,12 -o " + path("t.json"));
+  ASSERT_EQ(tr.code, 0) << tr.err;
+  const Trace trace = read_trace_json(path("t.json"));
+  auto mb = read_vtm(path("out"));
+  ASSERT_NE(mb, nullptr);
+  EXPECT_EQ(block_names(mb), (std::vector<std::string>{"geometry", "structure", "planes", "ray 0"}));
+  expect_pieces_readable(path("out"), mb);
+
+  const Bounds3& root = data.bounds;
+  const double scale = glm::length(root.extent());
+  auto* structure = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
+  ASSERT_NE(structure, nullptr);
+  ASSERT_EQ(size_t(structure->GetNumberOfCells()), data.nodes.size());
+  const std::vector<double> node = cell_values(structure, "node"), depth = cell_values(structure, "depth"),
+                            leaf = cell_values(structure, "leaf"),
+                            prims = cell_values(structure, "primitives"),
+                            nx = cell_values(structure, "normal_x"), ny = cell_values(structure, "normal_y"),
+                            nz = cell_values(structure, "normal_z"),
+                            offset = cell_values(structure, "offset");
+  cell_values(structure, "parent");
+  cell_values(structure, "cost");
+  cell_values(structure, "area");
+  cell_values(structure, "plane_source");
+  double leaf_volume = 0.0;
+  for (size_t i = 0; i < data.nodes.size(); ++i) {
+    ASSERT_EQ(node[i], double(i));  // preorder, as the tree's ids
+    const BspNode& n = data.nodes[i];
+    const Bounds3& box = data.info[i].box;
+    EXPECT_EQ(depth[i], data.info[i].depth);
+    EXPECT_EQ(leaf[i], double(n.is_leaf()));
+    if (n.is_leaf()) {
+      EXPECT_EQ(prims[i], double(n.prim_count()));
+      EXPECT_TRUE(std::isnan(nx[i]) && std::isnan(offset[i]));
+    } else {
+      EXPECT_EQ(float(nx[i]), n.plane.normal.x);
+      EXPECT_EQ(float(ny[i]), n.plane.normal.y);
+      EXPECT_EQ(float(nz[i]), n.plane.normal.z);
+      EXPECT_EQ(float(offset[i]), n.plane.offset);
+    }
+    vtkCell* cell = structure->GetCell(vtkIdType(i));
+    ASSERT_EQ(cell->GetCellType(), VTK_POLYHEDRON);
+    double b[6];
+    cell->GetBounds(b);
+    // Rounded to nearest inside the builder's box, rounded outward: within it, and the same up to rounding.
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(b[2 * a], box.lo[a]) << i;
+      EXPECT_LE(b[2 * a + 1], box.hi[a]) << i;
+      EXPECT_NEAR(b[2 * a], box.lo[a], 1e-5 * scale) << i;
+      EXPECT_NEAR(b[2 * a + 1], box.hi[a], 1e-5 * scale) << i;
+    }
+    const double volume = polyhedron_volume(cell);
+    EXPECT_GE(volume, 0.0) << i;
+    if (n.is_leaf()) leaf_volume += volume;
+  }
+  const glm::vec3 e = root.extent();
+  EXPECT_NEAR(leaf_volume, double(e.x) * e.y * e.z, 1e-6 * double(e.x) * e.y * e.z);
+  EXPECT_NEAR(polyhedron_volume(structure->GetCell(0)), double(e.x) * e.y * e.z,
+              1e-9 * double(e.x) * e.y * e.z);
+
+  // The planes: one polygon per inner node, on its plane, inside its cell's box.
+  auto* planes = vtkPolyData::SafeDownCast(block(mb, "planes"));
+  ASSERT_NE(planes, nullptr);
+  ASSERT_EQ(size_t(planes->GetNumberOfCells()), inner);
+  const std::vector<double> plane_node = cell_values(planes, "node");
+  cell_values(planes, "depth");
+  for (vtkIdType c = 0; c < planes->GetNumberOfCells(); ++c) {
+    const size_t id = size_t(plane_node[size_t(c)]);
+    ASSERT_LT(id, data.nodes.size());
+    ASSERT_FALSE(data.nodes[id].is_leaf());
+    const BspPlane& plane = data.nodes[id].plane;
+    vtkPoints* p = planes->GetCell(c)->GetPoints();
+    EXPECT_GE(p->GetNumberOfPoints(), 3);
+    for (vtkIdType k = 0; k < p->GetNumberOfPoints(); ++k) {
+      double x[3];
+      p->GetPoint(k, x);
+      EXPECT_NEAR(plane.normal.x * x[0] + plane.normal.y * x[1] + plane.normal.z * x[2], plane.offset,
+                  1e-5 * scale);
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_GE(x[a], data.info[id].box.lo[a] - 1e-5 * scale);
+        EXPECT_LE(x[a], data.info[id].box.hi[a] + 1e-5 * scale);
+      }
+    }
+  }
+  expect_walk_matches(mb, trace, 0);
+  auto* visited = vtkUnstructuredGrid::SafeDownCast(
+      block(vtkMultiBlockDataSet::SafeDownCast(block(mb, "ray 0")), "visited"));
+  ASSERT_NE(visited, nullptr);
+  ASSERT_GT(visited->GetNumberOfCells(), 0);
+  EXPECT_EQ(visited->GetCellType(0), VTK_POLYHEDRON);
+
+  // The trace alone: the named nodes' cells, rebuilt from the root box and the planes the trace carries,
+  // bound the boxes the trace records for them; each named inner node's polygon.
+  r = run("export-vtk " + sc + " --trace " + path("t.json") + " -o " + path("named"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto named = read_vtm(path("named"));
+  ASSERT_NE(named, nullptr);
+  expect_pieces_readable(path("named"), named);
+  auto* nodes = vtkUnstructuredGrid::SafeDownCast(block(named, "structure"));
+  ASSERT_NE(nodes, nullptr);
+  ASSERT_EQ(size_t(nodes->GetNumberOfCells()), trace.nodes.size());
+  const std::vector<double> named_offset = cell_values(nodes, "offset");
+  size_t named_inner = 0;
+  for (size_t i = 0; i < trace.nodes.size(); ++i) {
+    const TraceNode& tn = trace.nodes[i];
+    named_inner += tn.has_plane;
+    if (tn.has_plane) EXPECT_EQ(float(named_offset[i]), tn.offset);
+    ASSERT_EQ(nodes->GetCellType(vtkIdType(i)), VTK_POLYHEDRON);
+    double b[6];
+    nodes->GetCell(vtkIdType(i))->GetBounds(b);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(b[2 * a], tn.box.lo[a], 1e-5 * scale) << tn.id;
+      EXPECT_NEAR(b[2 * a + 1], tn.box.hi[a], 1e-5 * scale) << tn.id;
+    }
+  }
+  ASSERT_GT(named_inner, 0u);
+  auto* named_planes = vtkPolyData::SafeDownCast(block(named, "planes"));
+  ASSERT_NE(named_planes, nullptr);
+  EXPECT_EQ(size_t(named_planes->GetNumberOfCells()), named_inner);
+  expect_walk_matches(named, trace, 0);
+
+  // A bound below the node count: whole levels, and the planes of the inner nodes written.
+  const size_t max_cells = data.nodes.size() / 2;
+  r = run("export-vtk " + sc + " --accel bsp --max-cells " + std::to_string(max_cells) + " -o " +
+          path("cut"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("nodes of depth 0.."), std::string::npos) << r.out;
+  auto cut = read_vtm(path("cut"));
+  ASSERT_NE(cut, nullptr);
+  auto* top = vtkUnstructuredGrid::SafeDownCast(block(cut, "structure"));
+  ASSERT_NE(top, nullptr);
+  const std::vector<double> top_depth = cell_values(top, "depth"), top_leaf = cell_values(top, "leaf");
+  ASSERT_FALSE(top_depth.empty());
+  const double d = *std::max_element(top_depth.begin(), top_depth.end());
+  EXPECT_EQ(top_depth.size(),
+            size_t(std::count_if(depth.begin(), depth.end(), [&](double x) { return x <= d; })));
+  EXPECT_LE(top_depth.size(), max_cells);
+  auto* top_planes = vtkPolyData::SafeDownCast(block(cut, "planes"));
+  ASSERT_NE(top_planes, nullptr);
+  EXPECT_EQ(size_t(top_planes->GetNumberOfCells()),
+            size_t(std::count(top_leaf.begin(), top_leaf.end(), 0.0)));
 }
 
 TEST_F(ExportVtkTest, BadInputExitsTwoWithOneLine) {

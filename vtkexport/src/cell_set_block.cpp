@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkFloatArray.h>
@@ -67,6 +68,28 @@ vtkSmartPointer<vtkUnstructuredGrid> cell_set_grid(const CellSet& cells) {
     grid->GetCellData()->AddArray(array);
   }
   return grid;
+}
+
+vtkSmartPointer<vtkPolyData> plane_polydata(const std::vector<PlanePolygon>& planes) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToFloat();
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  auto node = vtkSmartPointer<vtkIntArray>::New(), depth = vtkSmartPointer<vtkIntArray>::New();
+  node->SetName("node");
+  depth->SetName("depth");
+  for (const PlanePolygon& p : planes) {
+    if (p.corners.size() < 3) continue;
+    polys->InsertNextCell(vtkIdType(p.corners.size()));
+    for (const glm::vec3& c : p.corners) polys->InsertCellPoint(points->InsertNextPoint(c.x, c.y, c.z));
+    node->InsertNextValue(p.node);
+    depth->InsertNextValue(p.depth);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(polys);
+  poly->GetCellData()->AddArray(node);
+  poly->GetCellData()->AddArray(depth);
+  return poly;
 }
 
 }  // namespace raystep::vtk_export

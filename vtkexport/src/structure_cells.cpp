@@ -7,10 +7,14 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <unordered_map>
 
+#include "bsp_cells.h"
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/util/error.h"
 
@@ -215,6 +219,113 @@ bool describe_wide_bvh(const Accelerator& accel, size_t max_cells, StructureCell
   return true;
 }
 
+// ---- octree: every node's cubic cell; an inner node has 8 children, a leaf says why it was not split ----
+
+bool describe_octree(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* octree = dynamic_cast<const Octree*>(&accel);
+  if (!octree || !out) return octree != nullptr;
+  const OctreeData& t = octree->data();
+  const size_t n = t.nodes.size();
+  out->total = n;
+  std::vector<int> depths(n);
+  for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
+  const int cut = depth_cut(depths, max_cells);
+  CellSet& cs = out->cells;
+  for (size_t id = 0; id < n; ++id) {
+    if (depths[id] > cut) continue;
+    const OctreeNode& node = t.nodes[id];
+    const OctreeNodeInfo& info = t.info[id];
+    cs.add_box(info.box);
+    cs.set("node", double(id), true);
+    cs.set("parent", info.parent, true);
+    cs.set("depth", info.depth, true);
+    cs.set("leaf", node.is_leaf(), true);
+    // The primitives overlapping the cell (for an inner node, those it was split with: its leaves' union).
+    cs.set("primitives", node.is_leaf() ? node.prim_count() : info.prims, true);
+    cs.set("children", node.is_leaf() ? 0 : 8, true);
+    cs.set("leaf_reason", node.is_leaf() ? int(info.reason) : -1, true);
+  }
+  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  return true;
+}
+
+// ---- general BSP tree: every node's convex cell (a VTK polyhedron), its plane, and that plane's polygon
+// ----
+
+bool describe_bsp(const Accelerator& accel, size_t max_cells, StructureCells* out) {
+  auto* bsp = dynamic_cast<const BspTree*>(&accel);
+  if (!bsp || !out) return bsp != nullptr;
+  const BspTreeData& t = bsp->data();
+  const size_t n = t.nodes.size();
+  out->total = n;
+  // Primitive counts as for the kd-tree: an inner node's are the distinct primitives of its leaves.
+  std::vector<uint32_t> prims(n, 0);
+  {
+    std::vector<std::vector<uint32_t>> sets(n);
+    for (size_t id = n; id-- > 0;) {
+      const BspNode& node = t.nodes[id];
+      if (node.is_leaf()) {
+        sets[id].assign(t.prim_index.begin() + node.first_prim(),
+                        t.prim_index.begin() + node.first_prim() + node.prim_count());
+      } else {
+        std::vector<uint32_t>& below = sets[id + 1];
+        std::vector<uint32_t>& above = sets[node.above_child()];
+        std::set_union(below.begin(), below.end(), above.begin(), above.end(), std::back_inserter(sets[id]));
+        std::vector<uint32_t>().swap(below);
+        std::vector<uint32_t>().swap(above);
+      }
+      prims[id] = uint32_t(sets[id].size());
+    }
+  }
+  std::vector<int> depths(n);
+  for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
+  const int cut = depth_cut(depths, max_cells);
+  CellSet& cs = out->cells;
+  if (n == 0 || cut < 0) {
+    out->note = depth_note(cut, depths, 0, max_cells);
+    return true;
+  }
+  // The cells are not stored: each is its parent's cut by the parent's plane, made walking the preorder with
+  // a stack (the child below first), so that only the pending cells of one path are held at a time.
+  struct Pending {
+    uint32_t id;
+    raystep::ConvexCell cell;
+  };
+  std::vector<Pending> stack;
+  stack.push_back({0, raystep::ConvexCell::box(t.bounds)});
+  while (!stack.empty()) {
+    Pending p = std::move(stack.back());
+    stack.pop_back();
+    const BspNode& node = t.nodes[p.id];
+    const BspNodeInfo& info = t.info[p.id];
+    cs.add_polytope(export_polytope(p.cell));
+    cs.set("node", double(p.id), true);
+    cs.set("parent", info.parent, true);
+    cs.set("depth", info.depth, true);
+    cs.set("leaf", node.is_leaf(), true);
+    cs.set("primitives", prims[p.id], true);
+    cs.set("cost", info.cost, false);
+    cs.set("area", info.area, false);
+    const bool inner = !node.is_leaf();
+    cs.set("plane_source", inner ? int(info.source) : -1, true);
+    cs.set("normal_x", inner ? double(node.plane.normal.x) : kUnknown, false);
+    cs.set("normal_y", inner ? double(node.plane.normal.y) : kUnknown, false);
+    cs.set("normal_z", inner ? double(node.plane.normal.z) : kUnknown, false);
+    cs.set("offset", inner ? double(node.plane.offset) : kUnknown, false);
+    if (!inner) continue;
+    const glm::dvec3 normal(node.plane.normal);
+    raystep::ConvexCell below, above;
+    p.cell.split(normal, double(node.plane.offset), &below, &above);
+    out->planes.push_back(
+        PlanePolygon{plane_polygon(below, normal, double(node.plane.offset)), int32_t(p.id), info.depth});
+    if (info.depth >= cut) continue;
+    stack.push_back({node.above_child(), std::move(above)});
+    stack.push_back({p.id + 1, std::move(below)});
+  }
+  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  return true;
+}
+
 // describe(accel, max_cells, out): false if accel is not this row's structure; with out null, only that test.
 struct StructureRow {
   const char* names;
@@ -225,6 +336,8 @@ const StructureRow kStructures[] = {
     {"kd, kd-median", describe_kdtree},
     {"bvh, bvh-sweep, bvh-median", describe_bvh},
     {"bvh4, bvh8", describe_wide_bvh},
+    {"octree", describe_octree},
+    {"bsp", describe_bsp},
 };
 
 }  // namespace
@@ -264,17 +377,41 @@ StructureCells trace_structure_cells(const Trace& trace) {
     cs.set("j", c.cell[1], true);
     cs.set("k", c.cell[2], true);
   }
-  // The BVHs' nodes carry their children, the kd-tree's their split plane (TraceNode in trace_file.h).
+  // The BVHs' and the octree's nodes carry their children, the kd-tree's their split plane, the BSP tree's
+  // their plane of any direction (TraceNode in trace_file.h). A BSP node is drawn as its convex cell, rebuilt
+  // from the root box and its ancestors' planes.
   const bool kd = trace.structure.kind.rfind("kd", 0) == 0;
+  const bool bsp = trace.structure.kind == "bsp";
+  const std::unordered_map<int32_t, raystep::ConvexCell> bsp_cells =
+      bsp ? bsp_trace_cells(trace) : std::unordered_map<int32_t, raystep::ConvexCell>{};
   for (const TraceNode& node : trace.nodes) {
-    cs.add_box(node.box);
+    if (bsp)
+      cs.add_polytope(export_polytope(bsp_cells.at(node.id)));
+    else
+      cs.add_box(node.box);
     cs.set("node", node.id, true);
     cs.set("parent", node.parent, true);
     cs.set("depth", node.depth, true);
     cs.set("leaf", node.leaf, true);
     if (node.leaf) cs.set("primitives", double(node.prims.size()), true);
+    if (bsp) {
+      const bool plane = !node.leaf && node.has_plane;
+      cs.set("normal_x", plane ? double(node.normal.x) : kUnknown, false);
+      cs.set("normal_y", plane ? double(node.normal.y) : kUnknown, false);
+      cs.set("normal_z", plane ? double(node.normal.z) : kUnknown, false);
+      cs.set("offset", plane ? double(node.offset) : kUnknown, false);
+      if (plane) {
+        raystep::ConvexCell below, above;
+        const glm::dvec3 normal(node.normal);
+        bsp_cells.at(node.id).split(normal, double(node.offset), &below, &above);
+        out.planes.push_back(
+            PlanePolygon{plane_polygon(below, normal, double(node.offset)), node.id, node.depth});
+      }
+      continue;
+    }
     cs.set("split_axis", node.leaf ? -1 : node.axis, true);
     if (kd) cs.set("split_position", node.leaf ? kUnknown : double(node.split), false);
+    if (!kd) cs.set("children", double(node.children.size()), true);
   }
   cs.finish();
   out.total = cs.size();

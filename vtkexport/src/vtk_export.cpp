@@ -62,6 +62,10 @@ ExportSummary write_vtk_export(const std::string& dir, const ExportInput& input)
     if (!input.structure->note.empty()) add_text(structure, "note", input.structure->note);
     add_block(root, "structure", structure);
     summary.blocks.push_back("structure");
+    if (!input.structure->planes.empty()) {
+      add_block(root, "planes", plane_polydata(input.structure->planes));
+      summary.blocks.push_back("planes");
+    }
   }
 
   if (input.trace) {

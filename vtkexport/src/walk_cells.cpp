@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bsp_cells.h"
 #include "raystep/geometry/bounds.h"
 #include "raystep/util/error.h"
 
@@ -84,6 +85,11 @@ RayWalk ray_walk(const Trace& trace, size_t ray_index, const std::string& trace_
   std::unordered_map<int32_t, size_t> prim_of;
   for (size_t i = 0; i < trace.primitives.size(); ++i) prim_of[trace.primitives[i].id] = i;
 
+  // A BSP tree's nodes are drawn as their convex cells (all of them: a CellSet is boxes or polytopes).
+  const bool bsp = trace.structure.kind == "bsp";
+  const std::unordered_map<int32_t, raystep::ConvexCell> bsp_cells =
+      bsp ? bsp_trace_cells(trace) : std::unordered_map<int32_t, raystep::ConvexCell>{};
+
   CellSet& cs = walk.visited;
   int step = 0;
   for (const Event& e : tr.events) {
@@ -118,7 +124,10 @@ RayWalk ray_walk(const Trace& trace, size_t ray_index, const std::string& trace_
                          "ray " + std::to_string(ray_index) + ", event " + std::to_string(e.seq) + ": node " +
                              std::to_string(e.node) + " is not among the trace's nodes");
       const TraceNode& node = trace.nodes[it->second];
-      cs.add_box(node.box);
+      if (bsp)
+        cs.add_polytope(export_polytope(bsp_cells.at(node.id)));
+      else
+        cs.add_box(node.box);
       cs.set("node", e.node, true);
       cs.set("depth", e.depth, true);
       cs.set("leaf", node.leaf, true);

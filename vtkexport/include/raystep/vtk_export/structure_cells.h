@@ -8,8 +8,11 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/trace/trace_file.h"
@@ -17,11 +20,19 @@
 
 namespace raystep::vtk_export {
 
+// A BSP node's splitting plane, clipped to the node's cell: the convex polygon the lecture draws.
+struct PlanePolygon {
+  std::vector<glm::vec3> corners;  // in order around the polygon; empty if the plane misses the cell
+  int32_t node = 0;
+  int32_t depth = 0;
+};
+
 struct StructureCells {
   std::string kind;  // the accelerator's name ("grid", "kd", "bvh8", ...)
   CellSet cells;
-  size_t total = 0;  // cells (or nodes) the structure has; cells.size() is at most max_cells
-  std::string note;  // what was written when not everything was, for the user ("" when all)
+  std::vector<PlanePolygon> planes;  // bsp: one per inner node written (the "planes" block)
+  size_t total = 0;                  // cells (or nodes) the structure has; cells.size() is at most max_cells
+  std::string note;                  // what was written when not everything was, for the user ("" when all)
 };
 
 // The default bound on the cells written for a structure: a two-million-triangle kd-tree has millions of
