@@ -141,6 +141,8 @@ int run_export_vtk(const ExportVtkArgs& a) {
   std::printf("structure: %s, %zu of %zu cells or nodes\n", structure.kind.c_str(), structure.cells.size(),
               structure.total);
   if (!structure.note.empty()) std::printf("  %s\n", structure.note.c_str());
+  if (!structure.planes.empty())
+    std::printf("planes: %zu splitting planes, each clipped to its node's cell\n", structure.planes.size());
   if (trace)
     for (size_t r = 0; r < trace->rays.size(); ++r) {
       const TracedRay& ray = trace->rays[r];

@@ -30,6 +30,7 @@
 
 #include "cli_test_util.h"
 #include "raystep/accel/bsp.h"
+#include "raystep/accel/bsp_cell.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
@@ -572,9 +573,14 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   const Scene s = load_scene(sc);
   auto bsp = built("bsp", s.geometry);
   const BspTreeData& data = dynamic_cast<const BspTree&>(*bsp).data();
-  size_t inner = 0;
-  for (const BspNode& n : data.nodes) inner += !n.is_leaf();
-  ASSERT_GT(inner, 3u);
+  // Nodes with a cell to draw, and inner nodes whose plane cuts their cell in two (a plane that only grazes
+  // its parent's cell, within the cell's rounding tolerance, leaves one child with an empty cell).
+  size_t cutting = 0;
+  for (size_t i = 0; i < data.nodes.size(); ++i) {
+    const BspNode& n = data.nodes[i];
+    cutting += !n.is_leaf() && !data.info[i + 1].box.empty() && !data.info[n.above_child()].box.empty();
+  }
+  ASSERT_GT(cutting, 3u);
 
   Outcome r = run("export-vtk " + sc + " --accel bsp --size 32x24 --pixel 16,12 -o " + path("out"));
   ASSERT_EQ(r.code, 0) << r.err;
@@ -590,7 +596,7 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   const double scale = glm::length(root.extent());
   auto* structure = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
   ASSERT_NE(structure, nullptr);
-  ASSERT_EQ(size_t(structure->GetNumberOfCells()), data.nodes.size());
+  const size_t drawn = size_t(structure->GetNumberOfCells());
   const std::vector<double> node = cell_values(structure, "node"), depth = cell_values(structure, "depth"),
                             leaf = cell_values(structure, "leaf"),
                             prims = cell_values(structure, "primitives"),
@@ -601,23 +607,57 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   cell_values(structure, "cost");
   cell_values(structure, "area");
   cell_values(structure, "plane_source");
+  // The nodes not drawn: an empty cell, or a sliver thinner than floats resolve.
+  const double sliver = 1e-5 * scale;
+  std::vector<bool> is_drawn(data.nodes.size(), false);
+  for (double id : node)
+    if (id >= 0 && size_t(id) < data.nodes.size()) is_drawn[size_t(id)] = true;
+  {
+    // Every cell rebuilt here (core's ConvexCell, as the builder cuts them): an undrawn one is empty, tiny,
+    // or a sliver whose mean width (volume / area) is below the bound.
+    std::vector<ConvexCell> cells(data.nodes.size());
+    cells[0] = ConvexCell::box(data.bounds);
+    for (size_t i = 0; i < data.nodes.size(); ++i) {
+      const BspNode& n = data.nodes[i];
+      if (!n.is_leaf())
+        cells[i].split(glm::dvec3(n.plane.normal), double(n.plane.offset), &cells[i + 1],
+                       &cells[n.above_child()]);
+      if (is_drawn[i] || cells[i].empty()) continue;
+      double volume = 0.0;
+      for (size_t f = 0; f < cells[i].face_count(); ++f) {
+        const glm::dvec3* v = cells[i].face(f);
+        for (size_t k = 1; k + 1 < cells[i].face_size(f); ++k)
+          volume += glm::dot(v[0], glm::cross(v[k], v[k + 1])) / 6.0;
+      }
+      const glm::vec3 e = cells[i].bounds().extent();
+      EXPECT_TRUE(volume <= sliver * cells[i].area() || std::max({e.x, e.y, e.z}) <= sliver)
+          << i << ": volume " << volume << ", area " << cells[i].area();
+    }
+  }
+  EXPECT_GT(drawn, data.nodes.size() * 9 / 10);
+  size_t both_drawn = 0;
+  for (size_t i = 0; i < data.nodes.size(); ++i)
+    both_drawn += !data.nodes[i].is_leaf() && is_drawn[i + 1] && is_drawn[data.nodes[i].above_child()];
   double leaf_volume = 0.0;
-  for (size_t i = 0; i < data.nodes.size(); ++i) {
-    ASSERT_EQ(node[i], double(i));  // preorder, as the tree's ids
+  for (size_t c = 0; c < drawn; ++c) {
+    const size_t i = size_t(node[c]);
+    if (c > 0) ASSERT_GT(node[c], node[c - 1]);  // preorder, as the tree's ids
+    ASSERT_LT(i, data.nodes.size());
     const BspNode& n = data.nodes[i];
     const Bounds3& box = data.info[i].box;
-    EXPECT_EQ(depth[i], data.info[i].depth);
-    EXPECT_EQ(leaf[i], double(n.is_leaf()));
+    ASSERT_FALSE(box.empty()) << i;
+    EXPECT_EQ(depth[c], data.info[i].depth);
+    EXPECT_EQ(leaf[c], double(n.is_leaf()));
     if (n.is_leaf()) {
-      EXPECT_EQ(prims[i], double(n.prim_count()));
-      EXPECT_TRUE(std::isnan(nx[i]) && std::isnan(offset[i]));
+      EXPECT_EQ(prims[c], double(n.prim_count()));
+      EXPECT_TRUE(std::isnan(nx[c]) && std::isnan(offset[c]));
     } else {
-      EXPECT_EQ(float(nx[i]), n.plane.normal.x);
-      EXPECT_EQ(float(ny[i]), n.plane.normal.y);
-      EXPECT_EQ(float(nz[i]), n.plane.normal.z);
-      EXPECT_EQ(float(offset[i]), n.plane.offset);
+      EXPECT_EQ(float(nx[c]), n.plane.normal.x);
+      EXPECT_EQ(float(ny[c]), n.plane.normal.y);
+      EXPECT_EQ(float(nz[c]), n.plane.normal.z);
+      EXPECT_EQ(float(offset[c]), n.plane.offset);
     }
-    vtkCell* cell = structure->GetCell(vtkIdType(i));
+    vtkCell* cell = structure->GetCell(vtkIdType(c));
     ASSERT_EQ(cell->GetCellType(), VTK_POLYHEDRON);
     double b[6];
     cell->GetBounds(b);
@@ -629,24 +669,29 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
       EXPECT_NEAR(b[2 * a + 1], box.hi[a], 1e-5 * scale) << i;
     }
     const double volume = polyhedron_volume(cell);
-    EXPECT_GE(volume, 0.0) << i;
+    const glm::dvec3 e = glm::dvec3(root.hi) - glm::dvec3(root.lo);
+    const double root_volume = e.x * e.y * e.z;
+    EXPECT_GE(volume, -1e-9 * root_volume) << i;
     if (n.is_leaf()) leaf_volume += volume;
   }
-  const glm::vec3 e = root.extent();
-  EXPECT_NEAR(leaf_volume, double(e.x) * e.y * e.z, 1e-6 * double(e.x) * e.y * e.z);
-  EXPECT_NEAR(polyhedron_volume(structure->GetCell(0)), double(e.x) * e.y * e.z,
-              1e-9 * double(e.x) * e.y * e.z);
+  const glm::dvec3 e = glm::dvec3(root.hi) - glm::dvec3(root.lo);
+  EXPECT_NEAR(leaf_volume, e.x * e.y * e.z, 1e-6 * e.x * e.y * e.z);
+  EXPECT_NEAR(polyhedron_volume(structure->GetCell(0)), e.x * e.y * e.z, 1e-12 * e.x * e.y * e.z);
 
   // The planes: one polygon per inner node, on its plane, inside its cell's box.
   auto* planes = vtkPolyData::SafeDownCast(block(mb, "planes"));
   ASSERT_NE(planes, nullptr);
-  ASSERT_EQ(size_t(planes->GetNumberOfCells()), inner);
+  size_t drawn_inner = 0;
+  for (size_t i = 0; i < data.nodes.size(); ++i) drawn_inner += is_drawn[i] && !data.nodes[i].is_leaf();
+  EXPECT_LE(size_t(planes->GetNumberOfCells()), drawn_inner);
+  EXPECT_GE(size_t(planes->GetNumberOfCells()), both_drawn);
   const std::vector<double> plane_node = cell_values(planes, "node");
   cell_values(planes, "depth");
   for (vtkIdType c = 0; c < planes->GetNumberOfCells(); ++c) {
     const size_t id = size_t(plane_node[size_t(c)]);
     ASSERT_LT(id, data.nodes.size());
     ASSERT_FALSE(data.nodes[id].is_leaf());
+    EXPECT_TRUE(is_drawn[id]) << id;
     const BspPlane& plane = data.nodes[id].plane;
     vtkPoints* p = planes->GetCell(c)->GetPoints();
     EXPECT_GE(p->GetNumberOfPoints(), 3);
@@ -677,11 +722,19 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   expect_pieces_readable(path("named"), named);
   auto* nodes = vtkUnstructuredGrid::SafeDownCast(block(named, "structure"));
   ASSERT_NE(nodes, nullptr);
-  ASSERT_EQ(size_t(nodes->GetNumberOfCells()), trace.nodes.size());
+  std::vector<const TraceNode*> named_drawn;
+  const std::vector<double> named_id = cell_values(nodes, "node");
+  for (const TraceNode& tn : trace.nodes)
+    if (std::find(named_id.begin(), named_id.end(), double(tn.id)) != named_id.end())
+      named_drawn.push_back(&tn);
+    else if (!tn.box.empty())
+      EXPECT_LE(std::min({tn.box.extent().x, tn.box.extent().y, tn.box.extent().z}), sliver) << tn.id;
+  ASSERT_EQ(size_t(nodes->GetNumberOfCells()), named_drawn.size());
+  ASSERT_GT(named_drawn.size(), 0u);
   const std::vector<double> named_offset = cell_values(nodes, "offset");
   size_t named_inner = 0;
-  for (size_t i = 0; i < trace.nodes.size(); ++i) {
-    const TraceNode& tn = trace.nodes[i];
+  for (size_t i = 0; i < named_drawn.size(); ++i) {
+    const TraceNode& tn = *named_drawn[i];
     named_inner += tn.has_plane;
     if (tn.has_plane) EXPECT_EQ(float(named_offset[i]), tn.offset);
     ASSERT_EQ(nodes->GetCellType(vtkIdType(i)), VTK_POLYHEDRON);
@@ -695,7 +748,8 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   ASSERT_GT(named_inner, 0u);
   auto* named_planes = vtkPolyData::SafeDownCast(block(named, "planes"));
   ASSERT_NE(named_planes, nullptr);
-  EXPECT_EQ(size_t(named_planes->GetNumberOfCells()), named_inner);
+  EXPECT_LE(size_t(named_planes->GetNumberOfCells()), named_inner);
+  EXPECT_GT(named_planes->GetNumberOfCells(), 0);
   expect_walk_matches(named, trace, 0);
 
   // A bound below the node count: whole levels, and the planes of the inner nodes written.
@@ -716,8 +770,9 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   EXPECT_LE(top_depth.size(), max_cells);
   auto* top_planes = vtkPolyData::SafeDownCast(block(cut, "planes"));
   ASSERT_NE(top_planes, nullptr);
-  EXPECT_EQ(size_t(top_planes->GetNumberOfCells()),
+  EXPECT_LE(size_t(top_planes->GetNumberOfCells()),
             size_t(std::count(top_leaf.begin(), top_leaf.end(), 0.0)));
+  EXPECT_GT(top_planes->GetNumberOfCells(), 0);
 }
 
 TEST_F(ExportVtkTest, BadInputExitsTwoWithOneLine) {

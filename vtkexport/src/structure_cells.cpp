@@ -293,12 +293,28 @@ bool describe_bsp(const Accelerator& accel, size_t max_cells, StructureCells* ou
   };
   std::vector<Pending> stack;
   stack.push_back({0, raystep::ConvexCell::box(t.bounds)});
+  size_t empty = 0, written = 0;
   while (!stack.empty()) {
     Pending p = std::move(stack.back());
     stack.pop_back();
     const BspNode& node = t.nodes[p.id];
     const BspNodeInfo& info = t.info[p.id];
-    cs.add_polytope(export_polytope(p.cell));
+    ++written;
+    vtk_export::ConvexCell polytope = export_polytope(p.cell);
+    if (polytope.faces.size() < 4) {
+      // A plane that only grazes its parent's cell (within the cell's rounding tolerance) leaves all of it
+      // on one side and nothing on the other, or a sliver too thin for floats: the builder keeps such a
+      // node, but there is nothing to draw. Its children are empty or slivers too.
+      ++empty;
+      if (!node.is_leaf() && info.depth < cut) {
+        raystep::ConvexCell below, above;
+        p.cell.split(glm::dvec3(node.plane.normal), double(node.plane.offset), &below, &above);
+        stack.push_back({node.above_child(), std::move(above)});
+        stack.push_back({p.id + 1, std::move(below)});
+      }
+      continue;
+    }
+    cs.add_polytope(std::move(polytope));
     cs.set("node", double(p.id), true);
     cs.set("parent", info.parent, true);
     cs.set("depth", info.depth, true);
@@ -316,13 +332,17 @@ bool describe_bsp(const Accelerator& accel, size_t max_cells, StructureCells* ou
     const glm::dvec3 normal(node.plane.normal);
     raystep::ConvexCell below, above;
     p.cell.split(normal, double(node.plane.offset), &below, &above);
-    out->planes.push_back(
-        PlanePolygon{plane_polygon(below, normal, double(node.plane.offset)), int32_t(p.id), info.depth});
+    PlanePolygon polygon{plane_polygon(below, normal, double(node.plane.offset)), int32_t(p.id), info.depth};
+    if (polygon.corners.size() >= 3) out->planes.push_back(std::move(polygon));
     if (info.depth >= cut) continue;
     stack.push_back({node.above_child(), std::move(above)});
     stack.push_back({p.id + 1, std::move(below)});
   }
-  out->note = depth_note(cut, depths, cs.size(), max_cells);
+  out->note = depth_note(cut, depths, written, max_cells);
+  if (empty > 0)
+    out->note += (out->note.empty() ? "" : "; ") + std::to_string(empty) +
+                 " nodes with an empty cell or one too thin for floats (a plane that only grazes its "
+                 "parent's cell) not drawn";
   return true;
 }
 
@@ -384,11 +404,18 @@ StructureCells trace_structure_cells(const Trace& trace) {
   const bool bsp = trace.structure.kind == "bsp";
   const std::unordered_map<int32_t, raystep::ConvexCell> bsp_cells =
       bsp ? bsp_trace_cells(trace) : std::unordered_map<int32_t, raystep::ConvexCell>{};
+  size_t empty = 0;
   for (const TraceNode& node : trace.nodes) {
-    if (bsp)
-      cs.add_polytope(export_polytope(bsp_cells.at(node.id)));
-    else
+    if (bsp) {
+      vtk_export::ConvexCell polytope = export_polytope(bsp_cells.at(node.id));
+      if (polytope.faces.size() < 4) {
+        ++empty;  // nothing to draw (see describe_bsp)
+        continue;
+      }
+      cs.add_polytope(std::move(polytope));
+    } else {
       cs.add_box(node.box);
+    }
     cs.set("node", node.id, true);
     cs.set("parent", node.parent, true);
     cs.set("depth", node.depth, true);
@@ -404,8 +431,8 @@ StructureCells trace_structure_cells(const Trace& trace) {
         raystep::ConvexCell below, above;
         const glm::dvec3 normal(node.normal);
         bsp_cells.at(node.id).split(normal, double(node.offset), &below, &above);
-        out.planes.push_back(
-            PlanePolygon{plane_polygon(below, normal, double(node.offset)), node.id, node.depth});
+        PlanePolygon polygon{plane_polygon(below, normal, double(node.offset)), node.id, node.depth};
+        if (polygon.corners.size() >= 3) out.planes.push_back(std::move(polygon));
       }
       continue;
     }
@@ -418,6 +445,9 @@ StructureCells trace_structure_cells(const Trace& trace) {
   if (!trace.nodes.empty() || !trace.cells.empty())
     out.note =
         "the " + std::to_string(cs.size()) + " cells or nodes the trace names, not the whole structure";
+  if (empty > 0)
+    out.note +=
+        "; " + std::to_string(empty) + " named nodes with an empty cell or one too thin for floats not drawn";
   return out;
 }
 
