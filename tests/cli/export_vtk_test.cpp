@@ -837,8 +837,10 @@ TEST_F(ExportVtkTest, APolytopeCellIsWrittenAsAPolyhedron) {
   sc.kind = "bsp";
   sc.cells.add_polytope(tetra);
   sc.cells.set("depth", 3, true);
+  sc.cells.add_polytope(vtk_export::ConvexCell{});  // nothing to draw: an empty cell keeps its place
+  sc.cells.set("depth", 4, true);
   sc.cells.finish();
-  sc.total = 1;
+  sc.total = 2;
   Geometry g;
   g.begin_object("triangle", 0);
   g.add_triangle(a, b, c);
@@ -853,14 +855,15 @@ TEST_F(ExportVtkTest, APolytopeCellIsWrittenAsAPolyhedron) {
   expect_pieces_readable(path("out"), mb);
   auto* structure = vtkUnstructuredGrid::SafeDownCast(block(mb, "structure"));
   ASSERT_NE(structure, nullptr);
-  ASSERT_EQ(structure->GetNumberOfCells(), 1);
+  ASSERT_EQ(structure->GetNumberOfCells(), 2);
   EXPECT_EQ(structure->GetCellType(0), VTK_POLYHEDRON);
+  EXPECT_EQ(structure->GetCellType(1), VTK_EMPTY_CELL);
   EXPECT_EQ(structure->GetCell(0)->GetNumberOfPoints(), 4);
   EXPECT_EQ(structure->GetCell(0)->GetNumberOfFaces(), 4);
   double bounds[6];
   structure->GetCell(0)->GetBounds(bounds);
   EXPECT_EQ(std::vector<double>(bounds, bounds + 6), (std::vector<double>{0, 2, 0, 3, 0, 4}));
-  EXPECT_EQ(cell_values(structure, "depth"), std::vector<double>{3});
+  EXPECT_EQ(cell_values(structure, "depth"), (std::vector<double>{3, 4}));
 }
 
 }  // namespace

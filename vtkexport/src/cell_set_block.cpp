@@ -29,6 +29,12 @@ vtkSmartPointer<vtkUnstructuredGrid> cell_set_grid(const CellSet& cells) {
     grid->InsertNextCell(VTK_HEXAHEDRON, 8, ids);
   }
   for (const ConvexCell& cell : cells.polytopes()) {
+    // Nothing to draw (a BSP node whose cell is empty or a sliver too thin for floats): an empty cell, so
+    // that the cell keeps its place (a walk has one cell per event).
+    if (cell.faces.size() < 4) {
+      grid->InsertNextCell(VTK_EMPTY_CELL, 0, nullptr);
+      continue;
+    }
     // A polyhedron: its points, each once (faces share their corners), then its faces as
     // [n, id0 .. id(n-1)] runs over those points.
     auto faces = vtkSmartPointer<vtkIdList>::New();
