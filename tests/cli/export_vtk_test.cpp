@@ -752,6 +752,16 @@ TEST_F(ExportVtkTest, BspCellsPlanesAndWalks) {
   EXPECT_GT(named_planes->GetNumberOfCells(), 0);
   expect_walk_matches(named, trace, 0);
 
+  // With --accel as well: the whole tree rebuilt (the trace's parameters), the trace's walk.
+  r = run("export-vtk " + sc + " --accel bsp --trace " + path("t.json") + " -o " + path("full"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto full = read_vtm(path("full"));
+  ASSERT_NE(full, nullptr);
+  auto* whole = vtkUnstructuredGrid::SafeDownCast(block(full, "structure"));
+  ASSERT_NE(whole, nullptr);
+  EXPECT_EQ(size_t(whole->GetNumberOfCells()), drawn);
+  expect_walk_matches(full, trace, 0);
+
   // A bound below the node count: whole levels, and the planes of the inner nodes written.
   const size_t max_cells = data.nodes.size() / 2;
   r = run("export-vtk " + sc + " --accel bsp --max-cells " + std::to_string(max_cells) + " -o " +
