@@ -1,8 +1,9 @@
 // An acceleration structure as cells with data, for ParaView: the grid's cells, the kd-tree's and the
 // octree's node cells, the BVHs' node boxes, the BSP tree's convex cells (with its planes clipped to them),
-// each with its depth, leaf flag, primitive count and the builder's cost where known. Also the nodes and cells a trace file carries, so that a recorded walk is shown without a rebuild.
+// each with its depth, leaf flag, primitive count and the builder's cost where known. Also the nodes and
+// cells a trace file carries, so that a recorded walk is shown without a rebuild.
 //
-// Adding a structure (the octree, the BSP tree, ...) is one function in structure_cells.cpp that fills a
+// Adding a structure (as the octree and the BSP tree were) is one function in structure_cells.cpp that fills a
 // CellSet from the built accelerator, and one row in that file's table: nothing else changes (the CLI, the
 // writer and the walk export work from CellSets and traces only).
 #pragma once
