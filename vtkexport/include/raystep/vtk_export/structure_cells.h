@@ -3,8 +3,8 @@
 // each with its depth, leaf flag, primitive count and the builder's cost where known. Also the nodes and
 // cells a trace file carries, so that a recorded walk is shown without a rebuild.
 //
-// Adding a structure (as the octree and the BSP tree were) is one function in structure_cells.cpp that fills a
-// CellSet from the built accelerator, and one row in that file's table: nothing else changes (the CLI, the
+// Adding a structure (as the octree and the BSP tree were) is one function in structure_cells.cpp that fills
+// a CellSet from the built accelerator, and one row in that file's table: nothing else changes (the CLI, the
 // writer and the walk export work from CellSets and traces only).
 #pragma once
 
