@@ -263,8 +263,9 @@ int main(int argc, char** argv) {
   TraceInfoArgs trace_info;
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
-  trace_info_cmd->add_flag("--own-costs", trace_info.own_costs,
-                           "a multi-walk trace: cost each walk by its structure's own t_t, t_i (default 1, 80)");
+  trace_info_cmd->add_flag(
+      "--own-costs", trace_info.own_costs,
+      "a multi-walk trace: cost each walk by its structure's own t_t, t_i (default 1, 80)");
 
   CLI::App* lesson_cmd =
       app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");

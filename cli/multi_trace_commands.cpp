@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/bounding_volumes.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/trace/pixel_rays.h"
@@ -37,7 +38,7 @@ std::vector<std::string> walk_names(const std::string& list) {
   std::set<std::string> seen;
   for (const std::string& n : names) {
     if (n.empty()) throw InputError("", 0, option + ": an empty name (names are separated by single commas)");
-    if (std::find(known.begin(), known.end(), n) == known.end()) {
+    if (std::find(known.begin(), known.end(), n) == known.end() && !parse_bvol_kind(n)) {
       std::string all;
       for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
       throw InputError("", 0, option + ": unknown structure '" + n + "' (one of " + all + ")");

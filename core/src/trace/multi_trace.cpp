@@ -114,9 +114,15 @@ std::string multi_trace_summary(const MultiTrace& m, const CostModel& model, boo
   const size_t nrays = m.walks.empty() ? 0 : m.walks.front().rays.size();
   out << "multi-walk trace: " << m.walks.size() << " structures, " << nrays << " ray(s) each, scene "
       << m.scene_path << " (" << m.scene_primitives << " primitives)\n";
-  if (own_costs)
-    out << "cost: t_t per step (a cell or node visited) + t_i per primitive test, each structure's own\n";
-  else
+  if (own_costs) {
+    out << "cost: t_t per step (a cell or node visited) + t_i per primitive test, each structure's own "
+           "(t_t/t_i:";
+    for (const Trace& w : m.walks) {
+      const CostModel own = structure_cost_model(w.structure);
+      out << " " << w.structure.kind << " " << fmt("%g", own.t_t) << "/" << fmt("%g", own.t_i);
+    }
+    out << ")\n";
+  } else
     out << "cost: " << fmt("%g", model.t_t) << " per step (a cell or node visited) + " << fmt("%g", model.t_i)
         << " per primitive test, the same for every structure\n";
   for (size_t r = 0; r < nrays; ++r) {

@@ -735,7 +735,9 @@ TracePixel read_pixel(const Reader& rd, const Value& jp, const Path& pp, Capped 
 namespace {
 
 // A path below a walk of a multi-walk document (walks[i].rays...), or at the top of a single trace (rays...).
-Path sub(const Path* base, const char* key) { return base ? base->key(key) : Path(key); }
+Path sub(const Path* base, const char* key) {
+  return base ? base->key(key) : Path(key);
+}
 
 // The document's JSON, or an InputError saying where it is malformed or that it is truncated.
 JsonTape parse_tape(const std::string& text, const std::string& name) {
@@ -764,8 +766,8 @@ JsonTape parse_tape(const std::string& text, const std::string& name) {
 // Everything of a trace below its scene: the build events, structure, pixel, rays and geometry, read from doc
 // (the document itself, or one walk of a multi-walk document at base) with the rules of this version.
 template <class Capped>
-void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path* base, int64_t version, Trace& t,
-               Capped capped) {
+void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path* base, int64_t version,
+               Trace& t, Capped capped) {
   const Value st = rd.member(doc, root, "structure");
   const Path sp = sub(base, "structure");
   t.structure.kind = rd.text_at(st, sp, "kind");
@@ -810,7 +812,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
 
   // Version 2: an anti-aliased pixel's samples (version 1 had no such key: a reader ignores keys it does not
   // know).
-  if (version >= 2 && doc.contains("pixel")) t.pixel = read_pixel(rd, doc.find("pixel"), sub(base, "pixel"), capped);
+  if (version >= 2 && doc.contains("pixel"))
+    t.pixel = read_pixel(rd, doc.find("pixel"), sub(base, "pixel"), capped);
 
   const Value rays = rd.array_at(doc, root, "rays");
   t.rays.reserve(capped(rays.size()));
@@ -1164,9 +1167,9 @@ namespace detail {
 
 int parse_trace_document(const std::string& text, const std::string& name, bool walks_allowed,
                          std::vector<Trace>* walks) {
-  // A count read from the file reserves at most what its text could hold (an element takes a few bytes of text
-  // and up to ~100 bytes of memory): a hostile "[0,0,0,...]" cannot make the reader ask for many times the size
-  // of the file before its first element is checked.
+  // A count read from the file reserves at most what its text could hold (an element takes a few bytes of
+  // text and up to ~100 bytes of memory): a hostile "[0,0,0,...]" cannot make the reader ask for many times
+  // the size of the file before its first element is checked.
   auto capped = [&](size_t n) { return std::min(n, text.size() / 64); };
   JsonTape tape = parse_tape(text, name);
   const Value doc = tape.root();
@@ -1174,14 +1177,16 @@ int parse_trace_document(const std::string& text, const std::string& name, bool 
   const Path root = "trace";
   if (!doc.is_object()) rd.fail(root, "expected a JSON object");
   Value format_value = doc.find("format");
-  std::string_view format = format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
+  std::string_view format =
+      format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
   if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
   int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
   if (version == kMultiTraceVersion && !walks_allowed)
-    rd.fail("version", "version " + std::to_string(version) +
-                           " holds the walks of several structures (raystep trace --accel A,B,...); this reader "
-                           "reads a single structure's trace, versions " +
-                           std::to_string(kTraceOldestVersion) + " to " + std::to_string(kTraceVersion));
+    rd.fail("version",
+            "version " + std::to_string(version) +
+                " holds the walks of several structures (raystep trace --accel A,B,...); this reader "
+                "reads a single structure's trace, versions " +
+                std::to_string(kTraceOldestVersion) + " to " + std::to_string(kTraceVersion));
   if (version < kTraceOldestVersion || version > (walks_allowed ? kMultiTraceVersion : kTraceVersion))
     rd.fail("version", "unsupported trace version " + std::to_string(version) +
                            " (this raystep reads versions " + std::to_string(kTraceOldestVersion) + " to " +
@@ -1226,8 +1231,9 @@ int parse_trace_document(const std::string& text, const std::string& name, bool 
         const TracedRay& a = first.rays[r];
         const TracedRay& b = walk.rays[r];
         if (a.ray.origin != b.ray.origin || a.ray.direction != b.ray.direction || a.ray.tmin != b.ray.tmin ||
-            a.ray.tmax != b.ray.tmax || a.kind != b.kind || a.depth != b.depth || a.has_pixel != b.has_pixel ||
-            a.pixel[0] != b.pixel[0] || a.pixel[1] != b.pixel[1] || a.sample != b.sample)
+            a.ray.tmax != b.ray.tmax || a.kind != b.kind || a.depth != b.depth ||
+            a.has_pixel != b.has_pixel || a.pixel[0] != b.pixel[0] || a.pixel[1] != b.pixel[1] ||
+            a.sample != b.sample)
           rd.fail(rays_path.at(r), "not the same ray as walks[0].rays[" + std::to_string(r) +
                                        "] (every walk traces the same rays)");
       }
