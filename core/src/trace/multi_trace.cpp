@@ -176,7 +176,14 @@ std::string multi_trace_summary(const MultiTrace& m, const CostModel& model, boo
       out << "\n";
     }
   }
-  return out.str();
+  // The columns' padding leaves spaces at the ends of lines: not in the output.
+  std::string text = out.str(), trimmed;
+  for (char c : text) {
+    if (c == '\n')
+      while (!trimmed.empty() && trimmed.back() == ' ') trimmed.pop_back();
+    trimmed += c;
+  }
+  return trimmed;
 }
 
 }  // namespace raystep
