@@ -386,6 +386,7 @@ int run_info(const InfoArgs& a) {
 }
 
 int run_trace(const TraceArgs& a) {
+  if (a.structure.accel.find(',') != std::string::npos) return run_multi_trace(a);
   if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
   if (a.aa && !a.pixel) throw InputError("", 0, "trace: --aa goes with --pixel");
@@ -613,7 +614,9 @@ int run_kdtree_stats(const KdStatsArgs& a) {
 }
 
 int run_trace_info(const TraceInfoArgs& a) {
-  Trace trace = read_trace_json(a.trace);
+  MultiTrace read = read_any_trace_json(a.trace);
+  if (read.version >= kMultiTraceVersion) return run_multi_trace_info(a.trace, read, a.own_costs);
+  const Trace& trace = read.walks.front();
   std::printf("%s: valid raystep trace, version %d\n", a.trace.c_str(), trace.version);
   std::printf("%s", trace_summary(trace).c_str());
   return 0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raystep/accel/structure_options.h"
+#include "raystep/trace/multi_trace.h"
 
 namespace raystep {
 struct KdNodeEntry;
@@ -109,6 +110,7 @@ struct KdStatsArgs {
 
 struct TraceInfoArgs {
   std::string trace;
+  bool own_costs = false;  // a multi-walk trace: cost each walk by its structure's own t_t, t_i
 };
 
 // lesson_commands.cpp: checking lessons headless, and a step as a raystep-gui command line.
@@ -189,6 +191,9 @@ int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
 int run_trace_info(const TraceInfoArgs& args);
+// multi_trace_commands.cpp: `trace --accel A,B,...` (run_trace hands a list over) and trace-info on its file.
+int run_multi_trace(const TraceArgs& args);
+int run_multi_trace_info(const std::string& path, const MultiTrace& trace, bool own_costs);
 int run_cast(const CastArgs& args);
 int run_rays(const RaysArgs& args);
 int run_info(const InfoArgs& args);

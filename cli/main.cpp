@@ -129,7 +129,10 @@ int main(int argc, char** argv) {
   info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
 
   TraceArgs trace;
-  CLI::App* trace_cmd = app.add_subcommand("trace", "Record one ray's traversal, event by event, to a trace file");
+  CLI::App* trace_cmd = app.add_subcommand(
+      "trace",
+      "Record one ray's traversal, event by event, to a trace file (--accel A,B,...: through 2 to 6 "
+      "structures, one file)");
   trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
   add_structure_options(trace_cmd, trace.structure, "grid");
   auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
@@ -263,6 +266,9 @@ int main(int argc, char** argv) {
   TraceInfoArgs trace_info;
   CLI::App* trace_info_cmd = app.add_subcommand("trace-info", "Validate a trace file and summarise it");
   trace_info_cmd->add_option("trace", trace_info.trace, "trace .json")->required();
+  trace_info_cmd->add_flag(
+      "--own-costs", trace_info.own_costs,
+      "a multi-walk trace: cost each walk by its structure's own t_t, t_i (default 1, 80)");
 
   CLI::App* lesson_cmd =
       app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");

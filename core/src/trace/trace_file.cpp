@@ -23,6 +23,7 @@
 #include "raystep/scene/json_tape.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "trace_file_detail.h"
 
 namespace raystep {
 
@@ -395,22 +396,24 @@ void write_trace_json(const std::string& path, const Trace& trace) {
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
-void write_trace_csv(const std::string& path, const Trace& t) {
+namespace detail {
+
+const char* const kTraceCsvHeader =
+    "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
+    "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent\n";
+
+void write_trace_csv_rows(std::ostream& out, const Trace& t, const std::string& prefix) {
   enum Col { ray, seq, type, i, j, k, t_enter, t_exit, t_max_x, t_max_y, t_max_z, t_delta_x, t_delta_y, t_delta_z,
              next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, sample, parent, kColumns };
   // Columns are only ever appended, so that scripts reading by position still work: sample in version 2,
   // parent (box_test's) in version 3.
-  static const char* const kHeader =
-      "ray,seq,type,i,j,k,t_enter,t_exit,t_max_x,t_max_y,t_max_z,t_delta_x,t_delta_y,t_delta_z,next_axis,"
-      "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent\n";
   auto num = [](float v) {
     if (std::isinf(v)) return std::string(v > 0 ? "inf" : "-inf");
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.9g", double(v));
     return std::string(buf);
   };
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << kHeader;
+  {
     for (size_t r = 0; r < t.rays.size(); ++r) {
       for (const Event& e : t.rays[r].events) {
         std::string row[kColumns];
@@ -474,10 +477,20 @@ void write_trace_csv(const std::string& path, const Trace& t) {
           default:
             break;
         }
+        out << prefix;
         for (int c = 0; c < kColumns; ++c) out << (c ? "," : "") << row[c];
         out << '\n';
       }
     }
+  }
+}
+
+}  // namespace detail
+
+void write_trace_csv(const std::string& path, const Trace& t) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << detail::kTraceCsvHeader;
+    detail::write_trace_csv_rows(out, t, "");
   });
 }
 
@@ -719,14 +732,17 @@ TracePixel read_pixel(const Reader& rd, const Value& jp, const Path& pp, Capped 
 
 }  // namespace
 
-Trace parse_trace_json(const std::string& text, const std::string& name) {
-  // A count read from the file reserves at most what its text could hold (an element takes a few bytes of text
-  // and up to ~100 bytes of memory): a hostile "[0,0,0,...]" cannot make the reader ask for many times the size
-  // of the file before its first element is checked.
-  auto capped = [&](size_t n) { return std::min(n, text.size() / 64); };
-  JsonTape tape;
+namespace {
+
+// A path below a walk of a multi-walk document (walks[i].rays...), or at the top of a single trace (rays...).
+Path sub(const Path* base, const char* key) {
+  return base ? base->key(key) : Path(key);
+}
+
+// The document's JSON, or an InputError saying where it is malformed or that it is truncated.
+JsonTape parse_tape(const std::string& text, const std::string& name) {
   try {
-    tape = JsonTape::parse(text);
+    return JsonTape::parse(text);
   } catch (const std::length_error& e) {
     throw InputError(name, 0, std::string("too large to read: ") + e.what());
   } catch (const std::bad_alloc&) {
@@ -745,28 +761,15 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   } catch (const json::exception& e) {
     throw InputError(name, 0, std::string("malformed JSON: ") + e.what());
   }
-  const Value doc = tape.root();
-  Reader rd(name, text);
-  const Path root = "trace";
-  if (!doc.is_object()) rd.fail(root, "expected a JSON object");
-  Value format_value = doc.find("format");
-  std::string_view format = format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
-  if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
-  int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
-  if (version < kTraceOldestVersion || version > kTraceVersion)
-    rd.fail("version", "unsupported trace version " + std::to_string(version) +
-                           " (this raystep reads versions " + std::to_string(kTraceOldestVersion) + " to " +
-                           std::to_string(kTraceVersion) + ")");
+}
 
-  Trace t;
-  t.version = int(version);
-  const Value scene = rd.member(doc, root, "scene");
-  t.scene_path = rd.text_at(scene, "scene", "path");
-  t.scene_hash = rd.text_at(scene, "scene", "hash");
-  t.scene_primitives = uint64_t(rd.integer_at(scene, "scene", "primitives", 0, int64_t(1) << 40));
-
+// Everything of a trace below its scene: the build events, structure, pixel, rays and geometry, read from doc
+// (the document itself, or one walk of a multi-walk document at base) with the rules of this version.
+template <class Capped>
+void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path* base, int64_t version,
+               Trace& t, Capped capped) {
   const Value st = rd.member(doc, root, "structure");
-  const Path sp = "structure";
+  const Path sp = sub(base, "structure");
   t.structure.kind = rd.text_at(st, sp, "kind");
   t.structure.bounds.lo = rd.vec_at(st, sp, "bounds_min");
   t.structure.bounds.hi = rd.vec_at(st, sp, "bounds_max");
@@ -809,11 +812,12 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
 
   // Version 2: an anti-aliased pixel's samples (version 1 had no such key: a reader ignores keys it does not
   // know).
-  if (version >= 2 && doc.contains("pixel")) t.pixel = read_pixel(rd, doc.find("pixel"), "pixel", capped);
+  if (version >= 2 && doc.contains("pixel"))
+    t.pixel = read_pixel(rd, doc.find("pixel"), sub(base, "pixel"), capped);
 
   const Value rays = rd.array_at(doc, root, "rays");
   t.rays.reserve(capped(rays.size()));
-  const Path rays_path = "rays";
+  const Path rays_path = sub(base, "rays");
   for (size_t r = 0; r < rays.size(); ++r) {
     const Path rp = rays_path.at(r);
     const Value jr = rays[r];
@@ -939,7 +943,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   }
 
   const Value geo = rd.member(doc, root, "geometry");
-  const Path gp = "geometry";
+  const Path gp = sub(base, "geometry");
   const Value cells = rd.array_at(geo, gp, "cells");
   const Path cells_path = gp.key("cells");
   t.cells.reserve(capped(cells.size()));
@@ -1078,7 +1082,7 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
   if (doc.contains("build")) {
     const Value build = rd.array_at(doc, root, "build");
     t.build.reserve(capped(build.size()));
-    const Path build_path = "build";
+    const Path build_path = sub(base, "build");
     for (size_t i = 0; i < build.size(); ++i) {
       const Path bp = build_path.at(i);
       const Value jb = build[i];
@@ -1155,10 +1159,91 @@ Trace parse_trace_json(const std::string& text, const std::string& name) {
     }
     t.primitives.push_back(p);
   }
-  return t;
 }
 
-Trace read_trace_json(const std::string& path) {
+}  // namespace
+
+namespace detail {
+
+int parse_trace_document(const std::string& text, const std::string& name, bool walks_allowed,
+                         std::vector<Trace>* walks) {
+  // A count read from the file reserves at most what its text could hold (an element takes a few bytes of
+  // text and up to ~100 bytes of memory): a hostile "[0,0,0,...]" cannot make the reader ask for many times
+  // the size of the file before its first element is checked.
+  auto capped = [&](size_t n) { return std::min(n, text.size() / 64); };
+  JsonTape tape = parse_tape(text, name);
+  const Value doc = tape.root();
+  Reader rd(name, text);
+  const Path root = "trace";
+  if (!doc.is_object()) rd.fail(root, "expected a JSON object");
+  Value format_value = doc.find("format");
+  std::string_view format =
+      format_value.exists() && format_value.is_string() ? format_value.get_string() : "";
+  if (format != kTraceFormat) rd.fail("format", "not a raystep trace (format must be \"raystep-trace\")");
+  int64_t version = rd.integer_at(doc, root, "version", 0, 1 << 30);
+  if (version == kMultiTraceVersion && !walks_allowed)
+    rd.fail("version",
+            "version " + std::to_string(version) +
+                " holds the walks of several structures (raystep trace --accel A,B,...); this reader "
+                "reads a single structure's trace, versions " +
+                std::to_string(kTraceOldestVersion) + " to " + std::to_string(kTraceVersion));
+  if (version < kTraceOldestVersion || version > (walks_allowed ? kMultiTraceVersion : kTraceVersion))
+    rd.fail("version", "unsupported trace version " + std::to_string(version) +
+                           " (this raystep reads versions " + std::to_string(kTraceOldestVersion) + " to " +
+                           std::to_string(walks_allowed ? kMultiTraceVersion : kTraceVersion) + ")");
+
+  Trace t;
+  t.version = int(version);
+  const Value scene = rd.member(doc, root, "scene");
+  t.scene_path = rd.text_at(scene, "scene", "path");
+  t.scene_hash = rd.text_at(scene, "scene", "hash");
+  t.scene_primitives = uint64_t(rd.integer_at(scene, "scene", "primitives", 0, int64_t(1) << 40));
+  walks->clear();
+  if (version < kMultiTraceVersion) {
+    read_walk(rd, doc, root, nullptr, version, t, capped);
+    walks->push_back(std::move(t));
+    return int(version);
+  }
+
+  // Version 5: the scene once, then 2 to 6 walks, each a version 4 trace's structure, pixel, rays, geometry
+  // and build, read with that version's rules; every walk traces the same rays in the same order.
+  const Value jw = rd.array_at(doc, root, "walks");
+  const Path walks_path = "walks";
+  if (jw.size() < size_t(kMinWalks) || jw.size() > size_t(kMaxWalks))
+    rd.fail(walks_path, "expected " + std::to_string(kMinWalks) + " to " + std::to_string(kMaxWalks) +
+                            " walks, found " + std::to_string(jw.size()));
+  walks->reserve(jw.size());
+  for (size_t w = 0; w < jw.size(); ++w) {
+    const Path wp = walks_path.at(w);
+    Trace walk;
+    walk.version = int(version);
+    walk.scene_path = t.scene_path;
+    walk.scene_hash = t.scene_hash;
+    walk.scene_primitives = t.scene_primitives;
+    read_walk(rd, jw[w], wp, &wp, kTraceVersion, walk, capped);
+    if (w > 0) {
+      const Trace& first = walks->front();
+      const Path rays_path = wp.key("rays");
+      if (walk.rays.size() != first.rays.size())
+        rd.fail(rays_path, std::to_string(walk.rays.size()) + " rays, but walks[0] has " +
+                               std::to_string(first.rays.size()) + " (every walk traces the same rays)");
+      for (size_t r = 0; r < walk.rays.size(); ++r) {
+        const TracedRay& a = first.rays[r];
+        const TracedRay& b = walk.rays[r];
+        if (a.ray.origin != b.ray.origin || a.ray.direction != b.ray.direction || a.ray.tmin != b.ray.tmin ||
+            a.ray.tmax != b.ray.tmax || a.kind != b.kind || a.depth != b.depth ||
+            a.has_pixel != b.has_pixel || a.pixel[0] != b.pixel[0] || a.pixel[1] != b.pixel[1] ||
+            a.sample != b.sample)
+          rd.fail(rays_path.at(r), "not the same ray as walks[0].rays[" + std::to_string(r) +
+                                       "] (every walk traces the same rays)");
+      }
+    }
+    walks->push_back(std::move(walk));
+  }
+  return int(version);
+}
+
+std::string read_trace_text(const std::string& path) {
   // A regular file only: a directory, a device such as /dev/zero or a FIFO would fail oddly, never end, or
   // block; the scene and ray readers refuse them the same way.
   std::error_code ec;
@@ -1177,7 +1262,19 @@ Trace read_trace_json(const std::string& path) {
     in.read(text.data(), size);
     text.resize(size_t(in.gcount()));
   }
-  return parse_trace_json(text, path);
+  return text;
+}
+
+}  // namespace detail
+
+Trace parse_trace_json(const std::string& text, const std::string& name) {
+  std::vector<Trace> walks;
+  detail::parse_trace_document(text, name, false, &walks);
+  return std::move(walks.front());
+}
+
+Trace read_trace_json(const std::string& path) {
+  return parse_trace_json(detail::read_trace_text(path), path);
 }
 
 namespace {

@@ -2,7 +2,8 @@
 // the way students take a traversal elsewhere. JSON (format "raystep-trace", version 4: version 2 added an
 // anti-aliased pixel's samples, version 3 the bounding volume hierarchies' box tests, skips and node
 // children, version 4 the general BSP tree's planes; docs/trace-format.md lists every field) read back by a
-// validating reader that also reads versions 1 to 3, and CSV with one event per row.
+// validating reader that also reads versions 1 to 3, and CSV with one event per row. Version 5, the same rays
+// through several structures in one file, is trace/multi_trace.h.
 #pragma once
 
 #include <array>

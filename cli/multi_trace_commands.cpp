@@ -1,0 +1,123 @@
+// `raystep trace --accel A,B,...`: the same ray(s) through two to six structures, written as one multi-walk
+// trace (core/trace/multi_trace.h), and `raystep trace-info` on such a file: each walk's cost along t.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <set>
+
+#include "commands.h"
+#include "raystep/accel/accelerator.h"
+#include "raystep/accel/bounding_volumes.h"
+#include "raystep/scene/scene_loader.h"
+#include "raystep/trace/multi_trace.h"
+#include "raystep/trace/pixel_rays.h"
+#include "raystep/trace/record_trace.h"
+#include "raystep/util/error.h"
+
+namespace raystep::cli {
+
+namespace {
+
+// The names of --accel A,B,...: each known, none twice, kMinWalks to kMaxWalks of them.
+std::vector<std::string> walk_names(const std::string& list) {
+  const std::string option = "trace: --accel '" + list + "'";
+  std::vector<std::string> names;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = list.find(',', start);
+    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (names.size() > size_t(kMaxWalks))
+    throw InputError("", 0,
+                     option + ": " + std::to_string(names.size()) + " structures, at most " +
+                         std::to_string(kMaxWalks) + " in one trace");
+  const std::vector<std::string> known = accelerator_names();
+  std::set<std::string> seen;
+  for (const std::string& n : names) {
+    if (n.empty()) throw InputError("", 0, option + ": an empty name (names are separated by single commas)");
+    if (std::find(known.begin(), known.end(), n) == known.end() && !parse_bvol_kind(n)) {
+      std::string all;
+      for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
+      throw InputError("", 0, option + ": unknown structure '" + n + "' (one of " + all + ")");
+    }
+    if (!seen.insert(n).second) throw InputError("", 0, option + ": " + n + " is listed twice");
+  }
+  return names;
+}
+
+}  // namespace
+
+int run_multi_trace(const TraceArgs& a) {
+  if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
+  if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
+  if (a.aa) throw InputError("", 0, "trace: --aa records one structure's pixel (give one --accel name)");
+  if (a.build_events)
+    throw InputError("", 0, "trace: --build-events records one kd-tree's build (give one --accel name)");
+  const std::vector<std::string> names = walk_names(a.structure.accel);
+  // Every structure made (not built) and checked before the scene is read: a wrong list costs nothing.
+  std::vector<std::unique_ptr<Accelerator>> accels;
+  for (const std::string& n : names) {
+    StructureArgs s = a.structure;
+    s.accel = n;
+    accels.push_back(build_structure(s));
+    if (!records_events(*accels.back()))
+      throw InputError("", 0,
+                       "trace: --accel '" + a.structure.accel + "': " + n +
+                           " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, "
+                           "bvh8, octree or bsp)");
+  }
+  if (names.size() < size_t(kMinWalks))
+    throw InputError("", 0,
+                     "trace: --accel '" + a.structure.accel + "': give " + std::to_string(kMinWalks) +
+                         " to " + std::to_string(kMaxWalks) + " structures, separated by commas");
+  check_output_folder(a.output);
+  Scene scene = load_scene(a.scene);
+
+  std::vector<RayRequest> requests;
+  int w = scene.render.width, h = scene.render.height, px = 0, py = 0;
+  if (a.ray) {
+    std::vector<float> v = parse_numbers("--ray", *a.ray, 6);
+    RayRequest r;
+    r.ray.origin = glm::vec3(v[0], v[1], v[2]);
+    r.ray.direction = glm::vec3(v[3], v[4], v[5]);
+    if (r.ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
+    requests.push_back(r);
+  } else {
+    if (a.size) parse_size(*a.size, &w, &h);
+    std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);
+    if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w ||
+        p[1] >= h)
+      throw InputError("", 0,
+                       "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
+                           std::to_string(h) + " image");
+    px = int(p[0]);
+    py = int(p[1]);
+  }
+  std::vector<const Accelerator*> built;
+  for (auto& accel : accels) {
+    accel->build(scene.geometry);
+    built.push_back(accel.get());
+  }
+  // The pixel's rays (with --secondary its ray tree) are spawned once, by the first structure, and every
+  // structure walks exactly those: the walks differ only in the structure.
+  if (a.pixel) requests = pixel_rays(scene, *built.front(), w, h, px, py, a.secondary);
+  MultiTrace m = record_walks(scene.geometry, built, requests, a.scene, file_content_hash(a.scene));
+  if (a.format == "csv")
+    write_multi_trace_csv(a.output, m);
+  else
+    write_multi_trace_json(a.output, m);
+  std::printf("%s", multi_trace_summary(m, CostModel{}, false).c_str());
+  std::printf("wrote %s\n", a.output.c_str());
+  return 0;
+}
+
+int run_multi_trace_info(const std::string& path, const MultiTrace& m, bool own_costs) {
+  std::printf("%s: valid raystep trace, version %d (%zu walks)\n", path.c_str(), m.version, m.walks.size());
+  std::printf("%s", multi_trace_summary(m, CostModel{}, own_costs).c_str());
+  return 0;
+}
+
+}  // namespace raystep::cli

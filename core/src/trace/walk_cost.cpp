@@ -1,0 +1,62 @@
+#include "raystep/trace/walk_cost.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace raystep {
+
+CostModel structure_cost_model(const TraceStructure& structure) {
+  CostModel m;
+  for (const TraceParam& p : structure.params) {
+    if (p.is_text || !(p.number > 0.0) || !std::isfinite(p.number)) continue;
+    if (p.key == "t_t")
+      m.t_t = p.number;
+    else if (p.key == "t_i")
+      m.t_i = p.number;
+  }
+  return m;
+}
+
+WalkCost walk_cost(const TracedRay& ray, const CostModel& model) {
+  WalkCost c;
+  float position = -kInfinity;  // a BVH enters boxes out of order: the position is the furthest entry so far
+  for (const Event& e : ray.events) {
+    switch (e.type) {
+      case EventType::cell:
+      case EventType::node: {
+        const float enter = e.type == EventType::cell ? e.t_enter : e.t_min_node;
+        position = std::max(position, enter);
+        c.points.push_back({position, c.total});
+        ++c.steps;
+        c.total += model.t_t;
+        break;
+      }
+      case EventType::prim_test:
+        ++c.prim_tests;
+        c.total += model.t_i;
+        break;
+      case EventType::mailbox_hit:
+        ++c.mailbox_hits;
+        break;
+      case EventType::box_test:
+        ++c.box_tests;
+        break;
+      case EventType::ray_end:
+        c.hit = e.prim >= 0;
+        c.t_hit = e.t;
+        break;
+      default:
+        break;
+    }
+  }
+  c.points.push_back({std::max(position, c.t_hit), c.total});
+  return c;
+}
+
+double cost_at(const WalkCost& cost, float t) {
+  auto past = std::upper_bound(cost.points.begin(), cost.points.end(), t,
+                               [](float value, const CostPoint& p) { return value < p.t; });
+  return past == cost.points.end() ? cost.total : past->cost;
+}
+
+}  // namespace raystep
