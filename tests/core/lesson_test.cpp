@@ -65,16 +65,17 @@ TEST(Lesson, EveryKeyCarriesOver) {
       parse_lesson_text(lesson_with("accel: kd-median\ngrid-res: 4,5,6\ngrid-density: 2.5\n"
                                     "grid-insert: bbox\nti: 40\ntt: 2\nempty-bonus: 0.5\nmax-depth: 12\n"
                                     "leaf-size: 3\nmailbox: off\nbins: 8\nbvh-leaf: 2\nbvh-max-leaf: 6\n"
-                                    "bvh-order: axis\naa: adaptive:0.1:2\nsize: 64x48\n"
+                                    "bvh-order: axis\noctree-leaf: 4\nbsp-directions: kdop\nbsp-candidates: 8\n"
+                                    "aa: adaptive:0.1:2\nsize: 64x48\n"
                                     "heat: tests\npixel: 10,20\nsecondary: on\nray: 1\nstep-to: leaf:2\n"
                                     "panel: sah\nnode-path: LR\ninspect: on\nsquare: 2\nfollow: on\n"
                                     "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n") +
                             "\n## Two\n\nNothing changes.\n",
                         kLesson);
   ASSERT_EQ(l.steps.size(), 2u);
-  EXPECT_EQ(l.steps[0].changes.size(), 31u);
+  EXPECT_EQ(l.steps[0].changes.size(), 34u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 34u);  // + step, node and sample, tested below
+  EXPECT_EQ(lesson_setting_keys().size(), 37u);  // + step, node and sample, tested below
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");

@@ -798,6 +798,36 @@ void MainWindow::buildStructure() {
                                 .arg(built->kind == "bvh4" ? 4 : 8)
                                 .arg(double(built->accel->memory_bytes()) / 1024.0, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
+      } else if (const Octree* oct = built->octree()) {
+        OctreeStats st = octree_stats(oct->data());
+        structure_->setInfo(tr("octree: %1 cells, %2 leaves (%3 empty), depth %4 (limit %5), %6 references "
+                               "(%7 per primitive), at most %8 per leaf")
+                                .arg(st.nodes)
+                                .arg(st.leaves)
+                                .arg(st.empty_leaves)
+                                .arg(st.max_depth)
+                                .arg(octree_max_depth(oct->options(), n))
+                                .arg(st.references)
+                                .arg(double(st.references) / n, 0, 'f', 2)
+                                .arg(st.max_leaf_prims) +
+                            took(tr(", built"), built->buildMs));
+      } else if (const BspTree* bsp = built->bsp()) {
+        BspTreeStats st = bsp_tree_stats(bsp->data(), bsp->options());
+        structure_->setInfo(
+            tr("BSP tree: %1 nodes, %2 leaves (%3 empty), depth %4, %5 references (%6 per primitive), SAH "
+               "cost %7; planes: %8 axis, %9 face diagonal, %10 body diagonal, %11 primitive")
+                .arg(st.nodes)
+                .arg(st.leaves)
+                .arg(st.empty_leaves)
+                .arg(st.max_depth)
+                .arg(st.references)
+                .arg(double(st.references) / n, 0, 'f', 2)
+                .arg(st.sah_cost, 0, 'f', 1)
+                .arg(st.inner_by_source[0])
+                .arg(st.inner_by_source[1])
+                .arg(st.inner_by_source[2])
+                .arg(st.inner_by_source[3]) +
+            took(tr(", built"), built->buildMs));
       } else if (const KdTree* kd = built->kdTree()) {
         KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
         structure_->setInfo(

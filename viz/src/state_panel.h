@@ -41,6 +41,7 @@ class StatePanel : public QWidget {
  private:
   void refresh();
   void refreshTree(const TracedRay& ray, const ReplayState& s);
+  void refreshOctreeChildren(const TracedRay& r, const ReplayState& s);
   void refreshBvhChildren(const TracedRay& ray, const ReplayState& s);
   Session* session_;
   QLabel* ray_;
