@@ -2,8 +2,8 @@
 // opened with --accel octree or bsp, a pixel traced, the walk stepped to an inner node. The trace the GUI
 // exports is the reference: the state panel must name that node, its interval and (BSP) its plane and
 // t* = (d - n.o) / (n.dir) or (octree) the child the ray enters first; the 3D view must draw the BSP node's
-// convex cell (inside its ancestors' half-spaces) with its plane clipped to it, and the octree cell's children
-// in the order the trace visits them.
+// convex cell (inside its ancestors' half-spaces) with its plane clipped to it, and the octree cell's
+// children in the order the trace visits them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +19,9 @@ using namespace raystep::viztest;
 const std::string kTilted = kSourceDir + "/scenes/tilted_plane.json";
 const std::string kCornell = kSourceDir + "/scenes/cornell.json";
 
-bool has(const json& j, const std::string& text) { return j.get<std::string>().find(text) != std::string::npos; }
+bool has(const json& j, const std::string& text) {
+  return j.get<std::string>().find(text) != std::string::npos;
+}
 
 std::string fmt(double v) {  // as the panels print a number (QString::number(v, 'g', 5))
   char buf[32];
@@ -64,8 +66,8 @@ TEST(OctreeBsp, BspStepShowsThePlaneTStarAndTheConvexCell) {
   ASSERT_NE(n, nullptr);
 
   const std::string st = kOut + "/bsp_node.json", png = kOut + "/bsp_node.png";
-  r = gui(base + " --step-to node:" + std::to_string(k) + " --dump-state '" + st + "' --screenshot-3d '" + png +
-              "' --quit",
+  r = gui(base + " --step-to node:" + std::to_string(k) + " --dump-state '" + st + "' --screenshot-3d '" +
+              png + "' --quit",
           "bsp_node");
   ASSERT_EQ(r.code, 0) << r.err;
   json s = readJson(st);
@@ -120,7 +122,8 @@ TEST(OctreeBsp, BspStepShowsThePlaneTStarAndTheConvexCell) {
 }
 
 TEST(OctreeBsp, OctreeStepShowsTheCellAndItsChildOrder) {
-  const std::string base = "'" + kCornell + "' --accel octree --octree-leaf 4 --pixel 100,150 --window 1280x800";
+  const std::string base =
+      "'" + kCornell + "' --accel octree --octree-leaf 4 --pixel 100,150 --window 1280x800";
   const std::string tracePath = kOut + "/octree_trace.json";
   GuiRun r = gui(base + " --export-trace '" + tracePath + "' --quit", "octree_export");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -137,28 +140,32 @@ TEST(OctreeBsp, OctreeStepShowsTheCellAndItsChildOrder) {
   const json& events = trace["rays"][0]["events"];
   bool in = false;
   for (const json& x : events) {
-    if (x["type"] == "node" && x["node"] == e["node"]) in = true;
-    else if (in && x["type"] == "pop" && x["node"] == e["node"]) break;
+    if (x["type"] == "node" && x["node"] == e["node"])
+      in = true;
+    else if (in && x["type"] == "pop" && x["node"] == e["node"])
+      break;
     else if (in && x["type"] == "node" && x["depth"].get<int>() == e["depth"].get<int>() + 1)
       visited.push_back(x["node"].get<int>());
   }
   ASSERT_FALSE(visited.empty());
 
   const std::string st = kOut + "/octree_node.json", png = kOut + "/octree_node.png";
-  r = gui(base + " --step-to node:" + std::to_string(k) + " --dump-state '" + st + "' --screenshot-3d '" + png +
-              "' --quit",
+  r = gui(base + " --step-to node:" + std::to_string(k) + " --dump-state '" + st + "' --screenshot-3d '" +
+              png + "' --quit",
           "octree_node");
   ASSERT_EQ(r.code, 0) << r.err;
   json s = readJson(st);
   EXPECT_TRUE(has(s["structure_info"], "octree:")) << s["structure_info"];
   const json& p = s["panels"];
-  EXPECT_TRUE(has(p["nodeLabel"], "<b>" + std::to_string(e["node"].get<int>()) + "</b> (inner cell, 8 children)"))
+  EXPECT_TRUE(
+      has(p["nodeLabel"], "<b>" + std::to_string(e["node"].get<int>()) + "</b> (inner cell, 8 children)"))
       << p["nodeLabel"];
   EXPECT_TRUE(has(p["nodeLabel"], "[t_min, t_max] = [" + fmt(e["t_min"].get<double>()) + ", " +
                                       fmt(e["t_max"].get<double>()) + "]"))
       << p["nodeLabel"];
   EXPECT_TRUE(has(p["crossingLabel"], "entry plane")) << p["crossingLabel"];
-  EXPECT_TRUE(has(p["crossingLabel"], "children: " + std::to_string(visited[0]) + " [")) << p["crossingLabel"];
+  EXPECT_TRUE(has(p["crossingLabel"], "children: " + std::to_string(visited[0]) + " ["))
+      << p["crossingLabel"];
   EXPECT_TRUE(has(p["ruleLabel"], "Entry plane")) << p["ruleLabel"];
   EXPECT_TRUE(has(p["ruleLabel"], "First child: " + std::to_string(visited[0]))) << p["ruleLabel"];
   EXPECT_FALSE(has(p["ruleLabel"], "far child")) << p["ruleLabel"];
@@ -172,9 +179,9 @@ TEST(OctreeBsp, OctreeStepShowsTheCellAndItsChildOrder) {
 }
 
 TEST(OctreeBsp, OctreeBspBadOptionsExit2) {
-  for (const std::string& args : {std::string("--accel octree --octree-leaf 0"),
-                                  std::string("--accel bsp --bsp-directions sideways"),
-                                  std::string("--accel bsp --bsp-candidates 0")}) {
+  for (const std::string& args :
+       {std::string("--accel octree --octree-leaf 0"), std::string("--accel bsp --bsp-directions sideways"),
+        std::string("--accel bsp --bsp-candidates 0")}) {
     GuiRun r = gui("'" + kTilted + "' " + args + " --quit", "octree_bsp_bad");
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;
     const std::string name = args.substr(args.rfind("--"), args.rfind(' ') - args.rfind("--"));

@@ -109,7 +109,8 @@ TEST(ReplayBsp, TStarAndChildrenAgreeWithTheWalk) {
       EXPECT_TRUE(c.general);
       EXPECT_EQ(c.normal, n->normal);
       EXPECT_EQ(c.offset, n->offset);
-      slanted += std::fabs(n->normal.x) != 1.f && std::fabs(n->normal.y) != 1.f && std::fabs(n->normal.z) != 1.f;
+      slanted +=
+          std::fabs(n->normal.x) != 1.f && std::fabs(n->normal.y) != 1.f && std::fabs(n->normal.z) != 1.f;
       kinds[int(c.crossing)]++;
       const float margin = std::max(std::fabs(c.tMin), std::fabs(c.tMax)) / 4096.f;
       const Event& next = ray.events[size_t(i + 1)];
@@ -150,8 +151,7 @@ TEST(ReplayBsp, TStarAndChildrenAgreeWithTheWalk) {
       EXPECT_NE(why.find("plane n.p = d"), std::string::npos) << why;
       EXPECT_NE(why.find("signed distance n.o - d"), std::string::npos) << why;
       EXPECT_EQ(why.find("splits x at"), std::string::npos) << why;  // never the kd-tree's axis words
-      if (c.crossing == Crossing::both)
-        EXPECT_NE(why.find("Intersect(far = "), std::string::npos) << why;
+      if (c.crossing == Crossing::both) EXPECT_NE(why.find("Intersect(far = "), std::string::npos) << why;
     }
   }
   EXPECT_GT(kinds[int(Crossing::nearOnly)], 0);

@@ -156,16 +156,23 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
     const bool kd = session_->structure() && treeShapeOf(*session_->structure());
     const bool isBvh = session_->structure() && session_->structure()->bvh();
-    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector")
-                                  : tr("kd-tree: nodes and SAH inspector"));
+    const bool isOctree = session_->structure() && session_->structure()->octree();
+    const bool isBsp = session_->structure() && session_->structure()->bsp();
+    // The octree and the BSP tree: their nodes are browsable; the SAH inspector is the kd-tree's and BVH's.
+    kdDock_->setWindowTitle(isBvh      ? tr("BVH: nodes and SAH inspector")
+                            : isOctree ? tr("octree: cells (no SAH inspector: centre splits)")
+                            : isBsp    ? tr("BSP tree: nodes (no SAH inspector for its planes yet)")
+                                       : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(
           isBvh ? tr("BVH built: View > tree and SAH inspector shows its nodes and binned SAH curves")
-                : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
-                     "3D view, shows its nodes and SAH curves"));
+          : isOctree || isBsp
+              ? tr("Built: View > tree shows its nodes")
+              : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+                   "3D view, shows its nodes and SAH curves"));
     else if (!kd)
       hideKdPanel();
     showSahCurve();

@@ -224,7 +224,8 @@ const TraceNode* findNode(const Trace& trace, int32_t id) {
 
 namespace {
 
-// A general BSP node: the plane's crossing as the kernel (bsp.h) decides it, and the children the events show.
+// A general BSP node: the plane's crossing as the kernel (bsp.h) decides it, and the children the events
+// show.
 NodeCrossing bspCrossing(const TraceNode& n, const TracedRay& ray, const ReplayState& s, NodeCrossing c) {
   const std::vector<Event>& ev = ray.events;
   const Event& e = ev[size_t(s.nodeEvent)];
@@ -619,38 +620,42 @@ std::string nodeName(int32_t id) {
   return id >= 0 ? "node " + std::to_string(id) : std::string("the child");
 }
 
-std::string vec(const glm::vec3& v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
+std::string vec(const glm::vec3& v) {
+  return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+}
 
 // A general BSP node's plane and decision, in the lecture's words: the same walk as the kd-tree's with
 // t* = (d - n.o) / (n.dir) instead of (split - o.a) / d.a.
 std::string explainBspNode(const NodeCrossing& c) {
-  std::string head = "Inner node " + std::to_string(c.node) + ", plane n.p = d with n = " + vec(c.normal) +
-                     ", d = " + num(c.offset) + ".\nThe origin's signed distance n.o - d = " +
-                     num(float(c.originSide)) + " (" + (c.originSide < 0 ? "below" : "above") +
-                     " the plane); n.dir = " + num(float(c.nDotDir)) + ".\n";
+  std::string head =
+      "Inner node " + std::to_string(c.node) + ", plane n.p = d with n = " + vec(c.normal) +
+      ", d = " + num(c.offset) + ".\nThe origin's signed distance n.o - d = " + num(float(c.originSide)) +
+      " (" + (c.originSide < 0 ? "below" : "above") + " the plane); n.dir = " + num(float(c.nDotDir)) + ".\n";
   std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
   std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
   if (c.crossing == Crossing::inPlane)
     return head +
-           "n.dir is 0 within rounding and the ray lies on the plane, or too near it to tell: t* is undefined, "
+           "n.dir is 0 within rounding and the ray lies on the plane, or too near it to tell: t* is "
+           "undefined, "
            "the ray may touch both children over the whole interval.\nVisit the near child, " +
            nearName + "; push the far child, " + farName + ", with all of [" + num(c.tMin) + ", " +
            num(c.tMax) + "].";
   if (!std::isfinite(c.tStar)) {
     std::string only = c.crossing == Crossing::nearOnly ? nearName : farName;
-    return head + "n.dir is 0 within rounding: the ray runs parallel to the plane and stays on its origin's "
-                  "side over [t_min, t_max].\nOnly " +
+    return head +
+           "n.dir is 0 within rounding: the ray runs parallel to the plane and stays on its origin's "
+           "side over [t_min, t_max].\nOnly " +
            only + " is visited: Intersect(" + (c.crossing == Crossing::nearOnly ? "near" : "far") +
            ", t_min, t_max).";
   }
   head += "t* = (d - n.o) / (n.dir) = " + num(c.tStar) + ". The near child is the side the origin is on" +
-          std::string(" as the ray moves: ") + side(c.nearIsBelow) + (c.nDotDir > 0 ? " (n.dir > 0)" : " (n.dir < 0)") +
-          ".\n";
+          std::string(" as the ray moves: ") + side(c.nearIsBelow) +
+          (c.nDotDir > 0 ? " (n.dir > 0)" : " (n.dir < 0)") + ".\n";
   switch (c.crossing) {
     case Crossing::nearOnly:
       return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
-             ": the ray leaves the node's cell before it reaches the plane.\nOnly the near child, " + nearName +
-             ", is visited: Intersect(near, t_min, t_max).";
+             ": the ray leaves the node's cell before it reaches the plane.\nOnly the near child, " +
+             nearName + ", is visited: Intersect(near, t_min, t_max).";
     case Crossing::farOnly:
       return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
              ": the node's part of the ray lies beyond the plane.\nOnly the far child, " + farName +
@@ -683,8 +688,9 @@ std::string octreeOrderText(const OctreeChoice& c) {
   std::vector<std::string> crossed;
   for (int b = 0; b < 3; ++b)
     if (b != c.entryAxis && c.moving[b])
-      crossed.push_back(std::string(axisName(b)) + " centre plane at t = " + num(c.tMid[b]) +
-                        (c.tMid[b] < c.t0[c.entryAxis] ? " (before: the far half)" : " (after: the near half)"));
+      crossed.push_back(
+          std::string(axisName(b)) + " centre plane at t = " + num(c.tMid[b]) +
+          (c.tMid[b] < c.t0[c.entryAxis] ? " (before: the far half)" : " (after: the near half)"));
   if (!crossed.empty()) {
     t += "; ";
     for (size_t k = 0; k < crossed.size(); ++k) t += (k ? ", " : "") + crossed[k];
@@ -727,7 +733,8 @@ std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const Re
       const Event& root = ev[size_t(first)];
       return "Slab test: the ray meets the root cube over [t_enter, t_exit] = [" + num(root.t_min_node) +
              ", " + num(root.t_max_node) +
-             "]. The walk is parametric and top-down (Revelles et al.): from each cell to its children in the "
+             "]. The walk is parametric and top-down (Revelles et al.): from each cell to its children in "
+             "the "
              "order the ray crosses them.";
     }
     case EventType::node: {
@@ -738,17 +745,20 @@ std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const Re
       return text;
     }
     case EventType::push: {
-      std::string text = "Walk the children of cell " + std::to_string(e.node) +
-                         " in the order the ray crosses them (each child's [t_enter, t_exit] starts where the "
-                         "previous one's ends); its frame goes on the stack.";
+      std::string text =
+          "Walk the children of cell " + std::to_string(e.node) +
+          " in the order the ray crosses them (each child's [t_enter, t_exit] starts where the "
+          "previous one's ends); its frame goes on the stack.";
       if (OctreeChoice c = trace ? octreeChoice(*trace, ray, s) : OctreeChoice{}; c.valid && !c.path.empty())
-        text += " First child: " + std::to_string(c.path[0].node) + " [" + octantName(c.path[0].octant) + "].";
+        text +=
+            " First child: " + std::to_string(c.path[0].node) + " [" + octantName(c.path[0].octant) + "].";
       return text;
     }
     case EventType::pop:
       return "Cell " + std::to_string(e.node) + "'s children are done" +
-             (s.nearestPrim >= 0 ? " (or the next one starts beyond the nearest hit, t = " + num(s.nearestT) + ")"
-                                 : std::string()) +
+             (s.nearestPrim >= 0
+                  ? " (or the next one starts beyond the nearest hit, t = " + num(s.nearestT) + ")"
+                  : std::string()) +
              ": back to its parent's next child.";
     case EventType::leaf: {
       size_t k = s.prims.size();
@@ -767,10 +777,12 @@ std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const Re
         if (m.prim == e.prim && m.leaf >= 0)
           return "Mailbox hit: primitive " + std::to_string(e.prim) + " was already tested in cell " +
                  std::to_string(m.leaf) + " for this ray (it overlaps several cells): skip the test.";
-      return "Mailbox hit: primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
+      return "Mailbox hit: primitive " + std::to_string(e.prim) +
+             " was already tested for this ray: skipped.";
     case EventType::hit_deferred:
       return "The hit t = " + num(e.t) + " lies beyond this cell's exit, t_exit = " + num(e.t_exit) +
-             ": a later cell may hold a nearer hit. Keep it and go on: traverse until tmin(cell) > tmax(ray).";
+             ": a later cell may hold a nearer hit. Keep it and go on: traverse until tmin(cell) > "
+             "tmax(ray).";
     case EventType::hit_accepted: {
       if (e.reason == AcceptReason::any_hit)
         return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
@@ -888,6 +900,12 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
                ", is not before its t_min: a nearer hit may "
                "lie in it, so visit it.";
       }
+      const bool bsp = trace && trace->structure.kind == "bsp";
+      if (bsp)  // t* is an interval there: the stack is not ordered by t_min
+        return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
+               ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it. A BSP "
+               "tree's stack is not ordered by t_min (t* is known within its rounding interval), so every "
+               "entry left is popped and judged on its own.";
       return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
              ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it." +
              (after && after->type == EventType::hit_accepted
@@ -911,6 +929,11 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       if (e.reason == AcceptReason::next_node_beyond) {
         int pop = findEvent(ray, s.step, EventType::pop, false);
         std::string tmin = pop >= 0 ? num(ev[size_t(pop)].t_min_node) : "?";
+        if (trace && trace->structure.kind == "bsp")
+          return "Traverse until tmin(next node) > tmax(ray): every entry popped from the stack starts "
+                 "beyond "
+                 "the hit (the last one at t_min = " +
+                 tmin + " > t(hit) = " + num(e.t) + ") and the stack is empty  =>  stop, the hit is final.";
         return "Traverse until tmin(next node) > tmax(ray):\ntmin(popped node) = " + tmin +
                " > t(hit) = " + num(e.t) +
                ", and every node below it on the stack starts later still  =>  stop, the hit is final.";

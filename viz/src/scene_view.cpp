@@ -275,7 +275,7 @@ struct SceneView::Impl {
   }
   // General BSP tree: each node's convex cell (the root box cut by its ancestors' planes), made on demand.
   mutable std::unordered_map<int32_t, ConvexCell> bspCells;  // a cache: filled by const readers too
-  bool bspTree = false;  // the trace's nodes carry planes
+  bool bspTree = false;                                      // the trace's nodes carry planes
   const ConvexCell* bspCell(int32_t id) const {
     if (auto it = bspCells.find(id); it != bspCells.end()) return &it->second;
     const TraceNode* n = node(id);
@@ -649,13 +649,13 @@ void SceneView::rebuildGeometry() {
         swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
         swatch(palette::primMissed, tr("missed")));
   else if (d.haveTree && octreeLegend)
-    d.legend->setText(
-        walk + swatch(palette::currentCell, tr("current cell")) +
-        swatch(palette::bvhChildFirst, tr("its first child (entry plane)")) +
-        swatch(palette::bvhChildOther, tr("its last child (orange to violet: the order the ray crosses them)")) +
-        swatch(palette::stackNode, tr("cells whose children are being walked")) +
-        swatch(palette::visitedCell, tr("visited")) + hits + "<br>" +
-        tr("Primitives of the current leaf cell: ") + primStates);
+    d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) +
+                      swatch(palette::bvhChildFirst, tr("its first child (entry plane)")) +
+                      swatch(palette::bvhChildOther,
+                             tr("its last child (orange to violet: the order the ray crosses them)")) +
+                      swatch(palette::stackNode, tr("cells whose children are being walked")) +
+                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" +
+                      tr("Primitives of the current leaf cell: ") + primStates);
   else if (d.haveTree && ((session_->structure() && session_->structure()->kind == "bsp") || d.bspTree))
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node's convex cell")) +
                       swatch(palette::splitPlane, tr("its plane, clipped to the cell")) +
@@ -812,7 +812,8 @@ void SceneView::updateBvhChildren() {
       int before = int(elines->GetNumberOfCells());
       addBoxEdges(epts, elines, n->box.lo + inset, n->box.hi - inset);
       appendColor(ecolors, col, int(elines->GetNumberOfCells()) - before);
-      if (int(k) == c.visitedSoFar) appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
+      if (int(k) == c.visitedSoFar)
+        appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
     }
   }
   d.childFacesData->SetPoints(fpts);
@@ -891,7 +892,8 @@ void SceneView::updateStep() {
       addNodeEdges(cpts, clines, *n, 0.f);
       if (n->has_plane) {  // a BSP node's plane, clipped to its convex cell
         if (const ConvexCell* cell = d.bspCell(n->id)) addPlaneCap(sppts, sptris, *cell, *n);
-      } else if (!n->leaf && n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
+      } else if (!n->leaf &&
+                 n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
         int a = n->axis, b = (a + 1) % 3, c = (a + 2) % 3;
         vtkIdType ids[4];
         for (int k = 0; k < 4; ++k) {

@@ -183,8 +183,8 @@ void defineOptions(QCommandLineParser& p) {
       "ORDER");
   opt("octree-leaf", "Octree: a cell with at most K primitives is a leaf (default 8).", "K");
   opt("bsp-directions",
-      "BSP tree: candidate plane normals: both (the 13 k-DOP directions and the primitives' own planes), kdop "
-      "or autopartition (default both).",
+      "BSP tree: candidate plane normals: both (the 13 k-DOP directions and the primitives' own planes), "
+      "kdop or autopartition (default both).",
       "SET");
   opt("bsp-candidates", "BSP tree: candidate positions per direction, 1..4096 (default 16).", "N");
   opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");

@@ -280,15 +280,17 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
     const bool bvh = isBvhRay(session_->trace(), r);
     const bool octree = isOctreeRay(session_->trace(), r);
-    QString what =
-        !tn        ? QString(event_type_name(n.type))
-        : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
-        : bvh ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
-                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
-        : tn->has_plane ? tr("inner, plane n = (%1, %2, %3), d = %4")
-                              .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
-        : octree ? tr("inner cell, 8 children")
-                 : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+    QString what = !tn        ? QString(event_type_name(n.type))
+                   : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
+                   : bvh      ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2")
+                                                .arg(tn->children.size())
+                                                .arg(axisName(tn->axis))
+                                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
+                   : tn->has_plane
+                       ? tr("inner, plane n = (%1, %2, %3), d = %4")
+                             .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
+                   : octree ? tr("inner cell, 8 children")
+                            : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)
@@ -326,7 +328,8 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
         break;
     }
     if (c.general) {  // a BSP plane: n, d, the origin's side and t* = (d - n.o) / (n.dir)
-      const QString plane = tr("n.o - d = %1, n.dir = %2").arg(num(float(c.originSide)), num(float(c.nDotDir)));
+      const QString plane =
+          tr("n.o - d = %1, n.dir = %2").arg(num(float(c.originSide)), num(float(c.nDotDir)));
       if (conceal_)
         crossing_->setText(tr("<b>%1</b> (%2)<br><i>near side and children: ? (the quiz asks it)</i>")
                                .arg(num(c.tStar), plane));
@@ -409,8 +412,9 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
     crossing_->setText(tr("<i>- (the current node is not an inner cell whose children are walked)</i>"));
     return;
   }
-  QString t = c.entryAxis >= 0 ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
-                               : QString();
+  QString t = c.entryAxis >= 0
+                  ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
+                  : QString();
   if (conceal_) {
     crossing_->setText(t + tr("<br><i>order: ? (the quiz asks it)</i>"));
     return;

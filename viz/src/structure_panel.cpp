@@ -212,8 +212,9 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   octreeLeaf_->setObjectName("octreeLeaf");
   octreeLeaf_->setRange(1, 1 << 24);
   octreeLeaf_->setValue(odef.leaf_size);
-  octreeLeaf_->setToolTip(tr("K: a cell with at most K primitives is a leaf; a fuller one is split at its "
-                             "centre into eight"));
+  octreeLeaf_->setToolTip(
+      tr("K: a cell with at most K primitives is a leaf; a fuller one is split at its "
+         "centre into eight"));
   oc->addWidget(new QLabel(tr("leaf size K")), 0, 0);
   oc->addWidget(octreeLeaf_, 0, 1);
   octreeMaxDepth_ = new QSpinBox;
@@ -248,8 +249,9 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   bspCandidates_->setObjectName("bspCandidates");
   bspCandidates_->setRange(1, 4096);
   bspCandidates_->setValue(bspdef.candidates);
-  bspCandidates_->setToolTip(tr("Candidate positions per direction and node (primitive planes: as many "
-                                "with autopartition alone, a quarter with both)"));
+  bspCandidates_->setToolTip(
+      tr("Candidate positions per direction and node (primitive planes: as many "
+         "with autopartition alone, a quarter with both)"));
   bs->addWidget(new QLabel(tr("candidates")), 0, 2);
   bs->addWidget(bspCandidates_, 0, 3);
   layout->addWidget(bsp_);
@@ -355,7 +357,8 @@ void StructurePanel::setStructure(const std::string& accelName, const StructureO
   accel_->setCurrentIndex(own >= 0 ? own : bvh ? 2 : 1);
   octreeLeaf_->setValue(so.octree.leaf_size);
   octreeMaxDepth_->setValue(so.octree.max_depth);
-  bspDirections_->setCurrentIndex(std::max(0, bspDirections_->findData(bsp_directions_name(so.bsp.directions))));
+  bspDirections_->setCurrentIndex(
+      std::max(0, bspDirections_->findData(bsp_directions_name(so.bsp.directions))));
   bspCandidates_->setValue(so.bsp.candidates);
   if (bvh) {
     const int i = bvhBuilder_->findData(QString::fromStdString(accelName));
