@@ -712,9 +712,19 @@ std::string octreeOrderText(const OctreeChoice& c) {
   if (!c.visited.empty() && c.visited != planned) {
     t += "\nThe walk visits ";
     for (size_t k = 0; k < c.visited.size(); ++k) t += (k ? ", " : "") + std::to_string(c.visited[k]);
-    t += c.visited.size() < planned.size()
-             ? " (it stops where a child starts beyond the ray's end or the nearest hit)."
-             : " (a child the ray grazes within the rounding margin is walked too).";
+    std::vector<std::string> why;
+    if (c.visited[0] != planned[0] && c.path[0].tExit < c.tEnter)
+      why.push_back("the ray starts inside the cell: the children before its start are passed over");
+    if (c.visited.back() != planned.back())
+      why.push_back("it stops where a child starts beyond the ray's end or the nearest hit");
+    for (int32_t v : c.visited)
+      if (std::find(planned.begin(), planned.end(), v) == planned.end()) {
+        why.push_back("a child the ray grazes within the rounding margin is walked too");
+        break;
+      }
+    t += " (";
+    for (size_t k = 0; k < why.size(); ++k) t += (k ? "; " : "") + why[k];
+    t += ").";
   }
   return t;
 }

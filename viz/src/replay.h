@@ -96,6 +96,7 @@ struct OctreeChoice {
   std::vector<int> visitedOctants;    // their octants (-1: not found among the children)
   int visitedSoFar = 0;               // how many of them are at or before the current event
 };
+struct ReplayState;
 bool isOctreeRay(const Trace* trace, const TracedRay& ray);
 // The current octree cell's child order (the node event of s.nodeEvent, or the push right after it).
 OctreeChoice octreeChoice(const Trace& trace, const TracedRay& ray, const ReplayState& s);
