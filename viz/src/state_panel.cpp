@@ -419,16 +419,16 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
     crossing_->setText(t + tr("<br><i>order: ? (the quiz asks it)</i>"));
     return;
   }
-  QStringList order;
+  // One line per child, numbered in the order the ray crosses them, with the plane it is left by.
   for (size_t k = 0; k < c.path.size(); ++k) {
     const OctreeChildStep& st = c.path[k];
     const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visitedSoFar, st.node) !=
                       c.visited.begin() + c.visitedSoFar;
-    QString item = QString("%1 [%2]").arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
-    order << (seen ? "<b>" + item + "</b>" : item) +
-                 tr(" &rarr;<sub>%1 = %2</sub>").arg(axisName(st.exitAxis)).arg(num(st.tExit));
+    QString item = QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
+    t += "<br>" + (seen ? "<b>" + item + "</b>" : item) +
+         (st.leavesParent ? tr(", leaves the cell by %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit))
+                          : tr(", exit plane %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit)));
   }
-  t += tr("<br>children: %1 leave").arg(order.join(" "));
   crossing_->setText(t);
 }
 
