@@ -439,6 +439,12 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (bvh.max_leaf_size != defaults.bvh.max_leaf_size) opt("bvh-max-leaf", std::to_string(bvh.max_leaf_size));
   if (structure.bvh_order != defaults.bvh_order)
     opt("bvh-order", structure.bvh_order == BvhOrder::split_axis ? "axis" : "entry");
+  if (structure.octree.leaf_size != defaults.octree.leaf_size)
+    opt("octree-leaf", std::to_string(structure.octree.leaf_size));
+  if (structure.bsp.directions != defaults.bsp.directions)
+    opt("bsp-directions", bsp_directions_name(structure.bsp.directions));
+  if (structure.bsp.candidates != defaults.bsp.candidates)
+    opt("bsp-candidates", std::to_string(structure.bsp.candidates));
   if (!aa.empty()) opt("aa", aa);
   if (size) opt("size", std::to_string((*size)[0]) + "x" + std::to_string((*size)[1]));
   if (!heat.empty()) opt("heat", heat);
