@@ -131,7 +131,8 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   treeForm->addRow(tr("node"), node_);
   crossingTitle_ = new QLabel(tr("t*"));
   treeForm->addRow(crossingTitle_, crossing_);
-  treeForm->addRow(new QLabel(tr("stack (top first; pushed far children)")));
+  stackTitle_ = new QLabel(tr("stack (top first; pushed far children)"));
+  treeForm->addRow(stackTitle_);
   treeForm->addRow(stack_);
   treeBox_->hide();
   layout->addWidget(treeBox_);
@@ -210,6 +211,9 @@ void StatePanel::refresh() {
                      : octree ? tr("Octree: parametric traversal (Revelles)")
                               : tr("Tree: stack traversal"));
   crossingTitle_->setText(bvh || octree ? tr("children") : tr("t*"));
+  // The octree's stack holds the cells whose children are being walked, not far children.
+  stackTitle_->setText(octree ? tr("stack (top first; cells whose children are being walked)")
+                              : tr("stack (top first; pushed far children)"));
   mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
                               : tr("Mailbox: primitives tested for this ray"));
   gridBox_->setVisible(!tree || s.cellEvent >= 0);

@@ -53,6 +53,7 @@ class StatePanel : public QWidget {
   QLabel* nearest_;
   QGroupBox* treeBox_;
   QLabel* node_;
+  QLabel* stackTitle_;
   QLabel* crossing_;  // kd: t* and the children crossed; BVH: each child's box test and the order chosen
   QLabel* crossingTitle_;
   QGroupBox* mailBoxGroup_;
