@@ -172,8 +172,7 @@ TEST(OctreeBsp, OctreeStepShowsTheCellAndItsChildOrder) {
                                       fmt(e["t_max"].get<double>()) + "]"))
       << p["nodeLabel"];
   EXPECT_TRUE(has(p["crossingLabel"], "entry plane")) << p["crossingLabel"];
-  EXPECT_TRUE(has(p["crossingLabel"], "<br>1. " + std::to_string(visited[0]) + " ["))
-      << p["crossingLabel"];
+  EXPECT_TRUE(has(p["crossingLabel"], "<br>1. " + std::to_string(visited[0]) + " [")) << p["crossingLabel"];
   EXPECT_TRUE(has(p["ruleLabel"], "Entry plane")) << p["ruleLabel"];
   EXPECT_TRUE(has(p["ruleLabel"], "First child: " + std::to_string(visited[0]))) << p["ruleLabel"];
   EXPECT_FALSE(has(p["ruleLabel"], "far child")) << p["ruleLabel"];

@@ -57,16 +57,18 @@ TEST(ReplayOctree, ChildOrderByEntryAndExitPlanesIsTheWalks) {
         EXPECT_EQ(c.path[k].octant ^ c.path[k + 1].octant, 1 << c.path[k].exitAxis);
       }
       multi += c.path.size() > 1;
-      // The walk visits the planes' order, or a part of it: it passes over the children behind the ray's start
-      // (a ray starting inside the cell) and stops at a child beyond the ray's end or the nearest hit. A
-      // grazed child (a near tie, walked for safety) would be extra: counted, not expected on random rays.
+      // The walk visits the planes' order, or a part of it: it passes over the children behind the ray's
+      // start (a ray starting inside the cell) and stops at a child beyond the ray's end or the nearest hit.
+      // A grazed child (a near tie, walked for safety) would be extra: counted, not expected on random rays.
       std::vector<int32_t> planned;
       for (const OctreeChildStep& st : c.path) planned.push_back(st.node);
       size_t at = 0;
       for (int32_t v : c.visited) {
         while (at < planned.size() && planned[at] != v) ++at;
-        if (at < planned.size()) ++at;
-        else ++differ;
+        if (at < planned.size())
+          ++at;
+        else
+          ++differ;
       }
       fullPaths += c.visited == planned;
       prefixes += c.visited.size() <= planned.size() &&

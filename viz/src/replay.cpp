@@ -648,10 +648,12 @@ std::string explainBspNode(const NodeCrossing& c) {
            only + " is visited: Intersect(" + (c.crossing == Crossing::nearOnly ? "near" : "far") +
            ", t_min, t_max).";
   }
-  head += "t* = (d - n.o) / (n.dir) = " + num(c.tStar) + ". The near child is the side the ray comes from: " +
-          side(c.nearIsBelow) +
-          (c.nDotDir > 0 ? " (n.dir > 0: the ray moves up the normal)" : " (n.dir < 0: the ray moves down the normal)") +
-          ".\n";  switch (c.crossing) {
+  head += "t* = (d - n.o) / (n.dir) = " + num(c.tStar) +
+          ". The near child is the side the ray comes from: " + side(c.nearIsBelow) +
+          (c.nDotDir > 0 ? " (n.dir > 0: the ray moves up the normal)"
+                         : " (n.dir < 0: the ray moves down the normal)") +
+          ".\n";
+  switch (c.crossing) {
     case Crossing::nearOnly:
       return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
              ": the ray leaves the node's cell before it reaches the plane.\nOnly the near child, " +

@@ -428,10 +428,12 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
     const OctreeChildStep& st = c.path[k];
     const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visitedSoFar, st.node) !=
                       c.visited.begin() + c.visitedSoFar;
-    QString item = QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
+    QString item =
+        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
     t += "<br>" + (seen ? "<b>" + item + "</b>" : item) +
-         (st.leavesParent ? tr(", leaves the cell by %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit))
-                          : tr(", exit plane %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit)));
+         (st.leavesParent
+              ? tr(", leaves the cell by %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit))
+              : tr(", exit plane %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit)));
   }
   crossing_->setText(t);
 }

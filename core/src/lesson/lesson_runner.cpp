@@ -50,8 +50,8 @@ std::string structure_key(const std::string& accel, const StructureOptions& o) {
   // The octree's and the BSP tree's own options (the BSP tree's costs and limits are the kd-tree's).
   char more[160];
   std::snprintf(more, sizeof more, "|%d|%d|%d|%d|%.9g|%.9g|%d|%d", o.octree.leaf_size, o.octree.max_depth,
-                int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i), double(o.bsp.t_t), o.bsp.max_depth,
-                o.bsp.leaf_size);
+                int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i), double(o.bsp.t_t),
+                o.bsp.max_depth, o.bsp.leaf_size);
   return std::string(buf) + more;
 }
 
