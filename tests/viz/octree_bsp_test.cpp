@@ -185,6 +185,25 @@ TEST(OctreeBsp, OctreeStepShowsTheCellAndItsChildOrder) {
       << "the first child's outline";
 }
 
+// The panel's options reach the build: a smaller K gives more cells; k-DOP directions alone no primitive
+// planes, autopartition alone only primitive planes (the info line counts the planes by source).
+TEST(OctreeBsp, OctreeAndBspOptionsReachTheBuild) {
+  auto info = [](const std::string& args, const std::string& tag) {
+    const std::string st = kOut + "/" + tag + ".json";
+    GuiRun r = gui(args + " --dump-state '" + st + "' --quit", tag);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return readJson(st)["structure_info"].get<std::string>();
+  };
+  auto cells = [](const std::string& text) { return std::stoi(text.substr(text.find(": ") + 2)); };
+  const std::string fine = info("'" + kCornell + "' --accel octree --octree-leaf 1", "octree_k1");
+  const std::string coarse = info("'" + kCornell + "' --accel octree --octree-leaf 16", "octree_k16");
+  EXPECT_GT(cells(fine), cells(coarse)) << fine << " / " << coarse;
+  const std::string kdop = info("'" + kTilted + "' --accel bsp --bsp-directions kdop", "bsp_kdop");
+  EXPECT_NE(kdop.find(", 0 primitive"), std::string::npos) << kdop;
+  const std::string own = info("'" + kTilted + "' --accel bsp --bsp-directions autopartition", "bsp_auto");
+  EXPECT_NE(own.find("planes: 0 axis, 0 face diagonal, 0 body diagonal"), std::string::npos) << own;
+}
+
 TEST(OctreeBsp, OctreeBspBadOptionsExit2) {
   for (const std::string& args :
        {std::string("--accel octree --octree-leaf 0"), std::string("--accel bsp --bsp-directions sideways"),
