@@ -800,8 +800,8 @@ std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const Re
         return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
       if (e.reason == AcceptReason::inside_cell)
         return "Traverse until tmin(cell) > tmax(ray): the hit t = " + num(e.t) +
-               " lies inside this cell (before its t_exit), and every later cell starts at or beyond it  "
-               "=>  stop, the hit is final.";
+               " lies inside this cell (before its t_exit = " + num(s.tMax) +
+               "), and every later cell starts at or beyond that exit  =>  stop, the hit is final.";
       if (e.reason == AcceptReason::next_node_beyond)
         return "Traverse until tmin(cell) > tmax(ray): the next child starts beyond the hit t = " + num(e.t) +
                ", and so does every later cell  =>  stop, the hit is final.";

@@ -212,7 +212,7 @@ void StatePanel::refresh() {
                               : tr("Tree: stack traversal"));
   crossingTitle_->setText(bvh || octree ? tr("children") : tr("t*"));
   // The octree's stack holds the cells whose children are being walked, not far children.
-  stackTitle_->setText(octree ? tr("stack (top first; cells whose children are being walked)")
+  stackTitle_->setText(octree ? tr("stack (top first; cells being walked)")
                               : tr("stack (top first; pushed far children)"));
   mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
                               : tr("Mailbox: primitives tested for this ray"));
