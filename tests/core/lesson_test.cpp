@@ -65,16 +65,17 @@ TEST(Lesson, EveryKeyCarriesOver) {
       parse_lesson_text(lesson_with("accel: kd-median\ngrid-res: 4,5,6\ngrid-density: 2.5\n"
                                     "grid-insert: bbox\nti: 40\ntt: 2\nempty-bonus: 0.5\nmax-depth: 12\n"
                                     "leaf-size: 3\nmailbox: off\nbins: 8\nbvh-leaf: 2\nbvh-max-leaf: 6\n"
-                                    "bvh-order: axis\naa: adaptive:0.1:2\nsize: 64x48\n"
+                                    "bvh-order: axis\noctree-leaf: 4\nbsp-directions: kdop\nbsp-candidates: 8\n"
+                                    "aa: adaptive:0.1:2\nsize: 64x48\n"
                                     "heat: tests\npixel: 10,20\nsecondary: on\nray: 1\nstep-to: leaf:2\n"
                                     "panel: sah\nnode-path: LR\ninspect: on\nsquare: 2\nfollow: on\n"
                                     "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n") +
                             "\n## Two\n\nNothing changes.\n",
                         kLesson);
   ASSERT_EQ(l.steps.size(), 2u);
-  EXPECT_EQ(l.steps[0].changes.size(), 31u);
+  EXPECT_EQ(l.steps[0].changes.size(), 34u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 34u);  // + step, node and sample, tested below
+  EXPECT_EQ(lesson_setting_keys().size(), 37u);  // + step, node and sample, tested below
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");
@@ -96,6 +97,16 @@ TEST(Lesson, EveryKeyCarriesOver) {
   EXPECT_EQ(s.structure.bvh.leaf_size, 2);
   EXPECT_EQ(s.structure.bvh.max_leaf_size, 6);
   EXPECT_EQ(s.structure.bvh_order, BvhOrder::split_axis);
+  // The octree's and the BSP tree's own; the BSP tree takes the kd-tree's costs and limits, the octree its
+  // depth limit.
+  EXPECT_EQ(s.structure.octree.leaf_size, 4);
+  EXPECT_EQ(s.structure.octree.max_depth, 12);
+  EXPECT_EQ(s.structure.bsp.directions, BspDirections::kdop);
+  EXPECT_EQ(s.structure.bsp.candidates, 8);
+  EXPECT_FLOAT_EQ(s.structure.bsp.t_i, 40.f);
+  EXPECT_FLOAT_EQ(s.structure.bsp.t_t, 2.f);
+  EXPECT_EQ(s.structure.bsp.max_depth, 12);
+  EXPECT_EQ(s.structure.bsp.leaf_size, 3);
   EXPECT_EQ(s.aa, "adaptive:0.1:2");
   EXPECT_EQ(s.size, (std::array<int, 2>{64, 48}));
   EXPECT_EQ(s.heat, "tests");
@@ -115,6 +126,29 @@ TEST(Lesson, EveryKeyCarriesOver) {
   EXPECT_TRUE(s.inspect);
   EXPECT_EQ(s.square, 2);
   EXPECT_TRUE(s.sample_overlay);
+}
+
+// The octree and the general BSP tree: their names, their own options on the GUI's command line (defaults
+// left out), bad values refused.
+TEST(Lesson, OctreeAndBspSettings) {
+  for (const char* name : {"octree", "bsp"})
+    EXPECT_EQ(
+        parse_lesson_text(lesson_with(std::string("accel: ") + name + "\n"), kLesson).steps[0].state.accel,
+        name);
+  Lesson l = parse_lesson_text(lesson_with("accel: bsp\nbsp-directions: autopartition\nbsp-candidates: 32\n"
+                                           "octree-leaf: 3\n") +
+                                   "## B\n```raystep\naccel: octree\nbsp-directions: both\n```\n",
+                               kLesson);
+  const std::vector<std::string> a = l.steps[0].state.scripted_args();
+  const std::vector<std::string> expected = {"--accel", "bsp", "--octree-leaf", "3", "--bsp-directions",
+                                             "autopartition", "--bsp-candidates", "32"};
+  EXPECT_EQ(std::vector<std::string>(a.begin() + 1, a.end()), expected);
+  const std::vector<std::string> b = l.steps[1].state.scripted_args();
+  EXPECT_EQ(std::find(b.begin(), b.end(), "--bsp-directions"), b.end());  // back to the default
+  EXPECT_NE(std::find(b.begin(), b.end(), "octree"), b.end());
+  for (const char* bad : {"accel: quadtree\n", "octree-leaf: 0\n", "octree-leaf: x\n",
+                          "bsp-directions: sideways\n", "bsp-candidates: 0\n", "bsp-candidates: 4097\n"})
+    EXPECT_THROW(parse_lesson_text(lesson_with(bad), kLesson), InputError) << bad;
 }
 
 // The bounding volume hierarchies: every BVH name, its options on the GUI's command line (defaults left out),
@@ -249,7 +283,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("pixel: -1,2\n")),
             f + "7: pixel '-1,2': expected X,Y whole numbers >= 0, or none");
   EXPECT_EQ(error_of(lesson_with("accel: bvh2\n")),
-            f + "7: accel 'bvh2': expected grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8");
+            f + "7: accel 'bvh2': expected grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2\n")),
             f + "7: grid-res '1,2': expected NX,NY,NZ, each a whole number 1..4096, or none");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2,4097\n")).rfind(f + "7: grid-res '1,2,4097'", 0), 0u);

@@ -359,7 +359,7 @@ TEST(Viz, CoarsenedGridSaysSoInTheStructurePanel) {
 
 TEST(Viz, BadOptionsExit2) {
   for (const char* args : {"--pixel 400,1", "--pixel 1", "--step 100000", "--step-to teleport:1", "--grid-res 0,1,1",
-                           "--grid-insert fuzzy", "--aa sometimes", "--accel octree", "--size 0x3"}) {
+                           "--grid-insert fuzzy", "--aa sometimes", "--accel quadtree", "--size 0x3"}) {
     GuiRun r = gui("'" + kScene + "' " + args + " --quit", "bad_option");
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(r.err.rfind("error: ", 0) == 0 || r.err.find("\nerror: ") != std::string::npos, true) << args << ": " << r.err;

@@ -98,6 +98,81 @@ class BvhShape final : public TreeShape {
   const BvhData& b_;
 };
 
+// The octree: eight children in one block, child i the octant (bit 0 upper in x, 1 y, 2 z); no SAH.
+class OctreeShape final : public TreeShape {
+ public:
+  explicit OctreeShape(const OctreeData& o) : o_(o) {}
+  const char* name() const override { return "octree"; }
+  size_t size() const override { return o_.nodes.size(); }
+  int32_t parent(uint32_t n) const override { return o_.info[n].parent; }
+  int32_t depth(uint32_t n) const override { return o_.info[n].depth; }
+  bool leaf(uint32_t n) const override { return o_.nodes[n].is_leaf(); }
+  uint32_t child(uint32_t n, int row) const override { return o_.nodes[n].child(row); }
+  int children(uint32_t n) const override { return leaf(n) ? 0 : 8; }
+  int row(uint32_t n) const override {
+    int32_t p = parent(n);
+    return p < 0 ? 0 : int(n - o_.nodes[uint32_t(p)].first);
+  }
+  QString side(uint32_t n) const override {
+    return parent(n) < 0 ? QObject::tr("root") : QString::fromStdString(octantName(row(n)));
+  }
+  QString what(uint32_t id) const override {
+    const OctreeNode& n = o_.nodes[id];
+    if (n.is_leaf())
+      return n.prim_count() == 0 ? QObject::tr("leaf, empty")
+                                 : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
+    return QObject::tr("8 octants, %1 prims").arg(o_.info[id].prims);
+  }
+  QString whatHeader() const override { return QObject::tr("cell"); }
+  float cost(uint32_t n) const override { return float(o_.info[n].prims); }  // no SAH: the primitive count
+  Bounds3 box(uint32_t n) const override { return o_.info[n].box; }
+  std::string path(uint32_t n) const override {
+    std::string p;
+    for (int32_t k = int32_t(n); parent(uint32_t(k)) >= 0; k = parent(uint32_t(k)))
+      p.insert(0, std::to_string(row(uint32_t(k))));
+    return p;
+  }
+
+ private:
+  const OctreeData& o_;
+};
+
+// The general BSP tree: below L (the next node), above R, as the kd-tree; the box is the cell's bounding box.
+class BspShape final : public TreeShape {
+ public:
+  explicit BspShape(const BspTreeData& b) : b_(b) {}
+  const char* name() const override { return "BSP tree"; }
+  size_t size() const override { return b_.nodes.size(); }
+  int32_t parent(uint32_t n) const override { return b_.info[n].parent; }
+  int32_t depth(uint32_t n) const override { return b_.info[n].depth; }
+  bool leaf(uint32_t n) const override { return b_.nodes[n].is_leaf(); }
+  uint32_t child(uint32_t n, int row) const override { return row == 0 ? n + 1 : b_.nodes[n].above_child(); }
+  QString what(uint32_t id) const override {
+    const BspNode& n = b_.nodes[id];
+    if (n.is_leaf())
+      return n.prim_count() == 0 ? QObject::tr("leaf, empty")
+                                 : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
+    const glm::vec3 v = n.plane.normal;
+    return QObject::tr("n = (%1, %2, %3), d = %4")
+        .arg(double(v.x), 0, 'g', 3)
+        .arg(double(v.y), 0, 'g', 3)
+        .arg(double(v.z), 0, 'g', 3)
+        .arg(double(n.plane.offset), 0, 'g', 5);
+  }
+  QString whatHeader() const override { return QObject::tr("plane or leaf"); }
+  float cost(uint32_t n) const override { return b_.info[n].cost; }
+  Bounds3 box(uint32_t n) const override { return b_.info[n].box; }
+  std::string path(uint32_t n) const override {
+    std::string p;
+    for (int32_t k = int32_t(n); parent(uint32_t(k)) >= 0; k = parent(uint32_t(k)))
+      p.insert(0, 1, row(uint32_t(k)) == 0 ? 'L' : 'R');
+    return p;
+  }
+
+ private:
+  const BspTreeData& b_;
+};
+
 }  // namespace
 
 std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
@@ -105,6 +180,9 @@ std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
     return std::make_unique<KdShape>(kd->data());
   if (const Bvh* bvh = s.bvh(); bvh && !bvh->data().nodes.empty())
     return std::make_unique<BvhShape>(bvh->data());
+  if (const Octree* o = s.octree(); o && !o->data().nodes.empty())
+    return std::make_unique<OctreeShape>(o->data());
+  if (const BspTree* b = s.bsp(); b && !b->data().nodes.empty()) return std::make_unique<BspShape>(b->data());
   return nullptr;
 }
 
@@ -116,8 +194,7 @@ void KdTreeModel::setStructure(std::shared_ptr<const StructureData> structure) {
 }
 
 int KdTreeModel::rowOf(uint32_t node) const {
-  int32_t p = tree_->parent(node);
-  return p < 0 || int32_t(node) == p + 1 ? 0 : 1;
+  return tree_->row(node);
 }
 
 QModelIndex KdTreeModel::indexOfNode(int node) const {
@@ -130,7 +207,7 @@ QModelIndex KdTreeModel::index(int row, int column, const QModelIndex& parent) c
   if (!parent.isValid()) return row == 0 ? createIndex(0, column, quintptr(0)) : QModelIndex();
   if (parent.column() != 0) return {};
   uint32_t p = uint32_t(parent.internalId());
-  if (tree_->leaf(p) || row < 0 || row > 1) return {};
+  if (row < 0 || row >= tree_->children(p)) return {};
   return createIndex(row, column, quintptr(tree_->child(p, row)));
 }
 
@@ -145,7 +222,7 @@ int KdTreeModel::rowCount(const QModelIndex& parent) const {
   if (!tree_) return 0;
   if (!parent.isValid()) return 1;
   if (parent.column() != 0) return 0;
-  return tree_->leaf(uint32_t(parent.internalId())) ? 0 : 2;
+  return tree_->children(uint32_t(parent.internalId()));
 }
 
 int KdTreeModel::columnCount(const QModelIndex&) const {
@@ -162,9 +239,7 @@ QVariant KdTreeModel::data(const QModelIndex& index, int role) const {
   if (role == Qt::DisplayRole) {
     switch (index.column()) {
       case SideColumn:
-        return tree_->parent(id) < 0 ? tr("root")
-               : index.row() == 0    ? QStringLiteral("L")
-                                     : QStringLiteral("R");
+        return tree_->side(id);
       case NodeColumn:
         return id;
       case DepthColumn:

@@ -10,6 +10,7 @@
 #include <string>
 
 #include <QAbstractItemModel>
+#include <QObject>
 
 #include <QString>
 
@@ -38,14 +39,26 @@ class TreeShape {
   virtual int32_t parent(uint32_t node) const = 0;  // -1: the root
   virtual int32_t depth(uint32_t node) const = 0;
   virtual bool leaf(uint32_t node) const = 0;
-  virtual uint32_t child(uint32_t node, int row) const = 0;  // row 0 or 1 of an inner node
+  virtual uint32_t child(uint32_t node, int row) const = 0;  // row 0 .. children - 1 of an inner node
+  // Binary trees: 2 children, rows L and R; the octree: 8, rows named by their octant.
+  virtual int children(uint32_t node) const { return leaf(node) ? 0 : 2; }
+  virtual int row(uint32_t node) const {  // its row under its parent (0: the root, or the next node)
+    int32_t p = parent(node);
+    return p < 0 || int32_t(node) == p + 1 ? 0 : 1;
+  }
+  virtual QString side(uint32_t node) const {  // the tree column: "root", "L", "R", "x+ y- z+"
+    return parent(node) < 0 ? QObject::tr("root")
+           : row(node) == 0 ? QStringLiteral("L")
+                            : QStringLiteral("R");
+  }
   virtual QString what(uint32_t node) const = 0;             // "split x = 0.5", "leaf, 3 primitives"
   virtual QString whatHeader() const = 0;
   virtual float cost(uint32_t node) const = 0;
   virtual Bounds3 box(uint32_t node) const = 0;
   virtual std::string path(uint32_t node) const = 0;
 };
-// The adapter for a structure's tree: a kd-tree, a binary BVH, or null (a grid, a wide BVH).
+// The adapter for a structure's tree: a kd-tree, a binary BVH, an octree, a general BSP tree, or null (a
+// grid, a wide BVH).
 std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s);
 
 class KdTreeModel : public QAbstractItemModel {

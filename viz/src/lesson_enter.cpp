@@ -157,12 +157,16 @@ void enterState(MainWindow& w, const LessonState& st) {
     const char* what = st.node.by == NodeSpec::By::id     ? "--node"
                        : st.node.by == NodeSpec::By::path ? "--node-path"
                                                           : "--panel";
-    if (!kd && !bvh)
+    // The octree and the BSP tree: their tree view and a node by id (no SAH inspector, no path).
+    const std::unique_ptr<TreeShape> other =
+        !kd && !bvh && s->structure() ? treeShapeOf(*s->structure()) : nullptr;
+    if (!kd && !bvh && (!other || st.node.by == NodeSpec::By::path))
       fail(std::string(what) +
            ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
-           "bvh-sweep or bvh-median)");
-    const size_t count = kd ? kd->data().nodes.size() : bvh->data().nodes.size();
-    const std::string name = kd ? "kd-tree" : "BVH";
+           "bvh-sweep or bvh-median" +
+           (other ? "; an octree or BSP tree takes --node ID" : "") + ")");
+    const size_t count = kd ? kd->data().nodes.size() : bvh ? bvh->data().nodes.size() : other->size();
+    const std::string name = kd ? "kd-tree" : bvh ? "BVH" : other->name();
     if (st.node.by == NodeSpec::By::id) {
       if (st.node.id < 0 || size_t(st.node.id) >= count)
         fail("--node " + std::to_string(st.node.id) + ": the " + name + " has " + std::to_string(count) +

@@ -156,16 +156,23 @@ MainWindow::MainWindow() : session_(new Session(this)) {
     // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
     const bool kd = session_->structure() && treeShapeOf(*session_->structure());
     const bool isBvh = session_->structure() && session_->structure()->bvh();
-    kdDock_->setWindowTitle(isBvh ? tr("BVH: nodes and SAH inspector")
-                                  : tr("kd-tree: nodes and SAH inspector"));
+    const bool isOctree = session_->structure() && session_->structure()->octree();
+    const bool isBsp = session_->structure() && session_->structure()->bsp();
+    // The octree and the BSP tree: their nodes are browsable; the SAH inspector is the kd-tree's and BVH's.
+    kdDock_->setWindowTitle(isBvh      ? tr("BVH: nodes and SAH inspector")
+                            : isOctree ? tr("octree: cells (no SAH inspector: centre splits)")
+                            : isBsp    ? tr("BSP tree: nodes (no SAH inspector for its planes yet)")
+                                       : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(
           isBvh ? tr("BVH built: View > tree and SAH inspector shows its nodes and binned SAH curves")
-                : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
-                     "3D view, shows its nodes and SAH curves"));
+          : isOctree || isBsp
+              ? tr("Built: View > tree shows its nodes")
+              : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
+                   "3D view, shows its nodes and SAH curves"));
     else if (!kd)
       hideKdPanel();
     showSahCurve();
@@ -798,6 +805,36 @@ void MainWindow::buildStructure() {
                                 .arg(built->kind == "bvh4" ? 4 : 8)
                                 .arg(double(built->accel->memory_bytes()) / 1024.0, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
+      } else if (const Octree* oct = built->octree()) {
+        OctreeStats st = octree_stats(oct->data());
+        structure_->setInfo(tr("octree: %1 cells, %2 leaves (%3 empty), depth %4 (limit %5), %6 references "
+                               "(%7 per primitive), at most %8 per leaf")
+                                .arg(st.nodes)
+                                .arg(st.leaves)
+                                .arg(st.empty_leaves)
+                                .arg(st.max_depth)
+                                .arg(octree_max_depth(oct->options(), n))
+                                .arg(st.references)
+                                .arg(double(st.references) / n, 0, 'f', 2)
+                                .arg(st.max_leaf_prims) +
+                            took(tr(", built"), built->buildMs));
+      } else if (const BspTree* bsp = built->bsp()) {
+        BspTreeStats st = bsp_tree_stats(bsp->data(), bsp->options());
+        structure_->setInfo(
+            tr("BSP tree: %1 nodes, %2 leaves (%3 empty), depth %4, %5 references (%6 per primitive), SAH "
+               "cost %7; planes: %8 axis, %9 face diagonal, %10 body diagonal, %11 primitive")
+                .arg(st.nodes)
+                .arg(st.leaves)
+                .arg(st.empty_leaves)
+                .arg(st.max_depth)
+                .arg(st.references)
+                .arg(double(st.references) / n, 0, 'f', 2)
+                .arg(st.sah_cost, 0, 'f', 1)
+                .arg(st.inner_by_source[0])
+                .arg(st.inner_by_source[1])
+                .arg(st.inner_by_source[2])
+                .arg(st.inner_by_source[3]) +
+            took(tr(", built"), built->buildMs));
       } else if (const KdTree* kd = built->kdTree()) {
         KdTreeStats st = kd_tree_stats(kd->data(), kd->options());
         structure_->setInfo(

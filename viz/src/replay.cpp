@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "raystep/accel/bsp.h"
 #include "raystep/geometry/exact.h"
 #include "raystep/geometry/triangle.h"
 #include "raystep/geometry/triangle_moller.h"
@@ -220,6 +222,52 @@ const TraceNode* findNode(const Trace& trace, int32_t id) {
   return nullptr;
 }
 
+namespace {
+
+// A general BSP node: the plane's crossing as the kernel (bsp.h) decides it, and the children the events
+// show.
+NodeCrossing bspCrossing(const TraceNode& n, const TracedRay& ray, const ReplayState& s, NodeCrossing c) {
+  const std::vector<Event>& ev = ray.events;
+  const Event& e = ev[size_t(s.nodeEvent)];
+  size_t next = size_t(s.nodeEvent) + 1;
+  c.general = true;
+  c.normal = n.normal;
+  c.offset = n.offset;
+  c.tMin = e.t_min_node;
+  c.tMax = e.t_max_node;
+  const glm::vec3 o = ray.ray.origin, d = ray.ray.direction;
+  c.originSide = double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z - n.offset;
+  c.nDotDir = double(n.normal.x) * d.x + double(n.normal.y) * d.y + double(n.normal.z) * d.z;
+  const BspCrossing k =
+      bsp_crossing(BspPlane{n.normal, n.offset}, o, d, std::max(std::fabs(c.tMin), std::fabs(c.tMax)));
+  c.nearIsBelow = k.below_first;
+  c.tLo = k.t_lo;
+  c.tHi = k.t_hi;
+  if (k.kind == BspCrossing::crosses)
+    c.tStar = float(-c.originSide / c.nDotDir);
+  else if (k.kind == BspCrossing::stays)
+    c.tStar = k.below_first == (c.nDotDir >= 0.0) ? kInfinity : -kInfinity;  // never reached, or behind
+  else
+    c.tStar = std::numeric_limits<float>::quiet_NaN();
+  if (next >= ev.size()) return c;
+  if (ev[next].type == EventType::push) {
+    c.crossing = k.kind == BspCrossing::undecided ? Crossing::inPlane : Crossing::both;
+    c.farChild = ev[next].node;
+    if (next + 1 < ev.size() && ev[next + 1].type == EventType::node) c.nearChild = ev[next + 1].node;
+  } else if (ev[next].type == EventType::node) {
+    bool below = ev[next].node == e.node + 1;  // the child below is the next node (depth-first order)
+    bool nearSide = below == c.nearIsBelow;
+    c.crossing = nearSide ? Crossing::nearOnly : Crossing::farOnly;
+    (nearSide ? c.nearChild : c.farChild) = ev[next].node;
+  } else {
+    return c;
+  }
+  c.valid = true;
+  return c;
+}
+
+}  // namespace
+
 NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const ReplayState& s) {
   NodeCrossing c;
   const std::vector<Event>& ev = ray.events;
@@ -230,6 +278,7 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   if (!n || n->leaf || n->axis < 0 || next >= ev.size()) return c;  // no split plane (octree): no crossing
   c.nodeEvent = s.nodeEvent;
   c.node = e.node;
+  if (n->has_plane) return bspCrossing(*n, ray, s, c);
   c.axis = n->axis;
   c.split = n->split;
   c.tMin = e.t_min_node;
@@ -251,6 +300,92 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
     (nearSide ? c.nearChild : c.farChild) = ev[next].node;
   } else {
     return c;
+  }
+  c.valid = true;
+  return c;
+}
+
+bool isOctreeRay(const Trace* trace, const TracedRay& ray) {
+  if (trace) return trace->structure.kind == "octree";
+  // Without a trace: the octree pushes the cell it is at (its frame), a kd-tree the far child.
+  int32_t at = -1;
+  for (const Event& e : ray.events) {
+    if (e.type == EventType::node) at = e.node;
+    if (e.type == EventType::push) return e.node == at;
+  }
+  return false;
+}
+
+std::string octantName(int octant) {
+  std::string s;
+  for (int a = 0; a < 3; ++a) s += std::string(a ? " " : "") + axisName(a) + ((octant >> a) & 1 ? "+" : "-");
+  return s;
+}
+
+OctreeChoice octreeChoice(const Trace& trace, const TracedRay& ray, const ReplayState& s) {
+  OctreeChoice c;
+  const std::vector<Event>& ev = ray.events;
+  if (s.nodeEvent < 0 || ev[size_t(s.nodeEvent)].type != EventType::node) return c;
+  const Event& e = ev[size_t(s.nodeEvent)];
+  const TraceNode* n = findNode(trace, e.node);
+  if (!n || n->leaf || n->children.size() != 8) return c;
+  c.nodeEvent = s.nodeEvent;
+  c.node = e.node;
+  c.depth = e.depth;
+  c.tEnter = e.t_min_node;
+  c.tExit = e.t_max_node;
+  // The planes' t as the kernel computes them (octree.h): float, by the direction's reciprocal; the cell's
+  // centre as the build's 0.5 (lo + hi). In the frame where every direction component is positive (the
+  // paper's reflection), t0 is the entry face's t, t1 the exit face's.
+  const glm::vec3 o = ray.ray.origin, d = ray.ray.direction;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.f / d[a];
+    const bool neg = std::signbit(d[a]);
+    const float mid = 0.5f * (n->box.lo[a] + n->box.hi[a]);
+    c.moving[a] = std::isfinite(inv);
+    if (c.moving[a]) {
+      c.t0[a] = ((neg ? n->box.hi[a] : n->box.lo[a]) - o[a]) * inv;
+      c.t1[a] = ((neg ? n->box.lo[a] : n->box.hi[a]) - o[a]) * inv;
+      c.tMid[a] = (mid - o[a]) * inv;
+    } else {
+      c.t0[a] = -kInfinity;
+      c.t1[a] = kInfinity;
+      c.tMid[a] = (o[a] >= mid) != neg ? -kInfinity : kInfinity;
+    }
+  }
+  const float tIn = std::max({c.t0[0], c.t0[1], c.t0[2]});
+  c.entryAxis = c.t0[0] >= c.t0[1] && c.t0[0] >= c.t0[2] ? 0 : (c.t0[1] >= c.t0[2] ? 1 : 2);
+  int mask = 0;
+  for (int a = 0; a < 3; ++a) mask |= int(std::signbit(d[a])) << a;
+  // Revelles' walk in the reflected frame (reflected child r is real child r ^ mask).
+  static const int kNext[8][3] = {{1, 2, 4}, {8, 3, 5}, {3, 8, 6}, {8, 8, 7},
+                                  {5, 6, 8}, {8, 7, 8}, {7, 8, 8}, {8, 8, 8}};
+  int r = 0;
+  for (int b = 0; b < 3; ++b)
+    if (b != c.entryAxis && c.tMid[b] < tIn) r |= 1 << b;
+  while (r < 8 && c.path.size() < 8) {
+    OctreeChildStep st;
+    st.octant = r ^ mask;
+    st.node = n->children[size_t(st.octant)];
+    float ct1[3];
+    for (int a = 0; a < 3; ++a) ct1[a] = (r >> a) & 1 ? c.t1[a] : c.tMid[a];
+    st.exitAxis = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
+    st.tExit = ct1[st.exitAxis];
+    r = kNext[r][st.exitAxis];
+    st.leavesParent = r == 8;
+    c.path.push_back(st);
+  }
+  // The children the walk visits: the node events one level down between this cell's push and its pop.
+  int depth = e.depth;
+  for (size_t i = size_t(s.nodeEvent) + 1; i < ev.size(); ++i) {
+    const Event& x = ev[i];
+    if (x.type == EventType::pop && x.node == e.node) break;
+    if (x.type == EventType::hit_accepted || x.type == EventType::ray_end) break;
+    if (x.type != EventType::node || x.depth != depth + 1) continue;
+    c.visited.push_back(x.node);
+    auto it = std::find(n->children.begin(), n->children.end(), x.node);
+    c.visitedOctants.push_back(it == n->children.end() ? -1 : int(it - n->children.begin()));
+    if (int(i) <= s.step) ++c.visitedSoFar;
   }
   c.valid = true;
   return c;
@@ -485,6 +620,201 @@ std::string nodeName(int32_t id) {
   return id >= 0 ? "node " + std::to_string(id) : std::string("the child");
 }
 
+std::string vec(const glm::vec3& v) {
+  return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")";
+}
+
+// A general BSP node's plane and decision, in the lecture's words: the same walk as the kd-tree's with
+// t* = (d - n.o) / (n.dir) instead of (split - o.a) / d.a.
+std::string explainBspNode(const NodeCrossing& c) {
+  std::string head =
+      "Inner node " + std::to_string(c.node) + ", plane n.p = d with n = " + vec(c.normal) +
+      ", d = " + num(c.offset) + ".\nThe origin's signed distance n.o - d = " + num(float(c.originSide)) +
+      " (" + (c.originSide < 0 ? "below" : "above") + " the plane); n.dir = " + num(float(c.nDotDir)) + ".\n";
+  std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
+  std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
+  if (c.crossing == Crossing::inPlane)
+    return head +
+           "n.dir is 0 within rounding and the ray lies on the plane, or too near it to tell: t* is "
+           "undefined, "
+           "the ray may touch both children over the whole interval.\nVisit the near child, " +
+           nearName + "; push the far child, " + farName + ", with all of [" + num(c.tMin) + ", " +
+           num(c.tMax) + "].";
+  if (!std::isfinite(c.tStar)) {
+    std::string only = c.crossing == Crossing::nearOnly ? nearName : farName;
+    return head +
+           "n.dir is 0 within rounding: the ray runs parallel to the plane and stays on its origin's "
+           "side over [t_min, t_max].\nOnly " +
+           only + " is visited: Intersect(" + (c.crossing == Crossing::nearOnly ? "near" : "far") +
+           ", t_min, t_max).";
+  }
+  head += "t* = (d - n.o) / (n.dir) = " + num(c.tStar) +
+          ". The near child is the side the ray comes from: " + side(c.nearIsBelow) +
+          (c.nDotDir > 0 ? " (n.dir > 0: the ray moves up the normal)"
+                         : " (n.dir < 0: the ray moves down the normal)") +
+          ".\n";
+  switch (c.crossing) {
+    case Crossing::nearOnly:
+      return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
+             ": the ray leaves the node's cell before it reaches the plane.\nOnly the near child, " +
+             nearName + ", is visited: Intersect(near, t_min, t_max).";
+    case Crossing::farOnly:
+      return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
+             ": the node's part of the ray lies beyond the plane.\nOnly the far child, " + farName +
+             ", is visited: Intersect(far, t_min, t_max).";
+    case Crossing::both: {
+      bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;
+      return head +
+             (inside ? "t_min = " + num(c.tMin) + " <= t* <= t_max = " + num(c.tMax)
+                     : "t* is at the edge of [" + num(c.tMin) + ", " + num(c.tMax) +
+                           "] (within the walk's rounding margin)") +
+             ": the ray crosses both children.\nIntersect(near = " + nearName + ", t_min, t*) now; push " +
+             "Intersect(far = " + farName + ", t*, t_max) for later (t* widened to [" + num(c.tLo) + ", " +
+             num(c.tHi) + "], its rounding bound, so no hit on the plane is lost).";
+    }
+    default:
+      return head;
+  }
+}
+
+// The octree's walk (Revelles et al.): the current inner cell's child order by its planes.
+std::string octreeOrderText(const OctreeChoice& c) {
+  std::string t;
+  if (c.entryAxis >= 0 && c.moving[c.entryAxis]) {
+    t = "Entry plane: the ray enters the cell through its face normal to " +
+        std::string(axisName(c.entryAxis)) + " (t0." + axisName(c.entryAxis) + " = " +
+        num(c.t0[c.entryAxis]) + ", the largest entry t)";
+  } else {
+    t = "The ray starts inside the cell";
+  }
+  std::vector<std::string> crossed;
+  for (int b = 0; b < 3; ++b)
+    if (b != c.entryAxis && c.moving[b])
+      crossed.push_back(
+          std::string(axisName(b)) + " centre plane at t = " + num(c.tMid[b]) +
+          (c.tMid[b] < c.t0[c.entryAxis] ? " (before: the far half)" : " (after: the near half)"));
+  if (!crossed.empty()) {
+    t += "; ";
+    for (size_t k = 0; k < crossed.size(); ++k) t += (k ? ", " : "") + crossed[k];
+  }
+  if (c.path.empty()) return t + ".";
+  t += ".\nFirst child: " + std::to_string(c.path[0].node) + " [" + octantName(c.path[0].octant) + "].";
+  t += " Next by the exit plane (the smallest exit t):";
+  for (size_t k = 0; k < c.path.size(); ++k) {
+    const OctreeChildStep& st = c.path[k];
+    t += std::string(k ? ";" : "") + " " + std::to_string(st.node) + " leaves by " + axisName(st.exitAxis) +
+         (st.leavesParent ? " (the cell's face) at t = " + num(st.tExit) + ": done"
+                          : " at t = " + num(st.tExit) + " -> " + std::to_string(c.path[k + 1].node));
+  }
+  t += ".";
+  // The events are the truth: a grazed child (within the rounding margin) is walked too, and the walk stops
+  // early once a child starts beyond the nearest hit.
+  std::vector<int32_t> planned;
+  for (const OctreeChildStep& st : c.path) planned.push_back(st.node);
+  if (!c.visited.empty() && c.visited != planned) {
+    t += "\nThe walk visits ";
+    for (size_t k = 0; k < c.visited.size(); ++k) t += (k ? ", " : "") + std::to_string(c.visited[k]);
+    std::vector<std::string> why;
+    if (c.visited[0] != planned[0] && c.path[0].tExit < c.tEnter)
+      why.push_back("the ray starts inside the cell: the children before its start are passed over");
+    if (c.visited.back() != planned.back())
+      why.push_back("it stops where a child starts beyond the ray's end or the nearest hit");
+    for (int32_t v : c.visited)
+      if (std::find(planned.begin(), planned.end(), v) == planned.end()) {
+        why.push_back("a child the ray grazes within the rounding margin is walked too");
+        break;
+      }
+    t += " (";
+    for (size_t k = 0; k < why.size(); ++k) t += (k ? "; " : "") + why[k];
+    t += ").";
+  }
+  return t;
+}
+
+std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
+  const Event& e = *s.event;
+  const std::vector<Event>& ev = ray.events;
+  size_t next = size_t(s.step) + 1;
+  const Event* after = next < ev.size() ? &ev[next] : nullptr;
+  std::string cell = "Cell " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) +
+                     ", [t_enter, t_exit] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "])";
+  switch (e.type) {
+    case EventType::ray_begin: {
+      int first = findEvent(ray, 0, EventType::node, true);
+      if (first < 0) return "The ray misses the octree's root cube (slab test): no cell to visit.";
+      const Event& root = ev[size_t(first)];
+      return "Slab test: the ray meets the root cube over [t_enter, t_exit] = [" + num(root.t_min_node) +
+             ", " + num(root.t_max_node) +
+             "]. The walk is parametric and top-down (Revelles et al.): from each cell to its children in "
+             "the "
+             "order the ray crosses them.";
+    }
+    case EventType::node: {
+      if (after && after->type == EventType::leaf) return cell + " is a leaf.";
+      std::string text = cell + ": an inner cell, split at its centre into eight octants.";
+      if (OctreeChoice c = trace ? octreeChoice(*trace, ray, s) : OctreeChoice{}; c.valid)
+        text += "\n" + octreeOrderText(c);
+      return text;
+    }
+    case EventType::push: {
+      std::string text =
+          "Walk the children of cell " + std::to_string(e.node) +
+          " in the order the ray crosses them (each child's [t_enter, t_exit] starts where the "
+          "previous one's ends); its frame goes on the stack.";
+      if (OctreeChoice c = trace ? octreeChoice(*trace, ray, s) : OctreeChoice{}; c.valid && !c.path.empty())
+        text +=
+            " First child: " + std::to_string(c.path[0].node) + " [" + octantName(c.path[0].octant) + "].";
+      return text;
+    }
+    case EventType::pop:
+      return "Cell " + std::to_string(e.node) + "'s children are done" +
+             (s.nearestPrim >= 0
+                  ? " (or the next one starts beyond the nearest hit, t = " + num(s.nearestT) + ")"
+                  : std::string()) +
+             ": back to its parent's next child.";
+    case EventType::leaf: {
+      size_t k = s.prims.size();
+      std::string head = "Leaf cell " + std::to_string(e.node) + " over [t_enter, t_exit] = [" +
+                         num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+      if (k == 0) return head + " is empty: nothing to test. Go on with the next child.";
+      return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
+             " (a primitive lies in every cell it overlaps: the mailbox skips one tested before).";
+    }
+    case EventType::prim_test: {
+      std::string where = s.nodeEvent >= 0 ? " in cell " + std::to_string(ev[size_t(s.nodeEvent)].node) : "";
+      return explainPrimTest(trace, ray, e, s, where);
+    }
+    case EventType::mailbox_hit:
+      for (const MailboxEntry& m : s.mailbox)
+        if (m.prim == e.prim && m.leaf >= 0)
+          return "Mailbox hit: primitive " + std::to_string(e.prim) + " was already tested in cell " +
+                 std::to_string(m.leaf) + " for this ray (it overlaps several cells): skip the test.";
+      return "Mailbox hit: primitive " + std::to_string(e.prim) +
+             " was already tested for this ray: skipped.";
+    case EventType::hit_deferred:
+      return "The hit t = " + num(e.t) + " lies beyond this cell's exit, t_exit = " + num(e.t_exit) +
+             ": a later cell may hold a nearer hit. Keep it and go on: traverse until tmin(cell) > "
+             "tmax(ray).";
+    case EventType::hit_accepted: {
+      if (e.reason == AcceptReason::any_hit)
+        return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
+      if (e.reason == AcceptReason::inside_cell)
+        return "Traverse until tmin(cell) > tmax(ray): the hit t = " + num(e.t) +
+               " lies inside this cell (before its t_exit = " + num(s.tMax) +
+               "), and every later cell starts at or beyond that exit  =>  stop, the hit is final.";
+      if (e.reason == AcceptReason::next_node_beyond)
+        return "Traverse until tmin(cell) > tmax(ray): the next child starts beyond the hit t = " + num(e.t) +
+               ", and so does every later cell  =>  stop, the hit is final.";
+      return "Every cell the ray crosses has been walked. The nearest hit, t = " + num(e.t) + ", is final.";
+    }
+    case EventType::ray_end:
+      if (e.prim < 0) return "Miss: the walk visited every cell the ray crosses without a hit.";
+      return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
+    default:
+      return "";
+  }
+}
+
 // The kd-tree's stack walk in the lecture's words.
 std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
@@ -507,6 +837,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       std::string a = axisName(c.axis);
       std::string head = "Inner node " + std::to_string(c.node) + " splits " + a + " at " + num(c.split) +
                          ". t* = (split - o." + a + ") / d." + a + " = " + num(c.tStar) + ".\n";
+      if (c.general) return explainBspNode(c);
       std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
       std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
       switch (c.crossing) {
@@ -581,6 +912,12 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
                ", is not before its t_min: a nearer hit may "
                "lie in it, so visit it.";
       }
+      const bool bsp = trace && trace->structure.kind == "bsp";
+      if (bsp)  // t* is an interval there: the stack is not ordered by t_min
+        return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
+               ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it. A BSP "
+               "tree's stack is not ordered by t_min (t* is known within its rounding interval), so every "
+               "entry left is popped and judged on its own.";
       return head + "The nearest hit t = " + num(s.nearestT) + " < t_min = " + num(e.t_min_node) +
              ": the node starts beyond the hit, so none of its primitives can be nearer. Skip it." +
              (after && after->type == EventType::hit_accepted
@@ -604,6 +941,11 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       if (e.reason == AcceptReason::next_node_beyond) {
         int pop = findEvent(ray, s.step, EventType::pop, false);
         std::string tmin = pop >= 0 ? num(ev[size_t(pop)].t_min_node) : "?";
+        if (trace && trace->structure.kind == "bsp")
+          return "Traverse until tmin(next node) > tmax(ray): every entry popped from the stack starts "
+                 "beyond "
+                 "the hit (the last one at t_min = " +
+                 tmin + " > t(hit) = " + num(e.t) + ") and the stack is empty  =>  stop, the hit is final.";
         return "Traverse until tmin(next node) > tmax(ray):\ntmin(popped node) = " + tmin +
                " > t(hit) = " + num(e.t) +
                ", and every node below it on the stack starts later still  =>  stop, the hit is final.";
@@ -770,6 +1112,7 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
 std::string explainRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   if (!s.event) return "";
   if (isBvhRay(trace, ray)) return explainBvhRule(trace, ray, s);
+  if (isOctreeRay(trace, ray)) return explainOctreeRule(trace, ray, s);
   return isTreeRay(ray) ? explainTreeRule(trace, ray, s) : explainGridRule(trace, ray, s);
 }
 

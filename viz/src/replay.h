@@ -59,7 +59,49 @@ struct NodeCrossing {
   bool nearIsBelow = true;  // the near child is the one below the plane
   Crossing crossing = Crossing::nearOnly;
   int32_t nearChild = -1, farChild = -1;  // -1: not visited from this node
+  // A general BSP node (trace version 4): the plane dot(normal, p) = offset instead of axis and split. t* =
+  // (offset - n.o) / (n.dir), by the kernel's bsp_crossing (double, with its error bound: [tLo, tHi] holds
+  // the exact t*); originSide = n.o - offset (the origin's signed distance for a unit normal), nDotDir =
+  // n.dir. Crossing::inPlane then means "parallel within rounding and on or too near the plane to tell".
+  bool general = false;
+  glm::vec3 normal{0.f};
+  float offset = 0.f;
+  double originSide = 0.0, nDotDir = 0.0;
+  float tLo = 0.f, tHi = 0.f;
 };
+
+// Octree (Revelles, Ureña, Lastra 2000): the order of the current inner cell's children along the ray. The
+// entry plane (the cell face the ray enters by: the largest of the three entry t's) picks the first child:
+// on the entry axis the near half, on the others the half the ray is in at t_enter (their centre planes
+// crossed before it or not). Each next child is the neighbour across the plane the ray leaves the child by
+// (the smallest of its three exit t's); a cell face instead of a centre plane: the ray leaves the parent.
+struct OctreeChildStep {
+  int octant = 0;     // 0..7: bit 0 upper half in x, bit 1 y, bit 2 z (the trace's children order)
+  int32_t node = -1;  // its id (from the trace's children list; -1 unknown)
+  int exitAxis = 0;   // the plane it is left by
+  float tExit = 0.f;
+  bool leavesParent = false;  // that plane is the parent's face
+};
+struct OctreeChoice {
+  bool valid = false;  // false: the current node is not an inner octree cell, or the trace has not its cell
+  int nodeEvent = -1;
+  int32_t node = -1;
+  int depth = 0;
+  float tEnter = 0.f, tExit = 0.f;  // the cell's part of the ray
+  int entryAxis = -1;  // -1: the ray starts inside the cell (then t_enter is the ray's own start)
+  float t0[3] = {0, 0, 0}, t1[3] = {0, 0, 0}, tMid[3] = {0, 0, 0};  // per axis: entry, exit, centre plane
+  bool moving[3] = {true, true, true};                              // false: the direction's component is 0
+  std::vector<OctreeChildStep> path;  // by the planes, as the lecture's algorithm walks them
+  std::vector<int32_t> visited;       // the children the events visit under this cell, in order
+  std::vector<int> visitedOctants;    // their octants (-1: not found among the children)
+  int visitedSoFar = 0;               // how many of them are at or before the current event
+};
+struct ReplayState;
+bool isOctreeRay(const Trace* trace, const TracedRay& ray);
+// The current octree cell's child order (the node event of s.nodeEvent, or the push right after it).
+OctreeChoice octreeChoice(const Trace& trace, const TracedRay& ray, const ReplayState& s);
+// "x+ y- z+": an octant's halves (+ upper, - lower).
+std::string octantName(int octant);
 
 // BVH: one child's box tested from the current inner node (lecture: "bounding volumes can overlap", so the
 // ray may enter more than one child). done: the test is at or before the current event.

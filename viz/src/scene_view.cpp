@@ -39,6 +39,8 @@
 #include <vtkSphereSource.h>
 #include <vtkUnsignedCharArray.h>
 
+#include "raystep/accel/bsp_cell.h"
+
 #include "backdrop_cache.h"
 #include "kd_tree_model.h"
 #include "palette.h"
@@ -71,6 +73,49 @@ void addBoxEdges(vtkPoints* pts, vtkCellArray* lines, const glm::vec3& lo, const
   for (auto& e : edges) {
     vtkIdType ids[2] = {base + e[0], base + e[1]};
     lines->InsertNextCell(2, ids);
+  }
+}
+
+// A convex cell's edges (each face's outline), shrunk towards its centre by `inset` of its size.
+void addCellEdges(vtkPoints* pts, vtkCellArray* lines, const ConvexCell& cell, float inset) {
+  glm::dvec3 centre(0.0);
+  size_t count = 0;
+  for (size_t f = 0; f < cell.face_count(); ++f)
+    for (size_t k = 0; k < cell.face_size(f); ++k, ++count) centre += cell.face(f)[k];
+  if (count) centre /= double(count);
+  for (size_t f = 0; f < cell.face_count(); ++f) {
+    const glm::dvec3* v = cell.face(f);
+    const size_t m = cell.face_size(f);
+    vtkIdType base = pts->GetNumberOfPoints();
+    for (size_t k = 0; k < m; ++k) {
+      glm::dvec3 p = v[k] + double(inset) * (centre - v[k]);
+      pts->InsertNextPoint(p.x, p.y, p.z);
+    }
+    for (size_t k = 0; k < m; ++k) {
+      vtkIdType ids[2] = {base + vtkIdType(k), base + vtkIdType((k + 1) % m)};
+      lines->InsertNextCell(2, ids);
+    }
+  }
+}
+
+// A BSP node's plane clipped to its cell: the face the cut leaves on the part below (its cap).
+void addPlaneCap(vtkPoints* pts, vtkCellArray* polys, const ConvexCell& cell, const TraceNode& n) {
+  ConvexCell below, above;
+  const glm::dvec3 normal(n.normal);
+  cell.split(normal, double(n.offset), &below, &above);
+  double lo, hi;
+  cell.extent(normal, &lo, &hi);
+  const double tol = 1e-6 * std::max({std::fabs(lo), std::fabs(hi), hi - lo, 1e-30});
+  for (size_t f = 0; f < below.face_count(); ++f) {
+    const glm::dvec3* v = below.face(f);
+    const size_t m = below.face_size(f);
+    bool onPlane = m >= 3;
+    for (size_t k = 0; k < m && onPlane; ++k) onPlane = std::fabs(glm::dot(normal, v[k]) - n.offset) <= tol;
+    if (!onPlane) continue;
+    std::vector<vtkIdType> ids;
+    for (size_t k = 0; k < m; ++k) ids.push_back(pts->InsertNextPoint(v[k].x, v[k].y, v[k].z));
+    polys->InsertNextCell(vtkIdType(ids.size()), ids.data());
+    return;
   }
 }
 
@@ -228,9 +273,31 @@ struct SceneView::Impl {
     auto it = nodes.find(id);
     return it == nodes.end() ? nullptr : it->second;
   }
+  // General BSP tree: each node's convex cell (the root box cut by its ancestors' planes), made on demand.
+  mutable std::unordered_map<int32_t, ConvexCell> bspCells;  // a cache: filled by const readers too
+  bool bspTree = false;                                      // the trace's nodes carry planes
+  const ConvexCell* bspCell(int32_t id) const {
+    if (auto it = bspCells.find(id); it != bspCells.end()) return &it->second;
+    const TraceNode* n = node(id);
+    if (!n) return nullptr;
+    ConvexCell cell;
+    if (n->parent < 0) {
+      cell = ConvexCell::box(n->box);
+    } else {
+      const TraceNode* p = node(n->parent);
+      const ConvexCell* pc = p && p->has_plane ? bspCell(n->parent) : nullptr;
+      if (!pc) return nullptr;
+      ConvexCell below, above;
+      pc->split(glm::dvec3(p->normal), double(p->offset), &below, &above);
+      cell = n->id == p->id + 1 ? below : above;  // the child below is the next node (depth-first order)
+    }
+    return &bspCells.emplace(id, std::move(cell)).first->second;
+  }
   void indexNodes(const Trace* t) {
     nodesOf = t;
     nodes.clear();
+    bspCells.clear();
+    bspTree = t && t->structure.kind == "bsp";
     if (t)
       for (const TraceNode& n : t->nodes) nodes[n.id] = &n;
   }
@@ -500,6 +567,14 @@ void SceneView::rebuildGeometry() {
     d.haveTree = !kd->data().nodes.empty();
     d.gridLo = kd->data().bounds.lo;
     d.gridHi = kd->data().bounds.hi;
+  } else if (const Octree* oct = session_->structure() ? session_->structure()->octree() : nullptr) {
+    d.haveTree = !oct->data().nodes.empty();  // the root cube
+    d.gridLo = oct->data().bounds.lo;
+    d.gridHi = oct->data().bounds.hi;
+  } else if (const BspTree* bsp = session_->structure() ? session_->structure()->bsp() : nullptr) {
+    d.haveTree = !bsp->data().nodes.empty();
+    d.gridLo = bsp->data().bounds.lo;
+    d.gridHi = bsp->data().bounds.hi;
   } else if (session_->structure() && isBvhKind(session_->structure()->kind)) {
     // A BVH: its root box is the scene's bounds (tight around every primitive).
     const Bounds3& b = session_->structure()->scene->scene.geometry.bounds();
@@ -558,6 +633,8 @@ void SceneView::rebuildGeometry() {
                        swatch(palette::primSkipped, tr("skipped (mailbox)"));
   const bool bvhLegend = (session_->structure() && isBvhKind(session_->structure()->kind)) ||
                          (session_->trace() && isBvhKind(session_->trace()->structure.kind));
+  const bool octreeLegend = (session_->structure() && session_->structure()->kind == "octree") ||
+                            (session_->trace() && session_->trace()->structure.kind == "octree");
   if (d.haveTree && bvhLegend)
     d.legend->setText(
         walk + swatch(palette::currentCell, tr("current node")) +
@@ -571,6 +648,20 @@ void SceneView::rebuildGeometry() {
         swatch(palette::primPending, tr("not reached")) +
         swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
         swatch(palette::primMissed, tr("missed")));
+  else if (d.haveTree && octreeLegend)
+    d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) +
+                      swatch(palette::bvhChildFirst, tr("its first child (entry plane)")) +
+                      swatch(palette::bvhChildOther,
+                             tr("its last child (orange to violet: the order the ray crosses them)")) +
+                      swatch(palette::stackNode, tr("cells whose children are being walked")) +
+                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" +
+                      tr("Primitives of the current leaf cell: ") + primStates);
+  else if (d.haveTree && ((session_->structure() && session_->structure()->kind == "bsp") || d.bspTree))
+    d.legend->setText(walk + swatch(palette::currentCell, tr("current node's convex cell")) +
+                      swatch(palette::splitPlane, tr("its plane, clipped to the cell")) +
+                      swatch(palette::stackNode, tr("far child on the stack")) +
+                      swatch(palette::visitedCell, tr("visited")) + hits + "<br>" +
+                      tr("Primitives of the current leaf: ") + primStates);
   else if (d.haveTree)
     d.legend->setText(walk + swatch(palette::currentCell, tr("current node")) +
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
@@ -700,6 +791,30 @@ void SceneView::updateBvhChildren() {
         glm::vec3 inset = 0.01f * (n->box.hi - n->box.lo);
         addBoxEdges(kpts, klines, n->box.lo + inset, n->box.hi - inset);
       }
+  } else if (ray && d.haveTree && session_->trace() && isOctreeRay(session_->trace(), *ray)) {
+    // Octree: the current inner cell's children in the order the ray crosses them (Revelles), from orange
+    // (the first, by the entry plane) to violet (the last before the ray leaves the cell); the next one to
+    // be entered filled.
+    OctreeChoice c = octreeChoice(*session_->trace(), *ray, s);
+    const size_t m = c.valid ? c.path.size() : 0;
+    for (size_t k = 0; k < m; ++k) {
+      const int32_t id = c.path[k].node;
+      const TraceNode* n = d.node(id);
+      if (!n) continue;
+      const double f = m > 1 ? double(k) / double(m - 1) : 0.0;
+      const QColor& a = palette::bvhChildFirst;
+      const QColor& b = palette::bvhChildOther;
+      QColor col(int(std::lround(a.red() + f * (b.red() - a.red()))),
+                 int(std::lround(a.green() + f * (b.green() - a.green()))),
+                 int(std::lround(a.blue() + f * (b.blue() - a.blue()))));
+      d.childrenDrawn.push_back(id);
+      glm::vec3 inset = 0.03f * (n->box.hi - n->box.lo);
+      int before = int(elines->GetNumberOfCells());
+      addBoxEdges(epts, elines, n->box.lo + inset, n->box.hi - inset);
+      appendColor(ecolors, col, int(elines->GetNumberOfCells()) - before);
+      if (int(k) == c.visitedSoFar)
+        appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
+    }
   }
   d.childFacesData->SetPoints(fpts);
   d.childFacesData->SetPolys(fpolys);
@@ -722,6 +837,14 @@ void SceneView::updateStep() {
   Impl& d = *d_;
   const TracedRay* ray = session_->ray();
   const ReplayState& s = session_->state();
+  // A tree node's outline: a BSP node's convex cell, any other node's box; inset (a node on the stack) by a
+  // fraction of its size, so that it keeps an outline of its own beside its parent's and sibling's.
+  auto addNodeEdges = [&d](vtkPoints* pts, vtkCellArray* lines, const TraceNode& n, float inset) {
+    if (d.bspTree)
+      if (const ConvexCell* cell = d.bspCell(n.id)) return addCellEdges(pts, lines, *cell, inset);
+    glm::vec3 in = inset * (n.box.hi - n.box.lo);
+    addBoxEdges(pts, lines, n.box.lo + in, n.box.hi - in);
+  };
 
   // Cells: the current one highlighted, the visited ones faded.
   vtkNew<vtkPoints> vpts, cpts;
@@ -756,21 +879,21 @@ void SceneView::updateStep() {
     for (size_t v = first; v < d.visitedNodes.size(); ++v) {
       int32_t id = d.visitedNodes[v];
       const TraceNode* n = d.node(id);
-      if (n && id != d.currentNode && !onStack.count(id)) addBoxEdges(vpts, vlines, n->box.lo, n->box.hi);
+      if (n && id != d.currentNode && !onStack.count(id)) addNodeEdges(vpts, vlines, *n, 0.f);
     }
     // A far child shares faces with its parent and its sibling, whose outlines are drawn over it: inset by 2%
     // of its size, the box waiting on the stack keeps an outline of its own.
     for (const StackEntry& se : s.stack)
-      if (const TraceNode* n = d.node(se.node)) {
-        glm::vec3 inset = 0.02f * (n->box.hi - n->box.lo);
-        addBoxEdges(stpts, stlines, n->box.lo + inset, n->box.hi - inset);
-      }
+      if (const TraceNode* n = d.node(se.node)) addNodeEdges(stpts, stlines, *n, 0.02f);
     // BVH: a popped node that is skipped is drawn as skipped (sage), not as the node the walk is in.
     const bool skippedNow =
         std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
     if (const TraceNode* n = skippedNow ? nullptr : d.node(d.currentNode)) {
-      addBoxEdges(cpts, clines, n->box.lo, n->box.hi);
-      if (!n->leaf && n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
+      addNodeEdges(cpts, clines, *n, 0.f);
+      if (n->has_plane) {  // a BSP node's plane, clipped to its convex cell
+        if (const ConvexCell* cell = d.bspCell(n->id)) addPlaneCap(sppts, sptris, *cell, *n);
+      } else if (!n->leaf &&
+                 n->children.empty()) {  // a kd node's plane (a BVH node has children's boxes instead)
         int a = n->axis, b = (a + 1) % 3, c = (a + 2) % 3;
         vtkIdType ids[4];
         for (int k = 0; k < 4; ++k) {
@@ -1117,9 +1240,22 @@ QJsonObject SceneView::dumpState() const {
                    {"min", QJsonArray{n->box.lo.x, n->box.lo.y, n->box.lo.z}},
                    {"max", QJsonArray{n->box.hi.x, n->box.hi.y, n->box.hi.z}},
                    {"projected_corners", projectBox(n->box.lo, n->box.hi)}};
-    if (!n->leaf) {
+    if (!n->leaf && n->has_plane) {
+      cn["normal"] = QJsonArray{n->normal.x, n->normal.y, n->normal.z};
+      cn["offset"] = n->offset;
+    } else if (!n->leaf && n->axis >= 0) {
       cn["axis"] = axisName(n->axis);
       cn["split"] = n->split;
+    }
+    // A BSP node: its convex cell as drawn (faces, vertices) and its plane's polygon clipped to it.
+    if (const ConvexCell* cell = d.bspTree ? d.bspCell(n->id) : nullptr) {
+      QJsonArray verts;
+      for (size_t f = 0; f < cell->face_count(); ++f)
+        for (size_t k = 0; k < cell->face_size(f); ++k)
+          verts.append(QJsonArray{cell->face(f)[k].x, cell->face(f)[k].y, cell->face(f)[k].z});
+      cn["cell_faces"] = int(cell->face_count());
+      cn["cell_vertices"] = verts;
+      cn["plane_polygon_points"] = int(d.splitData->GetNumberOfPoints());
     }
     o["current_node"] = cn;
     QJsonArray stack, vis;
@@ -1133,6 +1269,11 @@ QJsonObject SceneView::dumpState() const {
       cn["children"] = children;
       o["current_node"] = cn;
     }
+  }
+  if (!d.bvh && !d.childrenDrawn.empty()) {  // octree: the current cell's children in crossing order
+    QJsonArray drawn;
+    for (int32_t c : d.childrenDrawn) drawn.append(c);
+    o["octree_children_drawn"] = drawn;
   }
   if (d.bvh) {
     QJsonArray drawn, overlaps, skipped;

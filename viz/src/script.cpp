@@ -164,15 +164,15 @@ void defineOptions(QCommandLineParser& p) {
     p.addOption(QCommandLineOption(name, help, value));
   };
   opt("accel",
-      "Acceleration structure: grid, kd (SAH), kd-median, bvh (binned SAH), bvh-sweep, bvh-median, bvh4 or "
-      "bvh8.",
+      "Acceleration structure: grid, kd (SAH), kd-median, bvh (binned SAH), bvh-sweep, bvh-median, bvh4, "
+      "bvh8, octree or bsp (the general BSP tree).",
       "NAME");
-  opt("ti", "kd and BVH: t_i, the cost of a ray-primitive test (default 80).", "T");
-  opt("tt", "kd and BVH: t_t, the cost of a traversal step (default 1).", "T");
+  opt("ti", "kd, BVH and BSP: t_i, the cost of a ray-primitive test (default 80).", "T");
+  opt("tt", "kd, BVH and BSP: t_t, the cost of a traversal step (default 1).", "T");
   opt("empty-bonus", "kd: bonus in [0,1) for splits that cut off empty space (default 0).", "B");
   opt("max-depth",
       "kd: depth limit (0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N); BVH: depth limit (0: "
-      "64).",
+      "64); BSP as kd; octree 0..20 (0: automatic).",
       "D");
   opt("leaf-size", "kd: a node with at most this many primitives is a leaf (default 1).", "N");
   opt("mailbox", "kd: mailboxes on | off (default on).", "MODE");
@@ -181,6 +181,12 @@ void defineOptions(QCommandLineParser& p) {
   opt("bvh-max-leaf", "BVH: a node with more primitives is always split when it can be (default 16).", "N");
   opt("bvh-order", "Binary BVH: the nearer child by entry (t_near) or by axis (the direction's sign).",
       "ORDER");
+  opt("octree-leaf", "Octree: a cell with at most K primitives is a leaf (default 8).", "K");
+  opt("bsp-directions",
+      "BSP tree: candidate plane normals: both (the 13 k-DOP directions and the primitives' own planes), "
+      "kdop or autopartition (default both).",
+      "SET");
+  opt("bsp-candidates", "BSP tree: candidate positions per direction, 1..4096 (default 16).", "N");
   opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");

@@ -11,9 +11,11 @@
 #include <QImage>
 #include <QObject>
 
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/scene.h"
@@ -29,7 +31,7 @@ struct SceneData {
 };
 
 // Any accelerator that records events: "grid", "kd" (SAH), "kd-median", "bvh" (binned SAH), "bvh-sweep",
-// "bvh-median", "bvh4" or "bvh8".
+// "bvh-median", "bvh4", "bvh8", "octree" or "bsp" (the general BSP tree).
 struct StructureData {
   std::shared_ptr<const SceneData> scene;  // the structure points into its geometry: keep it alive
   std::string kind;
@@ -38,6 +40,8 @@ struct StructureData {
   const UniformGrid* grid() const { return dynamic_cast<const UniformGrid*>(accel.get()); }
   const KdTree* kdTree() const { return dynamic_cast<const KdTree*>(accel.get()); }
   const Bvh* bvh() const { return dynamic_cast<const Bvh*>(accel.get()); }  // the binary BVH
+  const Octree* octree() const { return dynamic_cast<const Octree*>(accel.get()); }
+  const BspTree* bsp() const { return dynamic_cast<const BspTree*>(accel.get()); }
 };
 
 // Each throws InputError on bad input; safe on any thread.

@@ -131,7 +131,8 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   treeForm->addRow(tr("node"), node_);
   crossingTitle_ = new QLabel(tr("t*"));
   treeForm->addRow(crossingTitle_, crossing_);
-  treeForm->addRow(new QLabel(tr("stack (top first; pushed far children)")));
+  stackTitle_ = new QLabel(tr("stack (top first; pushed far children)"));
+  treeForm->addRow(stackTitle_);
   treeForm->addRow(stack_);
   treeBox_->hide();
   layout->addWidget(treeBox_);
@@ -205,7 +206,14 @@ void StatePanel::refresh() {
   const bool bvh = isBvhRay(session_->trace(), *r);
   treeBox_->setVisible(tree || bvh);
   treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
-  crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
+  const bool octree = isOctreeRay(session_->trace(), *r);
+  treeBox_->setTitle(bvh      ? tr("BVH: stack traversal")
+                     : octree ? tr("Octree: parametric traversal (Revelles)")
+                              : tr("Tree: stack traversal"));
+  crossingTitle_->setText(bvh || octree ? tr("children") : tr("t*"));
+  // The octree's stack holds the cells whose children are being walked, not far children.
+  stackTitle_->setText(octree ? tr("stack (top first; cells being walked)")
+                              : tr("stack (top first; pushed far children)"));
   mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
                               : tr("Mailbox: primitives tested for this ray"));
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
@@ -275,12 +283,18 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     const Event& n = r.events[size_t(s.nodeEvent)];
     const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
     const bool bvh = isBvhRay(session_->trace(), r);
-    QString what =
-        !tn        ? QString(event_type_name(n.type))
-        : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
-        : bvh ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2").arg(tn->children.size()).arg(axisName(tn->axis))
-                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
-              : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+    const bool octree = isOctreeRay(session_->trace(), r);
+    QString what = !tn        ? QString(event_type_name(n.type))
+                   : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
+                   : bvh      ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2")
+                                                .arg(tn->children.size())
+                                                .arg(axisName(tn->axis))
+                                               : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
+                   : tn->has_plane
+                       ? tr("inner, plane n = (%1, %2, %3), d = %4")
+                             .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
+                   : octree ? tr("inner cell, 8 children")
+                            : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)
@@ -292,6 +306,8 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   }
   if (isBvhRay(session_->trace(), r)) {
     refreshBvhChildren(r, s);
+  } else if (isOctreeRay(session_->trace(), r)) {
+    refreshOctreeChildren(r, s);
   } else if (NodeCrossing c = session_->trace() ? nodeCrossing(*session_->trace(), r, s) : NodeCrossing{};
              c.valid) {
     auto child = [](int32_t id) { return id >= 0 ? QString::number(id) : QString("-"); };
@@ -315,7 +331,18 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                     .arg(child(c.nearChild), child(c.farChild));
         break;
     }
-    if (conceal_)  // the quiz asks which child comes first: t* and the plane only
+    if (c.general) {  // a BSP plane: n, d, the origin's side and t* = (d - n.o) / (n.dir)
+      const QString plane =
+          tr("n.o - d = %1, n.dir = %2").arg(num(float(c.originSide)), num(float(c.nDotDir)));
+      if (conceal_)
+        crossing_->setText(tr("<b>%1</b> (%2)<br><i>near side and children: ? (the quiz asks it)</i>")
+                               .arg(num(c.tStar), plane));
+      else
+        crossing_->setText(tr("<b>%1</b> = (d - n.o) / (n.dir) (%2; near side %3)<br>%4")
+                               .arg(num(c.tStar), plane)
+                               .arg(c.nearIsBelow ? tr("below") : tr("above"))
+                               .arg(which));
+    } else if (conceal_)  // the quiz asks which child comes first: t* and the plane only
       crossing_->setText(tr("<b>%1</b> (plane %2 = %3)<br><i>near side and children: ? (the quiz asks it)</i>")
                              .arg(num(c.tStar))
                              .arg(axisName(c.axis))
@@ -377,6 +404,36 @@ void StatePanel::refreshBvhChildren(const TracedRay& r, const ReplayState& s) {
     t += tr("<b>nearer first</b>: enter %1%2")
              .arg(c.first)
              .arg(pushed.isEmpty() ? QString() : tr("; pushed %1").arg(pushed.join(", ")));
+  }
+  crossing_->setText(t);
+}
+
+void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s) {
+  // The children in the order the ray crosses them (Revelles: the entry plane picks the first, each exit
+  // plane the next), those visited so far in bold.
+  OctreeChoice c = session_->trace() ? octreeChoice(*session_->trace(), r, s) : OctreeChoice{};
+  if (!c.valid) {
+    crossing_->setText(tr("<i>- (the current node is not an inner cell whose children are walked)</i>"));
+    return;
+  }
+  QString t = c.entryAxis >= 0
+                  ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
+                  : QString();
+  if (conceal_) {
+    crossing_->setText(t + tr("<br><i>order: ? (the quiz asks it)</i>"));
+    return;
+  }
+  // One line per child, numbered in the order the ray crosses them, with the plane it is left by.
+  for (size_t k = 0; k < c.path.size(); ++k) {
+    const OctreeChildStep& st = c.path[k];
+    const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visitedSoFar, st.node) !=
+                      c.visited.begin() + c.visitedSoFar;
+    QString item =
+        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
+    t += "<br>" + (seen ? "<b>" + item + "</b>" : item) +
+         (st.leavesParent
+              ? tr(", leaves the cell by %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit))
+              : tr(", exit plane %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit)));
   }
   crossing_->setText(t);
 }

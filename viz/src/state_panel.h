@@ -41,6 +41,7 @@ class StatePanel : public QWidget {
  private:
   void refresh();
   void refreshTree(const TracedRay& ray, const ReplayState& s);
+  void refreshOctreeChildren(const TracedRay& r, const ReplayState& s);
   void refreshBvhChildren(const TracedRay& ray, const ReplayState& s);
   Session* session_;
   QLabel* ray_;
@@ -52,6 +53,7 @@ class StatePanel : public QWidget {
   QLabel* nearest_;
   QGroupBox* treeBox_;
   QLabel* node_;
+  QLabel* stackTitle_;
   QLabel* crossing_;  // kd: t* and the children crossed; BVH: each child's box test and the order chosen
   QLabel* crossingTitle_;
   QGroupBox* mailBoxGroup_;

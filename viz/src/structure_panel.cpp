@@ -14,6 +14,8 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include <algorithm>
+
 namespace raystep::viz {
 
 StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
@@ -27,6 +29,8 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   accel_->addItem(tr("uniform grid"), "grid");
   accel_->addItem(tr("kd-tree"), "kd");
   accel_->addItem(tr("bounding volume hierarchy"), "bvh");
+  accel_->addItem(tr("octree"), "octree");
+  accel_->addItem(tr("general BSP tree"), "bsp");
   top->addWidget(accel_, 1);
   build_ = new QPushButton(tr("Build"));
   build_->setObjectName("buildButton");
@@ -197,6 +201,60 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   b->addWidget(new QLabel(tr("max depth")), 2, 2);
   b->addWidget(bvhMaxDepth_, 2, 3);
   layout->addWidget(bvh_);
+
+  // The octree's parameters (defaults as OctreeOptions and the command line's).
+  octree_ = new QGroupBox(tr("Octree"));
+  auto* oc = new QGridLayout(octree_);
+  oc->setContentsMargins(6, 2, 6, 4);
+  oc->setVerticalSpacing(2);
+  OctreeOptions odef;
+  octreeLeaf_ = new QSpinBox;
+  octreeLeaf_->setObjectName("octreeLeaf");
+  octreeLeaf_->setRange(1, 1 << 24);
+  octreeLeaf_->setValue(odef.leaf_size);
+  octreeLeaf_->setToolTip(
+      tr("K: a cell with at most K primitives is a leaf; a fuller one is split at its "
+         "centre into eight"));
+  oc->addWidget(new QLabel(tr("leaf size K")), 0, 0);
+  oc->addWidget(octreeLeaf_, 0, 1);
+  octreeMaxDepth_ = new QSpinBox;
+  octreeMaxDepth_->setObjectName("octreeMaxDepth");
+  octreeMaxDepth_->setRange(0, kOctreeMaxDepth);
+  octreeMaxDepth_->setValue(odef.max_depth);
+  octreeMaxDepth_->setSpecialValueText(tr("auto"));
+  octreeMaxDepth_->setToolTip(tr("The depth limit; auto: clamp(ceil(log2 N / 2) + 6, 8, 20)"));
+  oc->addWidget(new QLabel(tr("max depth")), 0, 2);
+  oc->addWidget(octreeMaxDepth_, 0, 3);
+  layout->addWidget(octree_);
+
+  // The general BSP tree's own parameters; its costs, depth limit, leaf size and mailboxes are the kd-tree's
+  // (the kd-tree's box is shown with it, as raystep's --ti, --tt, --max-depth, --leaf-size, --mailbox).
+  bsp_ = new QGroupBox(tr("General BSP tree (planes of any orientation)"));
+  auto* bs = new QGridLayout(bsp_);
+  bs->setContentsMargins(6, 2, 6, 4);
+  bs->setVerticalSpacing(2);
+  BspOptions bspdef;
+  bspDirections_ = new QComboBox;
+  bspDirections_->setObjectName("bspDirections");
+  bspDirections_->addItem(tr("both"), "both");
+  bspDirections_->addItem(tr("k-DOP directions"), "kdop");
+  bspDirections_->addItem(tr("autopartition"), "autopartition");
+  bspDirections_->setCurrentIndex(bspDirections_->findData(bsp_directions_name(bspdef.directions)));
+  bspDirections_->setToolTip(
+      tr("The candidate planes' normals: the 13 k-DOP directions (3 axes, 6 face and 4 body diagonals), "
+         "the primitives' own planes (autopartition), or both"));
+  bs->addWidget(new QLabel(tr("directions")), 0, 0);
+  bs->addWidget(bspDirections_, 0, 1);
+  bspCandidates_ = new QSpinBox;
+  bspCandidates_->setObjectName("bspCandidates");
+  bspCandidates_->setRange(1, 4096);
+  bspCandidates_->setValue(bspdef.candidates);
+  bspCandidates_->setToolTip(
+      tr("Candidate positions per direction and node (primitive planes: as many "
+         "with autopartition alone, a quarter with both)"));
+  bs->addWidget(new QLabel(tr("candidates")), 0, 2);
+  bs->addWidget(bspCandidates_, 0, 3);
+  layout->addWidget(bsp_);
   connect(bvhBuilder_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] {
     const QString k = bvhBuilder_->currentData().toString();
     bvhBins_->setEnabled(k == "bvh" || k == "bvh4" || k == "bvh8");
@@ -232,6 +290,7 @@ std::string StructurePanel::accelName() const {
   const QString a = accel_->currentData().toString();
   if (a == "grid") return "grid";
   if (a == "bvh") return bvhBuilder_->currentData().toString().toStdString();
+  if (a == "octree" || a == "bsp") return a.toStdString();
   return builder_->currentData().toString().toStdString();
 }
 
@@ -239,8 +298,14 @@ void StructurePanel::showSection() {
   const QString a = accel_->currentData().toString();
   const bool shown = !compact_ || options_->isChecked();
   grid_->setVisible(shown && a == "grid");
-  kd_->setVisible(shown && a == "kd");
+  kd_->setVisible(shown && (a == "kd" || a == "bsp"));
   bvh_->setVisible(shown && a == "bvh");
+  octree_->setVisible(shown && a == "octree");
+  bsp_->setVisible(shown && a == "bsp");
+  // The BSP tree takes the kd-tree's costs, depth limit, leaf size and mailboxes, not its builder or bonus.
+  kd_->setTitle(a == "bsp" ? tr("Costs and limits (the kd-tree's)") : tr("kd-tree"));
+  builder_->setEnabled(a != "bsp");
+  emptyBonus_->setEnabled(a != "bsp");
 }
 
 void StructurePanel::setCompact(bool on) {
@@ -274,13 +339,27 @@ StructureOptions StructurePanel::options() const {
   so.bvh.max_depth = bvhMaxDepth_->value();
   so.bvh_order =
       bvhOrder_->currentData().toString() == "split_axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+  so.octree.leaf_size = octreeLeaf_->value();
+  so.octree.max_depth = octreeMaxDepth_->value();
+  parse_bsp_directions(bspDirections_->currentData().toString().toStdString(), &so.bsp.directions);
+  so.bsp.candidates = bspCandidates_->value();
+  so.bsp.t_i = so.kd.t_i;
+  so.bsp.t_t = so.kd.t_t;
+  so.bsp.max_depth = so.kd.max_depth;
+  so.bsp.leaf_size = so.kd.leaf_size;
   return so;
 }
 
 void StructurePanel::setStructure(const std::string& accelName, const StructureOptions& so) {
   settingUp_ = true;
   const bool bvh = accelName.rfind("bvh", 0) == 0;
-  accel_->setCurrentIndex(accelName == "grid" ? 0 : bvh ? 2 : 1);
+  const int own = accel_->findData(QString::fromStdString(accelName));  // grid, octree, bsp
+  accel_->setCurrentIndex(own >= 0 ? own : bvh ? 2 : 1);
+  octreeLeaf_->setValue(so.octree.leaf_size);
+  octreeMaxDepth_->setValue(so.octree.max_depth);
+  bspDirections_->setCurrentIndex(
+      std::max(0, bspDirections_->findData(bsp_directions_name(so.bsp.directions))));
+  bspCandidates_->setValue(so.bsp.candidates);
   if (bvh) {
     const int i = bvhBuilder_->findData(QString::fromStdString(accelName));
     bvhBuilder_->setCurrentIndex(i >= 0 ? i : 0);
@@ -292,11 +371,13 @@ void StructurePanel::setStructure(const std::string& accelName, const StructureO
   bvhMaxDepth_->setValue(so.bvh.max_depth);
   bvhOrder_->setCurrentIndex(so.bvh_order == BvhOrder::split_axis ? 1 : 0);
   builder_->setCurrentIndex(accelName == "kd-median" ? 1 : 0);
-  ti_->setValue(so.kd.t_i);
-  tt_->setValue(so.kd.t_t);
+  // The BSP tree's costs and limits are shown in the kd-tree's boxes.
+  const bool bsp = accelName == "bsp";
+  ti_->setValue(bsp ? so.bsp.t_i : so.kd.t_i);
+  tt_->setValue(bsp ? so.bsp.t_t : so.kd.t_t);
   emptyBonus_->setValue(so.kd.empty_bonus);
-  maxDepth_->setValue(so.kd.max_depth);
-  leafSize_->setValue(so.kd.leaf_size);
+  maxDepth_->setValue(bsp ? so.bsp.max_depth : so.kd.max_depth);
+  leafSize_->setValue(bsp ? so.bsp.leaf_size : so.kd.leaf_size);
   mailboxes_->setChecked(so.kd_mailboxes);
   const GridOptions& o = so.grid;
   density_->setValue(o.density);

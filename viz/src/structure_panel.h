@@ -5,7 +5,9 @@
 // max(8, 1.2 log2 N), with an empty bonus pbrt's 8 + 1.3 log2 N), leaf size, mailboxes; an edit of a kd cost
 // rebuilds at once. BVH: the builder (binned SAH, full sweep SAH, object median, or the wide BVH4/BVH8
 // collapsed from the binned one), t_i and t_t, bins per axis, leaf size, max depth, and the binary walk's
-// order (nearer child by entry distance or by the ray's direction on the split axis). The build itself runs
+// order (nearer child by entry distance or by the ray's direction on the split axis). Octree: the leaf size K
+// and the depth limit. General BSP tree: the candidate directions (k-DOP, the primitives' own planes, both)
+// and positions per direction, with the kd-tree's costs, depth limit and leaf size. The build itself runs
 // off the GUI thread (the main window does it).
 #pragma once
 
@@ -33,7 +35,7 @@ class StructurePanel : public QWidget {
  public:
   explicit StructurePanel(QWidget* parent = nullptr);
   // The accelerator's name for make_accelerator: "grid", "kd" (SAH), "kd-median", "bvh", "bvh-sweep",
-  // "bvh-median", "bvh4" or "bvh8".
+  // "bvh-median", "bvh4", "bvh8", "octree" or "bsp".
   std::string accelName() const;
   StructureOptions options() const;
   void setStructure(const std::string& accelName, const StructureOptions& o);
@@ -77,6 +79,12 @@ class StructurePanel : public QWidget {
   QSpinBox* bvhLeafSize_;
   QSpinBox* bvhMaxDepth_;
   QComboBox* bvhOrder_;
+  QGroupBox* octree_;
+  QSpinBox* octreeLeaf_;
+  QSpinBox* octreeMaxDepth_;
+  QGroupBox* bsp_;
+  QComboBox* bspDirections_;
+  QSpinBox* bspCandidates_;
   QTimer* costsTimer_;
   bool settingUp_ = false;
   bool compact_ = false;

@@ -47,7 +47,12 @@ std::string structure_key(const std::string& accel, const StructureOptions& o) {
                 o.kd.max_depth, o.kd.leaf_size, double(o.kd.reference_budget), int(o.kd_mailboxes),
                 double(b.t_i), double(b.t_t), b.bins, b.leaf_size, b.max_leaf_size, b.max_depth,
                 int(o.bvh_order));
-  return buf;
+  // The octree's and the BSP tree's own options (the BSP tree's costs and limits are the kd-tree's).
+  char more[160];
+  std::snprintf(more, sizeof more, "|%d|%d|%d|%d|%.9g|%.9g|%d|%d", o.octree.leaf_size, o.octree.max_depth,
+                int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i), double(o.bsp.t_t),
+                o.bsp.max_depth, o.bsp.leaf_size);
+  return std::string(buf) + more;
 }
 
 // The accelerator keeps the scene alive: it refers to the scene's geometry.
@@ -115,7 +120,8 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
       built->accel->build(cache.scene->geometry);
     } catch (const InputError& e) {
       fail({"accel", "grid-res", "grid-density", "grid-insert", "ti", "tt", "empty-bonus", "max-depth",
-            "leaf-size", "mailbox", "bins", "bvh-leaf", "bvh-max-leaf", "bvh-order"},
+            "leaf-size", "mailbox", "bins", "bvh-leaf", "bvh-max-leaf", "bvh-order", "octree-leaf",
+            "bsp-directions", "bsp-candidates"},
            std::string("building the ") + state.accel + ": " + e.detail());
     }
     cache.accel = std::shared_ptr<const Accelerator>(built, built->accel.get());

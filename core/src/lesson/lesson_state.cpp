@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 
+#include "raystep/accel/bsp_build.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
@@ -141,8 +142,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"accel",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v != "grid" && v != "kd" && v != "kd-median" && v != "bvh" && v != "bvh-sweep" &&
-                         v != "bvh-median" && v != "bvh4" && v != "bvh8")
-                       bad(k, v, "grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8");
+                         v != "bvh-median" && v != "bvh4" && v != "bvh8" && v != "octree" && v != "bsp")
+                       bad(k, v, "grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp");
                      s.accel = v;
                    }},
                   {"grid-res",
@@ -170,6 +171,7 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                      if (!parse_number(v, &d) || !(d > 0.0 && d <= 1e4)) bad(k, v, "a number in (0, 10000]");
                      s.structure.kd.t_i = float(d);  // the BVH's SAH takes the kd-tree's constants
                      s.structure.bvh.t_i = float(d);
+                     s.structure.bsp.t_i = float(d);  // and the BSP tree's, as raystep --ti
                    }},
                   {"tt",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -177,6 +179,7 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                      if (!parse_number(v, &d) || !(d >= 0.0 && d <= 1e4)) bad(k, v, "a number in [0, 10000]");
                      s.structure.kd.t_t = float(d);
                      s.structure.bvh.t_t = float(d);
+                     s.structure.bsp.t_t = float(d);
                    }},
                   {"empty-bonus",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -193,11 +196,15 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                      // The BVH's limit, as raystep --max-depth sets it (0: kBvhMaxDepth).
                      const int depth = s.structure.kd.max_depth;
                      s.structure.bvh.max_depth = depth == 0 ? kBvhMaxDepth : depth;
+                     // The BSP tree's and the octree's, as raystep's (the octree's build refuses > 20).
+                     s.structure.bsp.max_depth = depth;
+                     s.structure.octree.max_depth = depth;
                    }},
                   {"leaf-size",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (!parse_int(v, 1, 1000000, &s.structure.kd.leaf_size))
                        bad(k, v, "a whole number >= 1");
+                     s.structure.bsp.leaf_size = s.structure.kd.leaf_size;
                    }},
                   {"mailbox", [](LessonState& s, const std::string& k, const std::string& v,
                                  const std::string&) { s.structure.kd_mailboxes = parse_on_off(k, v); }},
@@ -220,6 +227,21 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      if (v != "entry" && v != "axis") bad(k, v, "entry or axis");
                      s.structure.bvh_order = v == "axis" ? BvhOrder::split_axis : BvhOrder::entry_distance;
+                   }},
+                  // The octree's and the BSP tree's own options, named as raystep's.
+                  {"octree-leaf",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (!parse_int(v, 1, 1 << 24, &s.structure.octree.leaf_size))
+                       bad(k, v, "a whole number 1..16777216");
+                   }},
+                  {"bsp-directions",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (!parse_bsp_directions(v, &s.structure.bsp.directions))
+                       bad(k, v, "both, kdop or autopartition");
+                   }},
+                  {"bsp-candidates",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (!parse_int(v, 1, 4096, &s.structure.bsp.candidates)) bad(k, v, "a whole number 1..4096");
                    }},
                   {"aa",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
@@ -417,6 +439,12 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (bvh.max_leaf_size != defaults.bvh.max_leaf_size) opt("bvh-max-leaf", std::to_string(bvh.max_leaf_size));
   if (structure.bvh_order != defaults.bvh_order)
     opt("bvh-order", structure.bvh_order == BvhOrder::split_axis ? "axis" : "entry");
+  if (structure.octree.leaf_size != defaults.octree.leaf_size)
+    opt("octree-leaf", std::to_string(structure.octree.leaf_size));
+  if (structure.bsp.directions != defaults.bsp.directions)
+    opt("bsp-directions", bsp_directions_name(structure.bsp.directions));
+  if (structure.bsp.candidates != defaults.bsp.candidates)
+    opt("bsp-candidates", std::to_string(structure.bsp.candidates));
   if (!aa.empty()) opt("aa", aa);
   if (size) opt("size", std::to_string((*size)[0]) + "x" + std::to_string((*size)[1]));
   if (!heat.empty()) opt("heat", heat);
