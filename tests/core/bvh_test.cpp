@@ -17,11 +17,13 @@
 #include "raystep/scene/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/util/error.h"
+#include "ray_battery.h"
 #include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
+using test::camera_rays;
 using test::count_disagreements;
 using test::make_soup;
 
@@ -34,21 +36,6 @@ std::unique_ptr<Bvh> make_bvh(const Geometry& g, BvhBuilder builder,
   auto bvh = std::make_unique<Bvh>(options, order);
   bvh->build(g);
   return bvh;
-}
-
-// Pinhole rays from outside the scene's box through a grid over it.
-std::vector<Ray> camera_rays(const Bounds3& b, int n) {
-  std::vector<Ray> rays;
-  glm::vec3 eye = b.center() + glm::vec3(0.3f, 0.4f, 2.5f) * glm::max(b.extent(), glm::vec3(1e-3f));
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      glm::vec3 target = b.lo + b.extent() * glm::vec3((i + 0.5f) / n, (j + 0.5f) / n, 0.5f);
-      Ray r;
-      r.origin = eye;
-      r.direction = target - eye;
-      rays.push_back(r);
-    }
-  return rays;
 }
 
 // Rays lying in the faces of the children's boxes (the planes where a box test is decided by a tie), with +0
@@ -148,15 +135,7 @@ TEST(Bvh, WatertightOnEdgeAimedAndFaceRays) {
       std::vector<Ray> all = rays, faces = face_rays(bvh->data(), 3);
       all.insert(all.end(), faces.begin(), faces.end());
       EXPECT_EQ(count_disagreements(*bvh, brute, all), 0) << int(builder) << " " << int(order);
-      int leaks = 0;
-      for (size_t i = 0; i < rays.size(); ++i) {
-        Ray r;
-        r.origin = glm::vec3(0.f);
-        r.direction = rays[i].origin + rays[i].direction;  // the edge target
-        Hit h;
-        leaks += !bvh->intersect(r, &h);
-      }
-      EXPECT_EQ(leaks, 0) << int(builder);
+      EXPECT_EQ(test::count_leaks(*bvh, rays, rays.size()), 0) << int(builder);
     }
 }
 
@@ -164,17 +143,8 @@ TEST(Bvh, NonFiniteRaysMissAndTerminate) {
   Geometry g = make_soup(8, 50, 1);
   for (BvhBuilder builder : kBuilders) {
     auto bvh = make_bvh(g, builder);
-    float nan = std::nanf(""), inf = kInfinity;
-    for (glm::vec3 o : {glm::vec3(nan, 0, 0), glm::vec3(inf, 0, 0), glm::vec3(0.f)})
-      for (glm::vec3 d : {glm::vec3(1, nan, 0), glm::vec3(inf, 1, 0), glm::vec3(0.f), glm::vec3(-0.f)}) {
-        Ray r;
-        r.origin = o;
-        r.direction = d;
-        Hit h;
-        EXPECT_FALSE(bvh->intersect(r, &h));
-        EXPECT_EQ(h.prim, -1);
-        EXPECT_FALSE(bvh->occluded(r));
-      }
+    EXPECT_EQ(test::count_non_finite_hits(*bvh), 0) << int(builder);
+    float inf = kInfinity;
     // NaN interval ends miss too; an infinite tmax is the ordinary case.
     Ray r;
     r.origin = g.bounds().lo - glm::vec3(1.f);

@@ -18,6 +18,7 @@
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/trace/event_recorder.h"
 #include "raystep/util/error.h"
+#include "ray_battery.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -126,15 +127,7 @@ TEST(KdTree, WatertightOnEdgeAimedRays) {
     auto tree = make_tree(g, builder);
     EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << int(builder);
     // From the centre outwards every ray must hit: no leak between the leaves.
-    int leaks = 0;
-    for (size_t i = 0; i < 20000; ++i) {
-      Ray r;
-      r.origin = glm::vec3(0.f);
-      r.direction = rays[i].origin + rays[i].direction;  // the edge target
-      Hit h;
-      leaks += !tree->intersect(r, &h);
-    }
-    EXPECT_EQ(leaks, 0) << int(builder);
+    EXPECT_EQ(test::count_leaks(*tree, rays, 20000), 0) << int(builder);
   }
 }
 
@@ -223,17 +216,7 @@ TEST(KdTree, CoplanarAndIdenticalTriangles) {
 TEST(KdTree, NonFiniteRaysMissAndTerminate) {
   Geometry g = make_soup(8, 50, 1);
   auto tree = make_tree(g, KdBuilder::sah);
-  float nan = std::nanf(""), inf = kInfinity;
-  for (glm::vec3 o : {glm::vec3(nan, 0, 0), glm::vec3(inf, 0, 0), glm::vec3(0.f)})
-    for (glm::vec3 d : {glm::vec3(1, nan, 0), glm::vec3(inf, 1, 0), glm::vec3(0.f), glm::vec3(-0.f)}) {
-      Ray r;
-      r.origin = o;
-      r.direction = d;
-      Hit h;
-      EXPECT_FALSE(tree->intersect(r, &h));
-      EXPECT_EQ(h.prim, -1);
-      EXPECT_FALSE(tree->occluded(r));
-    }
+  EXPECT_EQ(test::count_non_finite_hits(*tree), 0);
 }
 
 TEST(KdTree, EmptySceneAndFactory) {

@@ -19,11 +19,13 @@
 #include "raystep/trace/event_recorder.h"
 #include "raystep/trace/octree_trace.h"
 #include "raystep/util/error.h"
+#include "ray_battery.h"
 #include "test_scenes.h"
 
 namespace raystep {
 namespace {
 
+using test::camera_rays;
 using test::count_disagreements;
 using test::make_soup;
 
@@ -34,21 +36,6 @@ std::unique_ptr<Octree> make_octree(const Geometry& g, int leaf = 8, int depth =
   auto tree = std::make_unique<Octree>(o);
   tree->build(g);
   return tree;
-}
-
-// Pinhole rays from outside the scene's box through a grid over it.
-std::vector<Ray> camera_rays(const Bounds3& b, int n) {
-  std::vector<Ray> rays;
-  glm::vec3 eye = b.center() + glm::vec3(0.3f, 0.4f, 2.5f) * glm::max(b.extent(), glm::vec3(1e-3f));
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      glm::vec3 target = b.lo + b.extent() * glm::vec3((i + 0.5f) / n, (j + 0.5f) / n, 0.5f);
-      Ray r;
-      r.origin = eye;
-      r.direction = target - eye;
-      rays.push_back(r);
-    }
-  return rays;
 }
 
 // Rays where the walk's decisions are ties: lying in a cell's face or centre plane (direction +0 or -0 on
@@ -155,15 +142,7 @@ TEST(Octree, WatertightOnEdgeAimedAndCellPlaneRays) {
     std::vector<Ray> all = rays, cells = cell_rays(tree->data(), 3);
     all.insert(all.end(), cells.begin(), cells.end());
     EXPECT_EQ(count_disagreements(*tree, brute, all), 0) << leaf;
-    int leaks = 0;
-    for (const Ray& e : rays) {
-      Ray r;
-      r.origin = glm::vec3(0.f);
-      r.direction = e.origin + e.direction;  // the edge target, seen from the sphere's centre
-      Hit h;
-      leaks += !tree->intersect(r, &h);
-    }
-    EXPECT_EQ(leaks, 0) << leaf;
+    EXPECT_EQ(test::count_leaks(*tree, rays, rays.size()), 0) << leaf;
   }
 }
 
@@ -226,17 +205,8 @@ TEST(Octree, FarOriginsAimedAtCellEdgesAgreeWithBruteForce) {
 TEST(Octree, NonFiniteRaysMissAndTerminate) {
   Geometry g = make_soup(8, 50, 1);
   auto tree = make_octree(g, 1);
+  EXPECT_EQ(test::count_non_finite_hits(*tree), 0);
   float nan = std::nanf(""), inf = kInfinity;
-  for (glm::vec3 o : {glm::vec3(nan, 0, 0), glm::vec3(inf, 0, 0), glm::vec3(0.f)})
-    for (glm::vec3 d : {glm::vec3(1, nan, 0), glm::vec3(inf, 1, 0), glm::vec3(0.f), glm::vec3(-0.f)}) {
-      Ray r;
-      r.origin = o;
-      r.direction = d;
-      Hit h;
-      EXPECT_FALSE(tree->intersect(r, &h));
-      EXPECT_EQ(h.prim, -1);
-      EXPECT_FALSE(tree->occluded(r));
-    }
   Ray r;
   r.origin = g.bounds().lo - glm::vec3(1.f);
   r.direction = g.bounds().center() - r.origin;

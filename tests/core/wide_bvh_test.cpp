@@ -17,6 +17,7 @@
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/trace/event_recorder.h"
 #include "raystep/util/error.h"
+#include "ray_battery.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -149,15 +150,7 @@ TEST(WideBvh, WatertightOnEdgeAimedRays) {
     for (WideSimd level : levels()) {
       ASSERT_TRUE(WideBvh::force_simd(level));
       EXPECT_EQ(disagreements(*wide, brute, rays), 0) << width << " " << WideBvh::simd_level();
-      int leaks = 0;
-      for (size_t i = 0; i < 10000; ++i) {
-        Ray r;
-        r.origin = glm::vec3(0.f);
-        r.direction = rays[i].origin + rays[i].direction;  // the edge target
-        Hit h;
-        leaks += !wide->intersect(r, &h);
-      }
-      EXPECT_EQ(leaks, 0) << width << " " << WideBvh::simd_level();
+      EXPECT_EQ(test::count_leaks(*wide, rays, 10000), 0) << width << " " << WideBvh::simd_level();
     }
   }
 }
@@ -183,21 +176,12 @@ TEST(WideBvh, AgreesOnCameraRaysOfTheScenes) {
 TEST(WideBvh, NanAndInfiniteRaysMiss) {
   RestoreSimd restore;
   Geometry g = make_soup(2, 500, 0);
-  float nan = std::nanf(""), inf = kInfinity;
+  float nan = std::nanf("");
   for (int width : {4, 8}) {
     auto wide = make_wide(g, width);
     for (WideSimd level : levels()) {
       ASSERT_TRUE(WideBvh::force_simd(level));
-      for (glm::vec3 o : {glm::vec3(nan, 0, 0), glm::vec3(inf, 0, 0), glm::vec3(0.f)})
-        for (glm::vec3 d : {glm::vec3(1, nan, 0), glm::vec3(inf, 1, 0), glm::vec3(0.f), glm::vec3(-0.f)}) {
-          Ray r;
-          r.origin = o;
-          r.direction = d;
-          Hit h;
-          EXPECT_FALSE(wide->intersect(r, &h));
-          EXPECT_EQ(h.prim, -1);
-          EXPECT_FALSE(wide->occluded(r));
-        }
+      EXPECT_EQ(test::count_non_finite_hits(*wide), 0) << width << " " << WideBvh::simd_level();
       Ray r;
       r.origin = glm::vec3(-5.f, 0.f, 0.f);
       r.direction = glm::vec3(1.f, 0.f, 0.f);

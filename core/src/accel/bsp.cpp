@@ -14,15 +14,4 @@ void BspTree::build(const Geometry& geometry) {
   mailboxes_.reset(geometry.size());
 }
 
-bool BspTree::intersect(const Ray& ray, Hit* hit) const {
-  NullRecorder rec;
-  return traverse(ray, hit, false, rec);
-}
-
-bool BspTree::occluded(const Ray& ray) const {
-  NullRecorder rec;
-  Hit hit;
-  return traverse(ray, &hit, true, rec);
-}
-
 }  // namespace raystep

@@ -64,26 +64,6 @@ void Bvh::build(const Geometry& geometry, BvhBuildListener& listener) {
   pairs_ = make_bvh_pairs(bvh_);
 }
 
-bool Bvh::intersect(const Ray& ray, Hit* hit) const {
-  NullRecorder rec;
-  return traverse(ray, hit, false, rec);
-}
-
-bool Bvh::occluded(const Ray& ray) const {
-  NullRecorder rec;
-  Hit hit;
-  return traverse(ray, &hit, true, rec);
-}
-
-bool Bvh::intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const {
-  return traverse(ray, hit, false, counters);
-}
-
-bool Bvh::occluded_counted(const Ray& ray, CountingRecorder& counters) const {
-  Hit hit;
-  return traverse(ray, &hit, true, counters);
-}
-
 size_t Bvh::memory_bytes() const {
   return bvh_.nodes.capacity() * sizeof(BvhNode) + bvh_.info.capacity() * sizeof(BvhNodeInfo) +
          bvh_.prim_index.capacity() * sizeof(uint32_t) + pairs_.pairs.capacity() * sizeof(BvhPair) +

@@ -206,15 +206,4 @@ void UniformGrid::build(const Geometry& geometry) {
     if (cell_start_[c] < cell_start_[c + 1]) occupied_[c >> 6] |= uint64_t(1) << (c & 63);
 }
 
-bool UniformGrid::intersect(const Ray& ray, Hit* hit) const {
-  NullRecorder rec;
-  return traverse(ray, hit, false, rec);
-}
-
-bool UniformGrid::occluded(const Ray& ray) const {
-  NullRecorder rec;
-  Hit hit;
-  return traverse(ray, &hit, true, rec);
-}
-
 }  // namespace raystep

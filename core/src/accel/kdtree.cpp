@@ -26,15 +26,4 @@ void KdTree::build(const Geometry& geometry, BuildListener& listener) {
   mailboxes_.reset(geometry.size());
 }
 
-bool KdTree::intersect(const Ray& ray, Hit* hit) const {
-  NullRecorder rec;
-  return traverse(ray, hit, false, rec);
-}
-
-bool KdTree::occluded(const Ray& ray) const {
-  NullRecorder rec;
-  Hit hit;
-  return traverse(ray, &hit, true, rec);
-}
-
 }  // namespace raystep

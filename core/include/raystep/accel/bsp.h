@@ -11,25 +11,17 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bsp_build.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/recorded_walk.h"
 #include "raystep/trace/recorder.h"
 
 namespace raystep {
 
-class BspTree final : public Accelerator {
+class BspTree final : public RecordedWalk<BspTree, BspOptions> {
  public:
   explicit BspTree(BspOptions options = {}, bool mailboxes = true)
-      : options_(options), use_mailboxes_(mailboxes) {}
+      : RecordedWalk(options), use_mailboxes_(mailboxes) {}
   std::string name() const override { return "bsp"; }
   void build(const Geometry& geometry) override;
-  bool intersect(const Ray& ray, Hit* hit) const override;
-  bool occluded(const Ray& ray) const override;
-  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
-    return traverse(ray, hit, false, counters);
-  }
-  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
-    Hit hit;
-    return traverse(ray, &hit, true, counters);
-  }
   size_t memory_bytes() const override {
     return tree_.nodes.capacity() * sizeof(BspNode) + tree_.info.capacity() * sizeof(BspNodeInfo) +
            tree_.prim_index.capacity() * sizeof(uint32_t);
@@ -39,14 +31,10 @@ class BspTree final : public Accelerator {
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 
   const BspTreeData& data() const { return tree_; }
-  const BspOptions& options() const { return options_; }
   bool mailboxes() const { return use_mailboxes_; }
-  const Geometry& geometry() const { return *geometry_; }
 
  private:
-  BspOptions options_;
   bool use_mailboxes_;
-  const Geometry* geometry_ = nullptr;
   BspTreeData tree_;
   Mailboxes mailboxes_;
 };

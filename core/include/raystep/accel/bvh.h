@@ -13,6 +13,7 @@
 #include "raystep/accel/bvh_box_ray.h"
 #include "raystep/accel/bvh_build.h"
 #include "raystep/accel/bvh_pair.h"
+#include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/component.h"
 #include "raystep/trace/recorder.h"
 
@@ -24,19 +25,15 @@ enum class BvhOrder : uint8_t {
   split_axis,      // by the sign of the ray's direction on the node's split axis (no comparison of t)
 };
 
-class Bvh final : public Accelerator {
+class Bvh final : public RecordedWalk<Bvh, BvhOptions> {
  public:
   explicit Bvh(BvhOptions options = {}, BvhOrder order = BvhOrder::entry_distance)
-      : options_(options), order_(order) {}
+      : RecordedWalk(options), order_(order) {}
   // "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
   std::string name() const override;
   void build(const Geometry& geometry) override;
   // The same build, telling a listener about every node (SAH inspection, tests).
   void build(const Geometry& geometry, BvhBuildListener& listener);
-  bool intersect(const Ray& ray, Hit* hit) const override;
-  bool occluded(const Ray& ray) const override;
-  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override;
-  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override;
   // Nodes, their build information and the primitive ids.
   size_t memory_bytes() const override;
 
@@ -47,14 +44,10 @@ class Bvh final : public Accelerator {
 
   const BvhData& data() const { return bvh_; }
   const BvhPairs& pairs() const { return pairs_; }  // the walk's copy (bvh_pair.h)
-  const BvhOptions& options() const { return options_; }
   BvhOrder order() const { return order_; }
-  const Geometry& geometry() const { return *geometry_; }
 
  private:
-  BvhOptions options_;
   BvhOrder order_;
-  const Geometry* geometry_ = nullptr;
   BvhData bvh_;
   BvhPairs pairs_;  // the walk's copy: each inner node's children side by side
 };

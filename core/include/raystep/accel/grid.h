@@ -17,6 +17,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/bounds.h"
 #include "raystep/geometry/component.h"
 #include "raystep/trace/recorder.h"
@@ -36,20 +37,11 @@ enum class GridCoarsening {
 };
 const char* to_string(GridCoarsening c);
 
-class UniformGrid final : public Accelerator {
+class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
  public:
-  explicit UniformGrid(GridOptions options = {}) : options_(options) {}
+  explicit UniformGrid(GridOptions options = {}) : RecordedWalk(options) {}
   std::string name() const override { return "grid"; }
   void build(const Geometry& geometry) override;
-  bool intersect(const Ray& ray, Hit* hit) const override;
-  bool occluded(const Ray& ray) const override;
-  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
-    return traverse(ray, hit, false, counters);
-  }
-  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
-    Hit hit;
-    return traverse(ray, &hit, true, counters);
-  }
   size_t memory_bytes() const override {
     return cell_start_.capacity() * sizeof(uint32_t) + prim_index_.capacity() * sizeof(uint32_t) +
            occupied_.capacity() * sizeof(uint64_t);
@@ -82,8 +74,6 @@ class UniformGrid final : public Accelerator {
   // Primitive ids stored in cell (i, j, k).
   const uint32_t* cell_begin(int i, int j, int k) const { return &prim_index_[cell_start_[cell_id(i, j, k)]]; }
   const uint32_t* cell_end(int i, int j, int k) const { return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1]; }
-  const GridOptions& options() const { return options_; }
-  const Geometry& geometry() const { return *geometry_; }
   const Mailboxes& mailboxes() const { return mailboxes_; }
   // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
   int cell_of(float p, int axis) const {
@@ -108,8 +98,6 @@ class UniformGrid final : public Accelerator {
   // A primitive's candidate cells: those its bounding box (widened against rounding) overlaps.
   void box_cells(uint32_t id, int lo[3], int hi[3]) const;
 
-  GridOptions options_;
-  const Geometry* geometry_ = nullptr;
   Bounds3 bounds_;
   int n_[3] = {1, 1, 1};
   std::array<int, 3> requested_{1, 1, 1};

@@ -10,27 +10,20 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/kdtree_build.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/component.h"
 #include "raystep/trace/recorder.h"
 
 namespace raystep {
 
-class KdTree final : public Accelerator {
+class KdTree final : public RecordedWalk<KdTree, KdOptions> {
  public:
-  explicit KdTree(KdOptions options = {}, bool mailboxes = true) : options_(options), use_mailboxes_(mailboxes) {}
+  explicit KdTree(KdOptions options = {}, bool mailboxes = true)
+      : RecordedWalk(options), use_mailboxes_(mailboxes) {}
   std::string name() const override { return options_.builder == KdBuilder::median ? "kd-median" : "kd"; }
   void build(const Geometry& geometry) override;
   // The same build, telling a listener about every node (SAH inspection, streamed build events).
   void build(const Geometry& geometry, BuildListener& listener);
-  bool intersect(const Ray& ray, Hit* hit) const override;
-  bool occluded(const Ray& ray) const override;
-  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
-    return traverse(ray, hit, false, counters);
-  }
-  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
-    Hit hit;
-    return traverse(ray, &hit, true, counters);
-  }
   // Nodes, primitive lists and the per-node build information the debugger shows (boxes, parents, costs).
   size_t memory_bytes() const override {
     return tree_.nodes.capacity() * sizeof(KdNode) + tree_.info.capacity() * sizeof(KdNodeInfo) +
@@ -42,14 +35,10 @@ class KdTree final : public Accelerator {
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 
   const KdTreeData& data() const { return tree_; }
-  const KdOptions& options() const { return options_; }
   bool mailboxes() const { return use_mailboxes_; }
-  const Geometry& geometry() const { return *geometry_; }
 
  private:
-  KdOptions options_;
   bool use_mailboxes_;
-  const Geometry* geometry_ = nullptr;
   KdTreeData tree_;
   Mailboxes mailboxes_;
 };

@@ -13,24 +13,16 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/mailbox.h"
 #include "raystep/accel/octree_build.h"
+#include "raystep/accel/recorded_walk.h"
 #include "raystep/trace/recorder.h"
 
 namespace raystep {
 
-class Octree final : public Accelerator {
+class Octree final : public RecordedWalk<Octree, OctreeOptions> {
  public:
-  explicit Octree(OctreeOptions options = {}) : options_(options) {}
+  explicit Octree(OctreeOptions options = {}) : RecordedWalk(options) {}
   std::string name() const override { return "octree"; }
   void build(const Geometry& geometry) override;
-  bool intersect(const Ray& ray, Hit* hit) const override;
-  bool occluded(const Ray& ray) const override;
-  bool intersect_counted(const Ray& ray, Hit* hit, CountingRecorder& counters) const override {
-    return traverse(ray, hit, false, counters);
-  }
-  bool occluded_counted(const Ray& ray, CountingRecorder& counters) const override {
-    Hit hit;
-    return traverse(ray, &hit, true, counters);
-  }
   size_t memory_bytes() const override {
     return tree_.nodes.capacity() * sizeof(OctreeNode) + tree_.info.capacity() * sizeof(OctreeNodeInfo) +
            tree_.prim_index.capacity() * sizeof(uint32_t);
@@ -41,8 +33,6 @@ class Octree final : public Accelerator {
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 
   const OctreeData& data() const { return tree_; }
-  const OctreeOptions& options() const { return options_; }
-  const Geometry& geometry() const { return *geometry_; }
 
   // The paper's exit table: from child c (reflected indices, bit a = upper half on axis a) leaving by the
   // plane normal to axis a, the next child is c with bit a set; 8 when that bit is set already: the ray
@@ -59,8 +49,6 @@ class Octree final : public Accelerator {
   }
 
  private:
-  OctreeOptions options_;
-  const Geometry* geometry_ = nullptr;
   OctreeData tree_;
   Mailboxes mailboxes_;
 };
