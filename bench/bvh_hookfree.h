@@ -14,11 +14,13 @@ namespace raystep::bench {
   const Geometry* geometry_ = &bvh.geometry();
   const BvhOrder order_ = bvh.order();
   *hit = Hit{};
-  BvhBoxRay slab{SlabRay(ray)};  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
-  float t_min, t_max;
-  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(bvh_.nodes[0].box, &t_min, &t_max)) {
+  BvhBoxRay slab{SlabRay(ray)};         // the box tests' ray; its tmax shrinks to just beyond the nearest hit
+  float t_root_near[2], t_root_far[2];  // the root's box, tested in both lanes of a pair (bvh_pair.h)
+  if (bvh_.nodes.empty() || !slab.valid ||
+      !(slab.hit_children(pairs_.root_box, t_root_near, t_root_far) & 1)) {
     return false;
   }
+  float t_min = t_root_near[0], t_max = t_root_far[0];
   // A primitive's computed t may stray a few ulps below its box's (conservative) entry distance, so a box is
   // given up only when it starts beyond the nearest hit by a margin of 2^-12 of the largest t in the root's
   // box: a box within it is visited, which costs a little time and never a hit (as in kdtree.h).

@@ -28,6 +28,11 @@ BvhPairs make_bvh_pairs(const BvhData& data) {
     return n.is_leaf() ? BvhRef{n.first_prim(), n.prim_count()} : BvhRef{pair_of[id], 0};
   };
   out.root = ref(0);
+  for (int k = 0; k < 2; ++k)
+    for (int a = 0; a < 3; ++a) {
+      out.root_box.rows[a][k] = nodes[0].box.lo[a];
+      out.root_box.rows[a][k + 2] = nodes[0].box.hi[a];
+    }
   out.pairs.resize(inner);
   out.node_id.resize(inner);
   out.child_id.resize(2 * size_t(inner));

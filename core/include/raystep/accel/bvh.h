@@ -56,13 +56,15 @@ template <class Recorder>
 bool Bvh::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
   *hit = Hit{};
   rec.ray_begin(ray);
-  BvhBoxRay slab{SlabRay(ray)};  // the box tests' ray; its tmax shrinks to just beyond the nearest hit
-  float t_min, t_max;
-  if (bvh_.nodes.empty() || !slab.valid || !slab.hit(bvh_.nodes[0].box, &t_min, &t_max)) {
+  BvhBoxRay slab{SlabRay(ray)};         // the box tests' ray; its tmax shrinks to just beyond the nearest hit
+  float t_root_near[2], t_root_far[2];  // the root's box, tested in both lanes of a pair (bvh_pair.h)
+  if (bvh_.nodes.empty() || !slab.valid ||
+      !(slab.hit_children(pairs_.root_box, t_root_near, t_root_far) & 1)) {
     if (!bvh_.nodes.empty()) rec.box_test(BoxTest{-1, 0, 0, false, 0.f, 0.f});  // the root's box: a miss
     rec.ray_end(*hit);
     return false;
   }
+  float t_min = t_root_near[0], t_max = t_root_far[0];
   rec.box_test(BoxTest{-1, 0, 0, true, t_min, t_max});
   // A primitive's computed t may stray a few ulps below its box's (conservative) entry distance, so a box is
   // given up only when it starts beyond the nearest hit by a margin of 2^-12 of the largest t in the root's

@@ -37,6 +37,7 @@ struct BvhPairs {
   std::vector<int32_t> child_id;  // two per pair
   std::vector<uint8_t> axis;      // per pair
   BvhRef root{0, 0};              // the root: pair 0, or a leaf when the whole tree is one
+  BvhPair root_box{};  // the root's box in both lanes: the walk's first test, as SIMD as the others
 };
 
 BvhPairs make_bvh_pairs(const BvhData& data);
