@@ -48,6 +48,51 @@ std::string depth_note(int cut, const std::vector<int>& depths, size_t written, 
          " deep; --max-cells " + std::to_string(max_cells) + ")";
 }
 
+// The columns every tree has, for the cell just added.
+void set_tree_columns(CellSet& cs, size_t id, double parent, int depth, bool leaf, double primitives) {
+  cs.set("node", double(id), true);
+  cs.set("parent", parent, true);
+  cs.set("depth", depth, true);
+  cs.set("leaf", leaf, true);
+  cs.set("primitives", primitives, true);
+}
+
+// The nodes of depth 0..cut, the most that fit in max_cells, in id order: add_node(id) adds each one's cell
+// and columns; the note says what was left out.
+template <class AddNode>
+void add_tree_nodes(const std::vector<int>& depths, size_t max_cells, StructureCells* out, AddNode add_node) {
+  const int cut = depth_cut(depths, max_cells);
+  for (size_t id = 0; id < depths.size(); ++id)
+    if (depths[id] <= cut) add_node(id);
+  out->note = depth_note(cut, depths, out->cells.size(), max_cells);
+}
+
+// An inner node's primitive count in a tree that puts a primitive into every leaf it overlaps (kd-tree, BSP
+// tree): the distinct primitives of its leaves, merged bottom-up (preorder ids put every child after its
+// parent, the one below at id + 1). first_prim(node) is where a leaf's run starts in prim_index.
+template <class Node, class FirstPrim>
+std::vector<uint32_t> distinct_primitives(const std::vector<Node>& nodes,
+                                          const std::vector<uint32_t>& prim_index, FirstPrim first_prim) {
+  const size_t n = nodes.size();
+  std::vector<uint32_t> prims(n, 0);
+  std::vector<std::vector<uint32_t>> sets(n);
+  for (size_t id = n; id-- > 0;) {
+    const Node& node = nodes[id];
+    if (node.is_leaf()) {
+      sets[id].assign(prim_index.begin() + first_prim(node),
+                      prim_index.begin() + first_prim(node) + node.prim_count());
+    } else {
+      std::vector<uint32_t>& below = sets[id + 1];
+      std::vector<uint32_t>& above = sets[node.above_child()];
+      std::set_union(below.begin(), below.end(), above.begin(), above.end(), std::back_inserter(sets[id]));
+      std::vector<uint32_t>().swap(below);
+      std::vector<uint32_t>().swap(above);
+    }
+    prims[id] = uint32_t(sets[id].size());
+  }
+  return prims;
+}
+
 // ---- uniform grid: every cell with its primitive count; when they are too many, the occupied ones ----
 
 bool describe_grid(const Accelerator& accel, size_t max_cells, StructureCells* out) {
@@ -114,45 +159,19 @@ bool describe_kdtree(const Accelerator& accel, size_t max_cells, StructureCells*
   const KdTreeData& t = kd->data();
   const size_t n = t.nodes.size();
   out->total = n;
-  // An inner node's primitive count: the distinct primitives of its leaves (a primitive may be in several),
-  // merged bottom-up; preorder ids put every child after its parent.
-  std::vector<uint32_t> prims(n, 0);
-  {
-    std::vector<std::vector<uint32_t>> sets(n);
-    for (size_t id = n; id-- > 0;) {
-      const KdNode& node = t.nodes[id];
-      if (node.is_leaf()) {
-        sets[id].assign(t.prim_index.begin() + node.first_prim,
-                        t.prim_index.begin() + node.first_prim + node.prim_count());
-      } else {
-        std::vector<uint32_t>& below = sets[id + 1];
-        std::vector<uint32_t>& above = sets[node.above_child()];
-        std::set_union(below.begin(), below.end(), above.begin(), above.end(), std::back_inserter(sets[id]));
-        std::vector<uint32_t>().swap(below);
-        std::vector<uint32_t>().swap(above);
-      }
-      prims[id] = uint32_t(sets[id].size());
-    }
-  }
+  const std::vector<uint32_t> prims =
+      distinct_primitives(t.nodes, t.prim_index, [](const KdNode& node) { return node.first_prim; });
   std::vector<int> depths(n);
   for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
-  const int cut = depth_cut(depths, max_cells);
-  CellSet& cs = out->cells;
-  for (size_t id = 0; id < n; ++id) {
-    if (depths[id] > cut) continue;
+  add_tree_nodes(depths, max_cells, out, [&](size_t id) {
     const KdNode& node = t.nodes[id];
     const KdNodeInfo& info = t.info[id];
-    cs.add_box(info.box);
-    cs.set("node", double(id), true);
-    cs.set("parent", info.parent, true);
-    cs.set("depth", info.depth, true);
-    cs.set("leaf", node.is_leaf(), true);
-    cs.set("primitives", prims[id], true);
-    cs.set("cost", info.cost, false);
-    cs.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
-    cs.set("split_position", node.is_leaf() ? kUnknown : double(node.split), false);
-  }
-  out->note = depth_note(cut, depths, cs.size(), max_cells);
+    out->cells.add_box(info.box);
+    set_tree_columns(out->cells, id, info.parent, info.depth, node.is_leaf(), prims[id]);
+    out->cells.set("cost", info.cost, false);
+    out->cells.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
+    out->cells.set("split_position", node.is_leaf() ? kUnknown : double(node.split), false);
+  });
   return true;
 }
 
@@ -166,22 +185,14 @@ bool describe_bvh(const Accelerator& accel, size_t max_cells, StructureCells* ou
   out->total = n;
   std::vector<int> depths(n);
   for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
-  const int cut = depth_cut(depths, max_cells);
-  CellSet& cs = out->cells;
-  for (size_t id = 0; id < n; ++id) {
-    if (depths[id] > cut) continue;
+  add_tree_nodes(depths, max_cells, out, [&](size_t id) {
     const BvhNode& node = t.nodes[id];
     const BvhNodeInfo& info = t.info[id];
-    cs.add_box(node.box);
-    cs.set("node", double(id), true);
-    cs.set("parent", info.parent, true);
-    cs.set("depth", info.depth, true);
-    cs.set("leaf", node.is_leaf(), true);
-    cs.set("primitives", info.prims, true);
-    cs.set("cost", info.cost, false);
-    cs.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
-  }
-  out->note = depth_note(cut, depths, cs.size(), max_cells);
+    out->cells.add_box(node.box);
+    set_tree_columns(out->cells, id, info.parent, info.depth, node.is_leaf(), info.prims);
+    out->cells.set("cost", info.cost, false);
+    out->cells.set("split_axis", node.is_leaf() ? -1 : node.axis(), true);
+  });
   return true;
 }
 
@@ -202,20 +213,12 @@ bool describe_wide_bvh(const Accelerator& accel, size_t max_cells, StructureCell
   }
   std::vector<int> depths(n);
   for (size_t id = 0; id < n; ++id) depths[id] = view.nodes[id].depth;
-  const int cut = depth_cut(depths, max_cells);
-  CellSet& cs = out->cells;
-  for (size_t id = 0; id < n; ++id) {
-    if (depths[id] > cut) continue;
+  add_tree_nodes(depths, max_cells, out, [&](size_t id) {
     const WideBvhView::Node& node = view.nodes[id];
-    cs.add_box(node.box);
-    cs.set("node", double(id), true);
-    cs.set("parent", node.parent, true);
-    cs.set("depth", node.depth, true);
-    cs.set("leaf", node.leaf, true);
-    cs.set("primitives", prims[id], true);
-    cs.set("children", double(node.children.size()), true);
-  }
-  out->note = depth_note(cut, depths, cs.size(), max_cells);
+    out->cells.add_box(node.box);
+    set_tree_columns(out->cells, id, node.parent, node.depth, node.leaf, prims[id]);
+    out->cells.set("children", double(node.children.size()), true);
+  });
   return true;
 }
 
@@ -229,23 +232,16 @@ bool describe_octree(const Accelerator& accel, size_t max_cells, StructureCells*
   out->total = n;
   std::vector<int> depths(n);
   for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
-  const int cut = depth_cut(depths, max_cells);
-  CellSet& cs = out->cells;
-  for (size_t id = 0; id < n; ++id) {
-    if (depths[id] > cut) continue;
+  add_tree_nodes(depths, max_cells, out, [&](size_t id) {
     const OctreeNode& node = t.nodes[id];
     const OctreeNodeInfo& info = t.info[id];
-    cs.add_box(info.box);
-    cs.set("node", double(id), true);
-    cs.set("parent", info.parent, true);
-    cs.set("depth", info.depth, true);
-    cs.set("leaf", node.is_leaf(), true);
+    out->cells.add_box(info.box);
     // The primitives overlapping the cell (for an inner node, those it was split with: its leaves' union).
-    cs.set("primitives", node.is_leaf() ? node.prim_count() : info.prims, true);
-    cs.set("children", node.is_leaf() ? 0 : 8, true);
-    cs.set("leaf_reason", node.is_leaf() ? int(info.reason) : -1, true);
-  }
-  out->note = depth_note(cut, depths, cs.size(), max_cells);
+    set_tree_columns(out->cells, id, info.parent, info.depth, node.is_leaf(),
+                     node.is_leaf() ? node.prim_count() : info.prims);
+    out->cells.set("children", node.is_leaf() ? 0 : 8, true);
+    out->cells.set("leaf_reason", node.is_leaf() ? int(info.reason) : -1, true);
+  });
   return true;
 }
 
@@ -259,24 +255,8 @@ bool describe_bsp(const Accelerator& accel, size_t max_cells, StructureCells* ou
   const size_t n = t.nodes.size();
   out->total = n;
   // Primitive counts as for the kd-tree: an inner node's are the distinct primitives of its leaves.
-  std::vector<uint32_t> prims(n, 0);
-  {
-    std::vector<std::vector<uint32_t>> sets(n);
-    for (size_t id = n; id-- > 0;) {
-      const BspNode& node = t.nodes[id];
-      if (node.is_leaf()) {
-        sets[id].assign(t.prim_index.begin() + node.first_prim(),
-                        t.prim_index.begin() + node.first_prim() + node.prim_count());
-      } else {
-        std::vector<uint32_t>& below = sets[id + 1];
-        std::vector<uint32_t>& above = sets[node.above_child()];
-        std::set_union(below.begin(), below.end(), above.begin(), above.end(), std::back_inserter(sets[id]));
-        std::vector<uint32_t>().swap(below);
-        std::vector<uint32_t>().swap(above);
-      }
-      prims[id] = uint32_t(sets[id].size());
-    }
-  }
+  const std::vector<uint32_t> prims =
+      distinct_primitives(t.nodes, t.prim_index, [](const BspNode& node) { return node.first_prim(); });
   std::vector<int> depths(n);
   for (size_t id = 0; id < n; ++id) depths[id] = t.info[id].depth;
   const int cut = depth_cut(depths, max_cells);
@@ -315,11 +295,7 @@ bool describe_bsp(const Accelerator& accel, size_t max_cells, StructureCells* ou
       continue;
     }
     cs.add_polytope(std::move(polytope));
-    cs.set("node", double(p.id), true);
-    cs.set("parent", info.parent, true);
-    cs.set("depth", info.depth, true);
-    cs.set("leaf", node.is_leaf(), true);
-    cs.set("primitives", prims[p.id], true);
+    set_tree_columns(cs, p.id, info.parent, info.depth, node.is_leaf(), prims[p.id]);
     cs.set("cost", info.cost, false);
     cs.set("area", info.area, false);
     const bool inner = !node.is_leaf();
