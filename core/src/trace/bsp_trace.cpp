@@ -36,26 +36,13 @@ Trace record_bsp_trace(const Geometry& geometry, const BspTree& tree, const std:
   param("planes_primitive", double(stats.inner_by_source[int(BspPlaneSource::primitive)]));
   detail::sort_params(&t.structure);
 
-  detail::record_rays(
-      geometry, rays,
-      [&](const RayRequest& req, EventRecorder& rec) {
-        Hit hit;
-        tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
-      },
-      &t);
+  detail::record_traversals(geometry, rays, tree, &t);
   for (int32_t id : detail::named_nodes(t)) {
     const BspNode& n = data.nodes[size_t(id)];
     const BspNodeInfo& info = data.info[size_t(id)];
-    TraceNode tn;
-    tn.id = id;
-    tn.parent = info.parent;
-    tn.depth = info.depth;
-    tn.box = info.box;
-    tn.leaf = n.is_leaf();
-    if (tn.leaf) {
-      for (uint32_t i = 0; i < n.prim_count(); ++i)
-        tn.prims.push_back(int32_t(data.prim_index[n.first_prim() + i]));
-    } else {
+    TraceNode tn = detail::trace_node(id, info.parent, info.depth, info.box, n.is_leaf(), data.prim_index,
+                                      n.first_prim(), n.prim_count());
+    if (!tn.leaf) {
       tn.has_plane = true;
       tn.normal = n.plane.normal;
       tn.offset = n.plane.offset;

@@ -3,7 +3,8 @@
 namespace raystep {
 
 namespace {
-TraceBuildEvent node_event(EventType type, uint32_t node, const KdNodeInfo& info, uint32_t n, float leaf_cost) {
+TraceBuildEvent node_event(EventType type, uint32_t node, const KdNodeInfo& info, uint32_t n,
+                           float leaf_cost) {
   TraceBuildEvent b;
   b.type = type;
   b.node = node;

@@ -24,18 +24,6 @@ void bvh_params(const BvhOptions& o, TraceStructure* s) {
   param("max_depth", o.max_depth);
 }
 
-// The named nodes and their parents up to the root, in id order: parent(id) gives -1 at the root.
-template <class Parent>
-std::set<int32_t> with_parent_chains(std::set<int32_t> ids, Parent parent) {
-  std::vector<int32_t> todo(ids.begin(), ids.end());
-  while (!todo.empty()) {
-    int32_t p = parent(todo.back());
-    todo.pop_back();
-    if (p >= 0 && ids.insert(p).second) todo.push_back(p);
-  }
-  return ids;
-}
-
 }  // namespace
 
 Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vector<RayRequest>& rays,
@@ -52,28 +40,15 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
   t.structure.params.push_back({"leaves", false, double(leaves), ""});
   detail::sort_params(&t.structure);
 
-  detail::record_rays(
-      geometry, rays,
-      [&](const RayRequest& req, EventRecorder& rec) {
-        Hit hit;
-        bvh.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
-      },
-      &t);
-  const std::set<int32_t> ids =
-      with_parent_chains(detail::named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
+  detail::record_traversals(geometry, rays, bvh, &t);
+  const std::set<int32_t> ids = detail::with_parent_chains(
+      detail::named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
   for (int32_t id : ids) {
     const BvhNode& n = data.nodes[size_t(id)];
     const BvhNodeInfo& info = data.info[size_t(id)];
-    TraceNode tn;
-    tn.id = id;
-    tn.parent = info.parent;
-    tn.depth = info.depth;
-    tn.box = n.box;
-    tn.leaf = n.is_leaf();
-    if (tn.leaf) {
-      for (uint32_t i = 0; i < n.prim_count(); ++i)
-        tn.prims.push_back(int32_t(data.prim_index[n.first_prim() + i]));
-    } else {
+    TraceNode tn = detail::trace_node(id, info.parent, info.depth, n.box, n.is_leaf(), data.prim_index,
+                                      n.first_prim(), n.prim_count());
+    if (!tn.leaf) {
       tn.axis = n.axis();
       tn.children = {id + 1, int32_t(n.second_child())};  // the first child follows its parent
     }
@@ -102,8 +77,8 @@ Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const 
         bvh.record(req.ray, &hit, req.kind == RayKind::shadow, rec);
       },
       &t);
-  const std::set<int32_t> ids =
-      with_parent_chains(detail::named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
+  const std::set<int32_t> ids = detail::with_parent_chains(
+      detail::named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
   for (int32_t id : ids) {
     const WideBvhView::Node& n = view.nodes[size_t(id)];
     TraceNode tn;

@@ -8,14 +8,18 @@
 
 namespace raystep {
 
-Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid, const std::vector<RayRequest>& rays,
-                        const std::string& scene_path, const std::string& scene_hash) {
+Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid,
+                        const std::vector<RayRequest>& rays, const std::string& scene_path,
+                        const std::string& scene_hash) {
   Trace t = detail::begin_trace(geometry, "grid", scene_path, scene_hash);
   t.structure.bounds = grid.bounds();
   t.structure.resolution = grid.resolution();
-  auto param = [&](const char* key, double number) { t.structure.params.push_back({key, false, number, ""}); };
+  auto param = [&](const char* key, double number) {
+    t.structure.params.push_back({key, false, number, ""});
+  };
   param("density", grid.options().density);
-  t.structure.params.push_back({"resolution_from", true, 0.0, grid.options().resolution ? "explicit" : "density"});
+  t.structure.params.push_back(
+      {"resolution_from", true, 0.0, grid.options().resolution ? "explicit" : "density"});
   t.structure.params.push_back({"insert", true, 0.0, grid.options().exact_insert ? "exact" : "bbox"});
   param("references", double(grid.reference_count()));
   if (grid.coarsened()) {
@@ -26,13 +30,7 @@ Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid, const
   }
   detail::sort_params(&t.structure);
 
-  detail::record_rays(
-      geometry, rays,
-      [&](const RayRequest& req, EventRecorder& rec) {
-        Hit hit;
-        grid.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
-      },
-      &t);
+  detail::record_traversals(geometry, rays, grid, &t);
   std::set<std::tuple<int, int, int>> cells;
   for (const TracedRay& tr : t.rays)
     for (const Event& e : tr.events)

@@ -19,19 +19,25 @@ HeatQuantity parse_heat_quantity(const std::string& name) {
   if (name == "samples") return HeatQuantity::samples;
   if (name == "error") return HeatQuantity::error;
   if (name == "boxes") return HeatQuantity::boxes;
-  throw InputError("", 0,
-                   "unknown heat map quantity '" + name +
-                       "' (cells or nodes, tests, mailbox, boxes, samples, error)");
+  throw InputError(
+      "", 0,
+      "unknown heat map quantity '" + name + "' (cells or nodes, tests, mailbox, boxes, samples, error)");
 }
 
 const char* heat_quantity_label(HeatQuantity q) {
   switch (q) {
-    case HeatQuantity::cells: return "cells or nodes visited";
-    case HeatQuantity::tests: return "ray-primitive tests";
-    case HeatQuantity::mailbox: return "mailbox hits (tests skipped)";
-    case HeatQuantity::samples: return "samples (primary rays) per pixel";
-    case HeatQuantity::error: return "error against the reference (thousandths)";
-    case HeatQuantity::boxes: return "bounding-box tests";
+    case HeatQuantity::cells:
+      return "cells or nodes visited";
+    case HeatQuantity::tests:
+      return "ray-primitive tests";
+    case HeatQuantity::mailbox:
+      return "mailbox hits (tests skipped)";
+    case HeatQuantity::samples:
+      return "samples (primary rays) per pixel";
+    case HeatQuantity::error:
+      return "error against the reference (thousandths)";
+    case HeatQuantity::boxes:
+      return "bounding-box tests";
   }
   return "";
 }
@@ -55,7 +61,8 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
   if (q == HeatQuantity::samples)
     throw InputError("", 0, "the samples map comes from a render, not a traversal (samples_heatmap)");
   if (q == HeatQuantity::error)
-    throw InputError("", 0, "the error map compares a render with its reference, not a traversal (error_heatmap)");
+    throw InputError("", 0,
+                     "the error map compares a render with its reference, not a traversal (error_heatmap)");
   ProjectiveCamera cam(camera, width, height);
   HeatMap heat;
   heat.width = width;
@@ -86,8 +93,9 @@ HeatMap compute_heatmap(const Camera& camera, const Accelerator& accel, int widt
 
 HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int height) {
   if (width < 1 || height < 1 || samples.size() != size_t(width) * size_t(height))
-    throw InputError("", 0, "samples map: " + std::to_string(samples.size()) + " values for a " +
-                                std::to_string(width) + "x" + std::to_string(height) + " picture");
+    throw InputError("", 0,
+                     "samples map: " + std::to_string(samples.size()) + " values for a " +
+                         std::to_string(width) + "x" + std::to_string(height) + " picture");
   HeatMap heat;
   heat.width = width;
   heat.height = height;
@@ -99,8 +107,9 @@ HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int hei
 
 HeatMap error_heatmap(const std::vector<float>& errors, int width, int height) {
   if (width < 1 || height < 1 || errors.size() != size_t(width) * size_t(height))
-    throw InputError("", 0, "error map: " + std::to_string(errors.size()) + " values for a " +
-                                std::to_string(width) + "x" + std::to_string(height) + " picture");
+    throw InputError("", 0,
+                     "error map: " + std::to_string(errors.size()) + " values for a " +
+                         std::to_string(width) + "x" + std::to_string(height) + " picture");
   HeatMap heat;
   heat.width = width;
   heat.height = height;

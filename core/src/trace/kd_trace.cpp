@@ -20,8 +20,12 @@ Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::v
   t.structure.bounds = data.bounds;
   size_t leaves = 0;
   for (const KdNode& n : data.nodes) leaves += n.is_leaf();
-  auto param = [&](const char* key, double number) { t.structure.params.push_back({key, false, number, ""}); };
-  auto text = [&](const char* key, const char* value) { t.structure.params.push_back({key, true, 0.0, value}); };
+  auto param = [&](const char* key, double number) {
+    t.structure.params.push_back({key, false, number, ""});
+  };
+  auto text = [&](const char* key, const char* value) {
+    t.structure.params.push_back({key, true, 0.0, value});
+  };
   text("builder", builder_name(o.builder));
   param("t_i", o.t_i);
   param("t_t", o.t_t);
@@ -34,25 +38,13 @@ Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::v
   param("references", double(data.prim_index.size()));
   detail::sort_params(&t.structure);
 
-  detail::record_rays(
-      geometry, rays,
-      [&](const RayRequest& req, EventRecorder& rec) {
-        Hit hit;
-        tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
-      },
-      &t);
+  detail::record_traversals(geometry, rays, tree, &t);
   for (int32_t id : detail::named_nodes(t)) {
     const KdNode& n = data.nodes[size_t(id)];
     const KdNodeInfo& info = data.info[size_t(id)];
-    TraceNode tn;
-    tn.id = id;
-    tn.parent = info.parent;
-    tn.depth = info.depth;
-    tn.box = info.box;
-    tn.leaf = n.is_leaf();
-    if (tn.leaf) {
-      for (uint32_t i = 0; i < n.prim_count(); ++i) tn.prims.push_back(int32_t(data.prim_index[n.first_prim + i]));
-    } else {
+    TraceNode tn = detail::trace_node(id, info.parent, info.depth, info.box, n.is_leaf(), data.prim_index,
+                                      n.first_prim, n.prim_count());
+    if (!tn.leaf) {
       tn.axis = n.axis();
       tn.split = n.split;
     }

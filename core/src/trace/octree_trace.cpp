@@ -23,36 +23,18 @@ Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const st
   t.structure.params.push_back({"mailboxes", true, 0.0, "on"});
   detail::sort_params(&t.structure);
 
-  detail::record_rays(
-      geometry, rays,
-      [&](const RayRequest& req, EventRecorder& rec) {
-        Hit hit;
-        tree.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
-      },
-      &t);
+  detail::record_traversals(geometry, rays, tree, &t);
   // The named nodes and their parents up to the root, so that a reader sees each cell's place in the tree.
-  std::set<int32_t> ids = detail::named_nodes(t);
-  std::vector<int32_t> todo(ids.begin(), ids.end());
-  while (!todo.empty()) {
-    int32_t p = data.info[size_t(todo.back())].parent;
-    todo.pop_back();
-    if (p >= 0 && ids.insert(p).second) todo.push_back(p);
-  }
+  const std::set<int32_t> ids = detail::with_parent_chains(
+      detail::named_nodes(t), [&](int32_t id) { return data.info[size_t(id)].parent; });
   for (int32_t id : ids) {
     const OctreeNode& n = data.nodes[size_t(id)];
     const OctreeNodeInfo& info = data.info[size_t(id)];
-    TraceNode tn;
-    tn.id = id;
-    tn.parent = info.parent;
-    tn.depth = info.depth;
-    tn.box = info.box;
-    tn.leaf = n.is_leaf();
+    TraceNode tn = detail::trace_node(id, info.parent, info.depth, info.box, n.is_leaf(), data.prim_index,
+                                      n.first, n.prim_count());
     tn.axis = -1;
-    if (tn.leaf) {
-      for (uint32_t i = 0; i < n.prim_count(); ++i) tn.prims.push_back(int32_t(data.prim_index[n.first + i]));
-    } else {
+    if (!tn.leaf)
       for (int c = 0; c < 8; ++c) tn.children.push_back(int32_t(n.child(c)));
-    }
     t.nodes.push_back(std::move(tn));
   }
   return t;

@@ -12,7 +12,8 @@
 namespace raystep {
 
 namespace {
-const char* const kRecording = "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp";
+const char* const kRecording =
+    "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp";
 }  // namespace
 
 bool records_events(const Accelerator& accel) {

@@ -34,11 +34,11 @@ using ordered = nlohmann::ordered_json;
 
 namespace {
 const char* const kEventNames[kEventTypeCount] = {
-    "ray_begin", "cell",         "node",     "push",          "pop",   "leaf",     "prim_test",
-    "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate", "split", "leaf_made",
-    "box_test", "skip"};
+    "ray_begin", "cell",        "node",         "push",         "pop",     "leaf",
+    "prim_test", "mailbox_hit", "hit_deferred", "hit_accepted", "ray_end", "sah_candidate",
+    "split",     "leaf_made",   "box_test",     "skip"};
 const char* const kReasonNames[kAcceptReasonCount] = {"inside_cell", "any_hit", "structure_done",
-                                                     "next_node_beyond"};
+                                                      "next_node_beyond"};
 const char* const kRayKinds[4] = {"primary", "shadow", "reflected", "refracted"};
 const char* const kAxes[3] = {"x", "y", "z"};
 const char* const kOutcomes[3] = {"agree", "depth_limit", "subdivided"};  // AdaptiveSquare::Outcome
@@ -53,7 +53,9 @@ int name_index(std::string_view name, const char* const (&names)[N]) {
 
 }  // namespace
 
-const char* event_type_name(EventType type) { return kEventNames[int(type)]; }
+const char* event_type_name(EventType type) {
+  return kEventNames[int(type)];
+}
 
 bool parse_event_type(const std::string& name, EventType* type) {
   const int i = name_index(name, kEventNames);
@@ -61,7 +63,9 @@ bool parse_event_type(const std::string& name, EventType* type) {
   return i >= 0;
 }
 
-const char* accept_reason_name(AcceptReason reason) { return kReasonNames[int(reason)]; }
+const char* accept_reason_name(AcceptReason reason) {
+  return kReasonNames[int(reason)];
+}
 
 bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
   const int i = name_index(name, kReasonNames);
@@ -69,7 +73,9 @@ bool parse_accept_reason(const std::string& name, AcceptReason* reason) {
   return i >= 0;
 }
 
-const char* ray_kind_name(RayKind kind) { return kRayKinds[int(kind)]; }
+const char* ray_kind_name(RayKind kind) {
+  return kRayKinds[int(kind)];
+}
 
 bool parse_leaf_reason(const std::string& name, LeafReason* reason) {
   for (LeafReason r : {LeafReason::few_primitives, LeafReason::max_depth, LeafReason::no_cheaper_split,
@@ -107,7 +113,9 @@ ordered number(float v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return double(v);
 }
-ordered vec(const glm::vec3& v) { return ordered::array({number(v.x), number(v.y), number(v.z)}); }
+ordered vec(const glm::vec3& v) {
+  return ordered::array({number(v.x), number(v.y), number(v.z)});
+}
 
 // The rows of one of the file's arrays, one a line ("\n   row,\n   row"): the caller opens and closes it.
 template <class T, class ToJson>
@@ -181,17 +189,30 @@ RayCounters count_events(const std::vector<Event>& events) {
   RayCounters c;
   for (const Event& e : events) {
     switch (e.type) {
-      case EventType::cell: ++c.cells; break;
-      case EventType::node: ++c.nodes; break;
-      case EventType::push: ++c.pushes; break;
-      case EventType::pop: ++c.pops; break;
+      case EventType::cell:
+        ++c.cells;
+        break;
+      case EventType::node:
+        ++c.nodes;
+        break;
+      case EventType::push:
+        ++c.pushes;
+        break;
+      case EventType::pop:
+        ++c.pops;
+        break;
       case EventType::prim_test:
         ++c.prim_tests;
         c.prim_hits += e.hit;
         break;
-      case EventType::mailbox_hit: ++c.mailbox_hits; break;
-      case EventType::box_test: ++c.box_tests; break;
-      default: break;
+      case EventType::mailbox_hit:
+        ++c.mailbox_hits;
+        break;
+      case EventType::box_test:
+        ++c.box_tests;
+        break;
+      default:
+        break;
     }
   }
   return c;
@@ -279,7 +300,9 @@ std::string build_event_json(const TraceBuildEvent& b, size_t seq) {
   return j.dump();
 }
 
-std::string trace_to_json(const Trace& t) { return trace_json_opening(t) + trace_json_rest(t); }
+std::string trace_to_json(const Trace& t) {
+  return trace_json_opening(t) + trace_json_rest(t);
+}
 
 std::string trace_json_opening(const Trace& t) {
   std::ostringstream out;
@@ -297,7 +320,8 @@ std::string trace_json_rest(const Trace& t) {
   std::ostringstream out;
   if (!t.build.empty()) {
     out << " \"build\": [";
-    for (size_t i = 0; i < t.build.size(); ++i) out << (i ? ",\n  " : "\n  ") << build_event_json(t.build[i], i);
+    for (size_t i = 0; i < t.build.size(); ++i)
+      out << (i ? ",\n  " : "\n  ") << build_event_json(t.build[i], i);
     out << "\n ],\n";
   }
   ordered s;
@@ -326,9 +350,13 @@ std::string trace_json_rest(const Trace& t) {
     if (tr.has_pixel) head["pixel"] = {tr.pixel[0], tr.pixel[1]};
     if (tr.sample >= 0) head["sample"] = tr.sample;
     RayCounters c = count_events(tr.events);
-    head["counters"] = {{"cells", c.cells},         {"nodes", c.nodes},   {"prim_tests", c.prim_tests},
-                        {"prim_hits", c.prim_hits}, {"mailbox_hits", c.mailbox_hits},
-                        {"pushes", c.pushes},       {"pops", c.pops},
+    head["counters"] = {{"cells", c.cells},
+                        {"nodes", c.nodes},
+                        {"prim_tests", c.prim_tests},
+                        {"prim_hits", c.prim_hits},
+                        {"mailbox_hits", c.mailbox_hits},
+                        {"pushes", c.pushes},
+                        {"pops", c.pops},
                         {"box_tests", c.box_tests}};
     std::string h = head.dump();
     h.pop_back();  // reopen the object to append the events, one per line
@@ -341,7 +369,8 @@ std::string trace_json_rest(const Trace& t) {
 
   out << " \"geometry\": {\n  \"cells\": [";
   write_rows(out, t.cells, [&](const TraceCell& c) {
-    ordered jc = {{"cell", {c.cell[0], c.cell[1], c.cell[2]}}, {"min", vec(c.box.lo)}, {"max", vec(c.box.hi)}};
+    ordered jc = {
+        {"cell", {c.cell[0], c.cell[1], c.cell[2]}}, {"min", vec(c.box.lo)}, {"max", vec(c.box.hi)}};
     return jc;
   });
   out << (t.cells.empty() ? "],\n" : "\n  ],\n");
@@ -403,8 +432,34 @@ const char* const kTraceCsvHeader =
     "node,depth,t_min,t_max,prim,hit,t,reason,sample,parent\n";
 
 void write_trace_csv_rows(std::ostream& out, const Trace& t, const std::string& prefix) {
-  enum Col { ray, seq, type, i, j, k, t_enter, t_exit, t_max_x, t_max_y, t_max_z, t_delta_x, t_delta_y, t_delta_z,
-             next_axis, node, depth, t_min, t_max, prim, hit, t_hit, reason, sample, parent, kColumns };
+  enum Col {
+    ray,
+    seq,
+    type,
+    i,
+    j,
+    k,
+    t_enter,
+    t_exit,
+    t_max_x,
+    t_max_y,
+    t_max_z,
+    t_delta_x,
+    t_delta_y,
+    t_delta_z,
+    next_axis,
+    node,
+    depth,
+    t_min,
+    t_max,
+    prim,
+    hit,
+    t_hit,
+    reason,
+    sample,
+    parent,
+    kColumns
+  };
   // Columns are only ever appended, so that scripts reading by position still work: sample in version 2,
   // parent (box_test's) in version 3.
   auto num = [](float v) {
@@ -509,8 +564,10 @@ class Path {
   std::string str() const {
     if (!parent_) return std::string(root_);
     std::string s = parent_->str();
-    if (is_index_) s += "[" + std::to_string(index_) + "]";
-    else (s += ".") += key_;
+    if (is_index_)
+      s += "[" + std::to_string(index_) + "]";
+    else
+      (s += ".") += key_;
     return s;
   }
 
@@ -547,7 +604,8 @@ class Reader {
       if (v == "inf") return kInfinity;
       if (v == "-inf") return -kInfinity;
     }
-    if (!v.is_number()) fail(path, v.is_null() ? "expected a number, found null (NaN?)" : "expected a number");
+    if (!v.is_number())
+      fail(path, v.is_null() ? "expected a number, found null (NaN?)" : "expected a number");
     double d = v.get_double();
     if (!std::isfinite(d) || std::fabs(d) > 3.4028234663852886e38) fail(path, "number out of float range");
     return float(d);
@@ -559,7 +617,8 @@ class Reader {
     if (!v.is_number_integer()) fail(path, "expected an integer");
     int64_t i = v.get_int64();
     if (i < lo || i > hi)
-      fail(path, "value " + std::to_string(i) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi));
+      fail(path,
+           "value " + std::to_string(i) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi));
     return i;
   }
   int64_t integer_at(const Value& obj, const Path& path, const char* key, int64_t lo, int64_t hi) const {
@@ -598,8 +657,10 @@ int Reader::line_of(const std::string& path) const {
   std::string pointer;
   std::string rest = path.rfind("trace", 0) == 0 ? path.substr(5) : path;
   for (char c : rest) {
-    if (c == '.' || c == '[') pointer += '/';
-    else if (c != ']') pointer += c;
+    if (c == '.' || c == '[')
+      pointer += '/';
+    else if (c != ']')
+      pointer += c;
   }
   if (!pointer.empty() && pointer[0] != '/') pointer.insert(pointer.begin(), '/');
   return json_line_of(text_, pointer);
@@ -750,8 +811,9 @@ JsonTape parse_tape(const std::string& text, const std::string& name) {
   } catch (const json::parse_error& e) {
     int line = json_line_at_byte(text, e.byte);
     bool truncated = e.byte >= text.size();
-    throw InputError(name, line, truncated ? "the trace is truncated (unexpected end of the file)"
-                                           : std::string("malformed JSON: ") + e.what());
+    throw InputError(name, line,
+                     truncated ? "the trace is truncated (unexpected end of the file)"
+                               : std::string("malformed JSON: ") + e.what());
   } catch (const json::out_of_range& e) {
     // "number overflow parsing '1e400'" comes without a position: the line of that literal.
     std::string what = e.what();
@@ -851,7 +913,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
       const Value je = events[i];
       Event e;
       e.seq = uint32_t(rd.integer_at(je, ep, "seq", 0, 1ll << 32));
-      if (e.seq != i) rd.fail(ep.key("seq"), "expected " + std::to_string(i) + " (events are numbered in order)");
+      if (e.seq != i)
+        rd.fail(ep.key("seq"), "expected " + std::to_string(i) + " (events are numbered in order)");
       std::string_view type = rd.view_at(je, ep, "type");
       int type_index = name_index(type, kEventNames);
       if (type_index < 0) rd.fail(ep.key("type"), "unknown event type \"" + std::string(type) + "\"");
@@ -971,7 +1034,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
       const Value jn = nodes[i];
       TraceNode n;
       n.id = int32_t(rd.integer_at(jn, np, "id", 0, max_node));
-      if (!listed.insert(n.id).second) rd.fail(np.key("id"), "node " + std::to_string(n.id) + " is listed twice");
+      if (!listed.insert(n.id).second)
+        rd.fail(np.key("id"), "node " + std::to_string(n.id) + " is listed twice");
       n.parent = int32_t(rd.integer_at(jn, np, "parent", -1, max_node));
       n.depth = int32_t(rd.integer_at(jn, np, "depth", 0, 1 << 16));
       n.box.lo = rd.vec_at(jn, np, "min");
@@ -986,7 +1050,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
         const Value ids = rd.array_at(jn, np, "prims");
         const Path pp = np.key("prims");
         n.prims.reserve(capped(ids.size()));
-        for (size_t k = 0; k < ids.size(); ++k) n.prims.push_back(int32_t(rd.integer(ids[k], pp.at(k), 0, max_prim)));
+        for (size_t k = 0; k < ids.size(); ++k)
+          n.prims.push_back(int32_t(rd.integer(ids[k], pp.at(k), 0, max_prim)));
         if (has_children) rd.fail(np.key("children"), "a leaf has no children");
       } else if (has_children) {
         const Value ids = rd.array_at(jn, np, "children");
@@ -1092,8 +1157,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
       std::string_view type = rd.view_at(jb, bp, "type");
       int type_index = name_index(type, kEventNames);
       if (type_index >= 0) b.type = EventType(type_index);
-      if (type_index < 0 ||
-          (b.type != EventType::sah_candidate && b.type != EventType::split && b.type != EventType::leaf_made))
+      if (type_index < 0 || (b.type != EventType::sah_candidate && b.type != EventType::split &&
+                             b.type != EventType::leaf_made))
         rd.fail(bp.key("type"),
                 "unknown build event type \"" + std::string(type) + "\" (sah_candidate, split, leaf_made)");
       b.node = uint32_t(rd.integer_at(jb, bp, "node", 0, std::max<int64_t>(max_node, 0)));
@@ -1110,7 +1175,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
         c.area_node = rd.real_at(jb, bp, "area_node");
         c.cost = rd.real_at(jb, bp, "cost");
         std::string_view side = rd.view_at(jb, bp, "planar_side");
-        if (side != "below" && side != "above") rd.fail(bp.key("planar_side"), "expected \"below\" or \"above\"");
+        if (side != "below" && side != "above")
+          rd.fail(bp.key("planar_side"), "expected \"below\" or \"above\"");
         c.planar_below = side == "below";
       } else {
         b.depth = int32_t(rd.integer_at(jb, bp, "depth", 0, 1 << 16));
@@ -1148,7 +1214,8 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
       for (int k = 0; k < 3; ++k) {
         const Path vp = vsp.at(k);
         if (!v[k].is_array() || v[k].size() != 3) rd.fail(vp, "expected an array of 3 numbers");
-        p.v[k] = glm::vec3(rd.real(v[k][0], vp.at(0)), rd.real(v[k][1], vp.at(1)), rd.real(v[k][2], vp.at(2)));
+        p.v[k] =
+            glm::vec3(rd.real(v[k][0], vp.at(0)), rd.real(v[k][1], vp.at(1)), rd.real(v[k][2], vp.at(2)));
       }
     } else if (type == "sphere") {
       p.type = PrimType::sphere;
@@ -1317,7 +1384,8 @@ std::string trace_summary(const Trace& t) {
   std::ostringstream out;
   out << "trace: " << t.rays.size() << " ray(s), structure " << t.structure.kind;
   if (t.structure.kind == "grid") {
-    out << " " << t.structure.resolution[0] << "x" << t.structure.resolution[1] << "x" << t.structure.resolution[2];
+    out << " " << t.structure.resolution[0] << "x" << t.structure.resolution[1] << "x"
+        << t.structure.resolution[2];
     std::string from, why;
     for (const TraceParam& p : t.structure.params)
       if (p.is_text && p.key == "coarsened_from")
@@ -1337,8 +1405,10 @@ std::string trace_summary(const Trace& t) {
     if (tr.has_pixel) out << ", pixel " << tr.pixel[0] << "," << tr.pixel[1];
     if (tr.sample >= 0) out << ", sample " << tr.sample;
     out << ", " << tr.events.size() << " events, ";
-    if (t.structure.kind == "grid") out << c.cells << " cells, ";
-    else out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";
+    if (t.structure.kind == "grid")
+      out << c.cells << " cells, ";
+    else
+      out << c.nodes << " nodes, " << c.pushes << " pushes, " << c.pops << " pops, ";
     const bool bvh = t.structure.kind.rfind("bvh", 0) == 0;
     if (bvh) {  // version 3: the boxes tested and the entries skipped
       size_t skips = 0;
@@ -1348,8 +1418,10 @@ std::string trace_summary(const Trace& t) {
     out << c.prim_tests << " tests (" << c.prim_hits << " hits)";
     if (!bvh) out << ", " << c.mailbox_hits << " mailbox hits";  // a BVH has none: a primitive is in one leaf
     out << "; ";
-    if (end.prim >= 0) out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
-    else out << "miss\n";
+    if (end.prim >= 0)
+      out << "hit primitive " << end.prim << " at t=" << end.t << "\n";
+    else
+      out << "miss\n";
     for (const Event& e : tr.events) ++totals[event_type_name(e.type)];
   }
   if (!t.build.empty()) {

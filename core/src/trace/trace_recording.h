@@ -1,4 +1,4 @@
-// Shared by the structures' trace recorders (grid_trace.cpp, kd_trace.cpp, bvh_trace.cpp): the scene and
+// Shared by the structures' trace recorders (grid_trace.cpp, kd_trace.cpp, bvh_trace.cpp, ...): the scene and
 // structure every trace starts with, walk each requested ray with the event recorder, and collect the
 // primitives and tree nodes the events name.
 #pragma once
@@ -60,6 +60,20 @@ void record_rays(const Geometry& geometry, const std::vector<RayRequest>& rays, 
   }
 }
 
+// The same for a structure whose kernel is traverse(ray, hit, any_hit, recorder): shadow rays ask for any
+// hit.
+template <class Structure>
+void record_traversals(const Geometry& geometry, const std::vector<RayRequest>& rays,
+                       const Structure& structure, Trace* trace) {
+  record_rays(
+      geometry, rays,
+      [&](const RayRequest& req, EventRecorder& rec) {
+        Hit hit;
+        structure.traverse(req.ray, &hit, req.kind == RayKind::shadow, rec);
+      },
+      trace);
+}
+
 // The tree nodes the events of every ray name: nodes visited, pushed, popped, skipped, and both ends of a box
 // test (a kd-tree's walk emits no box tests or skips).
 inline std::set<int32_t> named_nodes(const Trace& t) {
@@ -83,6 +97,33 @@ inline std::set<int32_t> named_nodes(const Trace& t) {
     }
   }
   return named;
+}
+
+// The named nodes and their parents up to the root, in id order: parent(id) gives -1 at the root.
+template <class Parent>
+std::set<int32_t> with_parent_chains(std::set<int32_t> ids, Parent parent) {
+  std::vector<int32_t> todo(ids.begin(), ids.end());
+  while (!todo.empty()) {
+    int32_t p = parent(todo.back());
+    todo.pop_back();
+    if (p >= 0 && ids.insert(p).second) todo.push_back(p);
+  }
+  return ids;
+}
+
+// A tree node as traces give it: its place in the tree and box, and a leaf's primitives (count of them from
+// prim_index[first]); the caller adds what its kind of inner node has (split, plane, children).
+inline TraceNode trace_node(int32_t id, int32_t parent, int depth, const Bounds3& box, bool leaf,
+                            const std::vector<uint32_t>& prim_index, uint32_t first, uint32_t count) {
+  TraceNode tn;
+  tn.id = id;
+  tn.parent = parent;
+  tn.depth = depth;
+  tn.box = box;
+  tn.leaf = leaf;
+  if (leaf)
+    for (uint32_t i = 0; i < count; ++i) tn.prims.push_back(int32_t(prim_index[first + i]));
+  return tn;
 }
 
 inline void sort_params(TraceStructure* s) {
