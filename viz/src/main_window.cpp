@@ -42,6 +42,8 @@
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
+#include "compare_window.h"
+#include "raystep/trace/multi_trace.h"
 #include "structure_panel.h"
 #include "timeline.h"
 #include "tree_view.h"
@@ -132,6 +134,9 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
     try {
       tracePixel(x, y);
+      // Reports > Compare...: the clicked pixel through the structures picked, while their window is open.
+      if (!compareKinds_.isEmpty() && (!compare_ || compare_->viewCount() == 0 || compare_->isVisible()))
+        comparePixel(compareKinds_, x, y);
       // An anti-aliased pixel opens its inspector (without anti-aliasing it stays as the user left it).
       if (const TracePixel* px = session_->pixel(); px && px->sampling.aa.mode != AntiAliasing::Mode::none)
         showPixelInspector();
@@ -263,6 +268,18 @@ void MainWindow::buildMenus() {
     v->show();
     v->raise();
     if (v->state() == "idle" && session_->structure()) v->start();
+  });
+  reports->addAction(tr("&Compare structures on one ray (side by side)..."), this, [this] {
+    const QStringList kinds =
+        pickCompareStructures(this, compareKinds_.isEmpty() ? QStringList{"grid", "kd", "bvh"} : compareKinds_);
+    if (kinds.isEmpty()) return;
+    compareKinds_ = kinds;
+    const TracedRay* r = session_->scene() ? session_->ray() : nullptr;
+    if (r && r->has_pixel)
+      comparePixel(kinds, r->pixel[0], r->pixel[1]);
+    else
+      statusBar()->showMessage(tr("Click a pixel of the picture: its ray through %1 opens side by side.")
+                                   .arg(kinds.join(", ")));
   });
   reports->addAction(tr("&Grid sweep: density d against cost..."), this, [this] {
     GridSweepView* v = gridSweepView();
@@ -541,6 +558,19 @@ void MainWindow::runTask(const QString& kind, const QString& what,
 }
 
 void MainWindow::openFile(const QString& path) {
+  if (isMultiTraceFile(path)) {  // several structures' walks: the side-by-side window
+    std::shared_ptr<const MultiTrace> walks;
+    try {
+      walks = std::make_shared<const MultiTrace>(read_multi_trace_json(path.toStdString()));
+    } catch (const std::exception& e) {
+      if (scripted_ || inPlace_) throw;
+      return showError(QString::fromStdString(e.what()));
+    }
+    compareWindow()->setWalks(walks, nullptr, {}, path);
+    compare_->show();
+    compare_->raise();
+    return;
+  }
   if (isTraceFile(path))
     openTrace(path);
   else
@@ -997,6 +1027,31 @@ void MainWindow::exportTrace(const QString& path) {
     if (scripted_) throw;
     showError(QString::fromStdString(e.what()));
   }
+}
+
+CompareWindow* MainWindow::compareWindow() {
+  if (!compare_) compare_ = new CompareWindow(this);
+  return compare_;
+}
+
+void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {
+  std::shared_ptr<const SceneData> scene = session_->sceneShared();
+  if (!scene) return showError(tr("Open a scene first: the structures are built over it."));
+  QApplication::setOverrideCursor(Qt::WaitCursor);
+  try {
+    std::vector<std::shared_ptr<const StructureData>> built;
+    for (const QString& k : kinds) built.push_back(buildStructureData(scene, k.toStdString(), structure_->options()));
+    compareWindow()->setWalks(recordComparePixel(built, session_->imageWidth(), session_->imageHeight(), x, y,
+                                                 imageView_->secondaryRays()),
+                              scene, built, QString::fromStdString(scene->path));
+    QApplication::restoreOverrideCursor();
+  } catch (const std::exception& e) {
+    QApplication::restoreOverrideCursor();
+    if (scripted_) throw;
+    return showError(QString::fromStdString(e.what()));
+  }
+  compare_->show();
+  compare_->raise();
 }
 
 }  // namespace raystep::viz
