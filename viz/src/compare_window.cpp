@@ -17,6 +17,7 @@
 #include <QJsonArray>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollBar>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QSplitter>
@@ -92,21 +93,57 @@ CompareWindow::CompareWindow(QWidget* parent) : QWidget(parent, Qt::Window) {
   header_->setWordWrap(true);
   layout->addWidget(header_);
 
-  auto* split = new QSplitter(Qt::Vertical);
+  // The views on the left, as tall as the window allows (the walk's cells are small); the counters and the
+  // chart beside them; the timeline across the bottom, under everything it moves.
+  auto* split = new QSplitter(Qt::Horizontal);
   viewsBox_ = new QWidget;
   viewsGrid_ = new QGridLayout(viewsBox_);
   viewsGrid_->setContentsMargins(0, 0, 0, 0);
   viewsGrid_->setSpacing(4);
   split->addWidget(viewsBox_);
 
-  auto* lower = new QWidget;
-  auto* lowerLayout = new QVBoxLayout(lower);
-  lowerLayout->setContentsMargins(0, 0, 0, 0);
-  lowerLayout->setSpacing(3);
+  table_ = new QTableWidget(0, 7);
+  table_->setObjectName("compareTable");
+  table_->setHorizontalHeaderLabels({tr("structure"), tr("steps"), tr("prim.\ntests"), tr("mailbox\nhits"),
+                                     tr("box\ntests"), tr("cost\nat t"), tr("total\ncost")});
+  const QStringList tips = {tr("The structure walked"),
+                            tr("Cells or nodes visited: at t / in the whole walk"),
+                            tr("Ray-primitive tests: at t / in the whole walk"),
+                            tr("Tests skipped by the mailbox (already tested): at t / in the whole walk"),
+                            tr("BVH: children's bounding boxes tested: at t / in the whole walk"),
+                            tr("t_t per step + t_i per primitive test, spent before the walk moved past t "
+                               "(the cheapest in bold)"),
+                            tr("The cost of the whole walk, to its hit or exit")};
+  for (int c = 0; c < tips.size(); ++c) table_->horizontalHeaderItem(c)->setToolTip(tips[c]);
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  table_->setSelectionMode(QAbstractItemView::NoSelection);
+  table_->verticalHeader()->hide();
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  table_->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Fixed);  // as tall as its rows (fillTable)
+  auto* side = new QWidget;
+  auto* sideLayout = new QVBoxLayout(side);
+  sideLayout->setContentsMargins(0, 0, 0, 0);
+  sideLayout->setSpacing(3);
+  auto* countersTitle = new QLabel(
+      tr("<b>Counters</b> at t / in the whole walk (steps: cells or nodes visited; the cheapest cost at t "
+         "in bold)"));
+  countersTitle->setWordWrap(true);
+  sideLayout->addWidget(countersTitle);
+  sideLayout->addWidget(table_);
+  chart_ = new CostChart;
+  chart_->setObjectName("compareChart");
+  sideLayout->addWidget(chart_, 1);
+  split->addWidget(side);
+  split->setStretchFactor(0, 2);
+  split->setStretchFactor(1, 1);
+  split->setSizes({790, 480});  // the table's seven columns whole, beside views still wider than tall
+  layout->addWidget(split, 1);
+
   legend_ = new QLabel;
   legend_->setObjectName("compareLegend");
   legend_->setWordWrap(true);
-  lowerLayout->addWidget(legend_);
+  layout->addWidget(legend_);
 
   // The timeline over t.
   auto* row = new QHBoxLayout;
@@ -135,42 +172,12 @@ CompareWindow::CompareWindow(QWidget* parent) : QWidget(parent, Qt::Window) {
   row->addWidget(endLabel_);
   row->addWidget(tLabel_);
   row->addWidget(rayCombo_);
-  lowerLayout->addLayout(row);
+  layout->addLayout(row);
   rule_ = new QLabel(atTRule());
   rule_->setObjectName("compareRule");
   rule_->setWordWrap(true);
   rule_->setStyleSheet("color: #555");
-  lowerLayout->addWidget(rule_);
-
-  auto* bottom = new QSplitter(Qt::Horizontal);
-  table_ = new QTableWidget(0, 7);
-  table_->setObjectName("compareTable");
-  table_->setHorizontalHeaderLabels({tr("structure"), tr("steps"), tr("prim tests"), tr("mailbox hits"),
-                                     tr("box tests"), tr("cost at t"), tr("total cost")});
-  const QStringList tips = {tr("The structure walked"),
-                            tr("Cells or nodes visited: at t / in the whole walk"),
-                            tr("Ray-primitive tests: at t / in the whole walk"),
-                            tr("Tests skipped by the mailbox (already tested): at t / in the whole walk"),
-                            tr("BVH: children's bounding boxes tested: at t / in the whole walk"),
-                            tr("t_t per step + t_i per primitive test, spent before the walk moved past t "
-                               "(the cheapest in bold)"),
-                            tr("The cost of the whole walk, to its hit or exit")};
-  for (int c = 0; c < tips.size(); ++c) table_->horizontalHeaderItem(c)->setToolTip(tips[c]);
-  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  table_->setSelectionMode(QAbstractItemView::NoSelection);
-  table_->verticalHeader()->hide();
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  bottom->addWidget(table_);
-  chart_ = new CostChart;
-  chart_->setObjectName("compareChart");
-  bottom->addWidget(chart_);
-  bottom->setStretchFactor(0, 1);
-  bottom->setStretchFactor(1, 1);
-  lowerLayout->addWidget(bottom, 1);
-  split->addWidget(lower);
-  split->setStretchFactor(0, 3);
-  split->setStretchFactor(1, 2);
-  layout->addWidget(split, 1);
+  layout->addWidget(rule_);
 
   connect(slider_, &QSlider::valueChanged, this, &CompareWindow::setSliderPosition);
   connect(rayCombo_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &CompareWindow::setRay);
@@ -213,8 +220,9 @@ void CompareWindow::setWalks(std::shared_ptr<const MultiTrace> walks, std::share
   scene_ = std::move(scene);
   structures_ = std::move(structures);
   const int n = walks_ ? int(walks_->walks.size()) : 0;
-  // Two or three views in a row; four in two rows of two (each still as wide as the main window's 3D view).
-  const int columns = n <= 3 ? n : 2;
+  // Two views one above the other, three or four in two rows of two: each wider than tall, as the scene's
+  // camera frames it.
+  const int columns = n <= 2 ? 1 : 2;
   QStringList names;
   for (int i = 0; i < n; ++i) {
     const Trace& walk = walks_->walks[size_t(i)];
@@ -384,6 +392,7 @@ void CompareWindow::showT() {
 }
 
 void CompareWindow::fillTable() {
+  const bool resize = table_->rowCount() != int(panes_.size());
   table_->setRowCount(int(panes_.size()));
   double cheapest = HUGE_VAL;
   for (const auto& p : panes_) cheapest = std::min(cheapest, p->now.cost);
@@ -408,6 +417,14 @@ void CompareWindow::fillTable() {
       table_->setItem(int(i), c, item);
     }
   }
+  if (resize) {
+    table_->resizeColumnsToContents();
+    table_->resizeRowsToContents();
+  }
+  int h = table_->horizontalHeader()->sizeHint().height() + 2 * table_->frameWidth();
+  for (int r = 0; r < table_->rowCount(); ++r) h += table_->rowHeight(r);
+  if (table_->horizontalScrollBar()->isVisible()) h += table_->horizontalScrollBar()->height();
+  table_->setFixedHeight(h);
 }
 
 void CompareWindow::showEvent(QShowEvent* event) {

@@ -272,14 +272,7 @@ void MainWindow::buildMenus() {
   reports->addAction(tr("&Compare structures on one ray (side by side)..."), this, [this] {
     const QStringList kinds =
         pickCompareStructures(this, compareKinds_.isEmpty() ? QStringList{"grid", "kd", "bvh"} : compareKinds_);
-    if (kinds.isEmpty()) return;
-    compareKinds_ = kinds;
-    const TracedRay* r = session_->scene() ? session_->ray() : nullptr;
-    if (r && r->has_pixel)
-      comparePixel(kinds, r->pixel[0], r->pixel[1]);
-    else
-      statusBar()->showMessage(tr("Click a pixel of the picture: its ray through %1 opens side by side.")
-                                   .arg(kinds.join(", ")));
+    if (!kinds.isEmpty()) setCompareStructures(kinds);
   });
   reports->addAction(tr("&Grid sweep: density d against cost..."), this, [this] {
     GridSweepView* v = gridSweepView();
@@ -1032,6 +1025,16 @@ void MainWindow::exportTrace(const QString& path) {
 CompareWindow* MainWindow::compareWindow() {
   if (!compare_) compare_ = new CompareWindow(this);
   return compare_;
+}
+
+void MainWindow::setCompareStructures(const QStringList& kinds) {
+  compareKinds_ = kinds;
+  const TracedRay* r = session_->scene() ? session_->ray() : nullptr;
+  if (r && r->has_pixel)
+    comparePixel(kinds, r->pixel[0], r->pixel[1]);
+  else
+    statusBar()->showMessage(
+        tr("Click a pixel of the picture: its ray through %1 opens side by side.").arg(kinds.join(", ")));
 }
 
 void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {

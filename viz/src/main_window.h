@@ -126,7 +126,11 @@ class MainWindow : public QMainWindow {
   // builds the structures named (with the structure panel's options) over the current scene and shows pixel
   // (x, y)'s walks through them. Reports > Compare... picks them; each pixel clicked then is compared too.
   CompareWindow* compareWindow();
+  CompareWindow* compareWindowIfMade() const { return compare_; }
   void comparePixel(const QStringList& kinds, int x, int y);
+  // What Reports > Compare...'s dialog does on OK: the traced pixel (if any) compared through `kinds` now, and
+  // each pixel clicked from then on while the window is open.
+  void setCompareStructures(const QStringList& kinds);
 
   Session* session() const { return session_; }
   SceneView* sceneView() const { return sceneView_; }

@@ -156,6 +156,7 @@ QJsonObject dumpState(MainWindow& w) {
   if (const Trace* t = s->trace()) o["trace_rays"] = int(t->rays.size());
   o["last_error"] = w.lastError();
   if (w.presenter()) o["lesson"] = w.presenter()->dumpState();
+  if (CompareWindow* cw = w.compareWindowIfMade(); cw && cw->isVisible()) o["compare"] = cw->dumpState();
   addReportState(w, o);
   return o;
 }
@@ -269,6 +270,10 @@ void defineOptions(QCommandLineParser& p) {
       "LIST");
   opt("trace", "Open a trace written by `raystep trace` (a version 5 trace of several structures opens side by side).",
       "FILE");
+  opt("compare-pick",
+      "Then pick these structures in Reports > Compare... (the traced pixel, if any, opens side by side).",
+      "LIST");
+  opt("click-pixel", "Then click pixel X,Y of the picture, as a user would.", "X,Y");
   opt("at-t", "Side by side: move the timeline to the ray parameter t.", "T");
   opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.", "N");
   defineReportOptions(p);
@@ -415,6 +420,19 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
                    worst);
   }
   if (p.isSet("keys")) pressKeys(window, p.value("keys"));
+  if (p.isSet("compare-pick")) {  // the dialog's OK, with these boxes ticked
+    const std::vector<std::string> kinds = parseCompareList(p.value("compare-pick").toStdString());
+    QStringList list;
+    for (const std::string& k : kinds) list << QString::fromStdString(k);
+    window.setCompareStructures(list);
+  }
+  if (p.isSet("click-pixel")) {  // a click on the picture where the pixel is drawn
+    std::vector<int> at = parseInts("click-pixel", p.value("click-pixel"), 2, 0);
+    settle(window);
+    ImageCanvas* canvas = window.imageView()->canvas();
+    QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->widgetPosOf(at[0], at[1]));
+    QApplication::processEvents();
+  }
   if (p.isSet("pick-3d")) {  // a click in the 3D view selects the kd-tree leaf holding the picked point
     const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
     if (!kd) fail("--pick-3d: no kd-tree (open a scene with --accel kd or kd-median)");
@@ -644,7 +662,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",        "node",
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
-      "sample",        "square",         "sample-overlay",  "click-sample"};
+      "sample",        "square",         "sample-overlay",  "click-sample", "compare-pick", "click-pixel"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
