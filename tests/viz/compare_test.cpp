@@ -178,6 +178,19 @@ TEST(Compare, PickThenClickAPixelOpensTheSameView) {
   }
 }
 
+// One camera: a drag in one view turns every view's camera, the same way.
+TEST(Compare, DragInOneViewMovesEveryView) {
+  const std::string args = "'" + kCornell + "' --compare grid,kd --pixel 100,150";
+  const json still = runCompare(args, "compare-still");
+  const json dragged = runCompare(args + " --drag-view 1:80,-30", "compare-dragged");
+  ASSERT_EQ(dragged["views"].size(), 2u);
+  const json& before = still["views"][0]["view"]["camera"];
+  const json& after = dragged["views"][0]["view"]["camera"];
+  EXPECT_NE(before["position"], after["position"]) << "dragging view 1 did not move view 0's camera";
+  EXPECT_EQ(dragged["views"][1]["view"]["camera"], after);
+  EXPECT_EQ(still["views"][1]["view"]["camera"], before);
+}
+
 TEST(Compare, BadCompareListsExit2WithOneLine) {
   const std::string damaged = kOut + "/compare-damaged.json";
   {

@@ -243,7 +243,8 @@ void CompareWindow::setWalks(std::shared_ptr<const MultiTrace> walks, std::share
     pane->view->setCompact(true);
     if (i > 0) pane->view->shareCamera(panes_.front()->view);
     v->addWidget(pane->view, 1);
-    viewsGrid_->addWidget(pane->box, i / columns, i % columns);
+    // Three views: the third under the first two, as wide as both (no empty corner).
+    viewsGrid_->addWidget(pane->box, i / columns, i % columns, 1, n == 3 && i == 2 ? 2 : 1);
     // The walk's own trace shares the document's lifetime.
     std::shared_ptr<const Trace> trace(walks_, &walk);
     if (scene_) pane->session->setScene(scene_);

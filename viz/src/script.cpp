@@ -15,6 +15,7 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QMouseEvent>
+#include <QOpenGLWidget>
 #include <QScreen>
 #include <QSlider>
 #include <QTest>
@@ -274,6 +275,9 @@ void defineOptions(QCommandLineParser& p) {
       "Then pick these structures in Reports > Compare... (the traced pixel, if any, opens side by side).",
       "LIST");
   opt("click-pixel", "Then click pixel X,Y of the picture, as a user would.", "X,Y");
+  opt("drag-view",
+      "Side by side: drag the mouse across view I by DX,DY pixels from its centre, as a user turns the camera.",
+      "I:DX,DY");
   opt("at-t", "Side by side: move the timeline to the ray parameter t.", "T");
   opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.", "N");
   defineReportOptions(p);
@@ -631,6 +635,25 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
       fail("--slider '" + p.value("slider").toStdString() + "': expected 0 .. 1000");
     cw->findChild<QSlider*>("compareSlider")->setValue(pos);  // as a drag moves it
   }
+  if (p.isSet("drag-view")) {  // press, move with the button held, release: the trackball turns the camera
+    static const std::regex re("([0-9]+):(-?[0-9]{1,4}),(-?[0-9]{1,4})");
+    std::smatch m;
+    const std::string spec = p.value("drag-view").toStdString();
+    if (!std::regex_match(spec, m, re) || std::stoi(m[1]) >= cw->viewCount())
+      fail("--drag-view '" + spec + "': expected I:DX,DY with I a view (0.." + std::to_string(cw->viewCount() - 1) +
+           ")");
+    QWidget* gl = cw->view(std::stoi(m[1]))->findChild<QOpenGLWidget*>();
+    if (!gl) fail("--drag-view: the view has no OpenGL widget");
+    const QPoint c(gl->width() / 2, gl->height() / 2), d(std::stoi(m[2]), std::stoi(m[3]));
+    auto send = [gl](QEvent::Type type, const QPoint& at, Qt::MouseButton button, Qt::MouseButtons held) {
+      QMouseEvent e(type, at, gl->mapToGlobal(at), button, held, Qt::NoModifier);
+      QApplication::sendEvent(gl, &e);
+      QApplication::processEvents();
+    };
+    send(QEvent::MouseButtonPress, c, Qt::LeftButton, Qt::LeftButton);
+    for (int k = 1; k <= 10; ++k) send(QEvent::MouseMove, c + d * k / 10, Qt::NoButton, Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, c + d, Qt::LeftButton, Qt::NoButton);
+  }
   for (int i = 0; i < 5; ++i) {
     QApplication::processEvents();
     QThread::msleep(5);
@@ -685,7 +708,8 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
     }
     const QString file = p.isSet("trace") ? p.value("trace") : p.positionalArguments().value(0);
     if (p.isSet("compare") || (!file.isEmpty() && isMultiTraceFile(file)))
-      return runCompare(window, p, quit, anyScript || p.isSet("at-t") || p.isSet("slider"), ww, wh);
+      return runCompare(window, p, quit,
+                        anyScript || p.isSet("at-t") || p.isSet("slider") || p.isSet("drag-view"), ww, wh);
     LessonState st = stateFromOptions(p);
 
     if (!anyScript) {  // interactive: open in the background and return to the event loop
