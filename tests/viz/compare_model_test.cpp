@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "compare_model.h"
 #include "raystep/accel/structure_options.h"
@@ -87,6 +88,8 @@ TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
       done += end.steps > 0;
     }
   }
+  std::printf("%d (walk, t) pairs checked: %d before the first step, %d in the middle of a walk; %d walks done\n",
+              checked, beforeFirst, midWalk, done);
   EXPECT_GT(checked, 10000);
   EXPECT_GT(midWalk, 1000);  // the sweep stops in the middle of walks, not only at their ends
   EXPECT_GT(beforeFirst, 0);
