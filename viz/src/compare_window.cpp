@@ -224,6 +224,13 @@ void CompareWindow::setWalks(std::shared_ptr<const MultiTrace> walks, std::share
   // camera frames it.
   const int columns = n <= 2 ? 1 : 2;
   QStringList names;
+  std::vector<TracePrimitive> allPrimitives;
+  if (!scene_) {
+    std::map<int32_t, TracePrimitive> byId;
+    for (const Trace& w : walks_->walks)
+      for (const TracePrimitive& prim : w.primitives) byId.emplace(prim.id, prim);
+    for (auto& [id, prim] : byId) allPrimitives.push_back(prim);
+  }
   for (int i = 0; i < n; ++i) {
     const Trace& walk = walks_->walks[size_t(i)];
     auto pane = std::make_unique<Pane>();
@@ -245,8 +252,14 @@ void CompareWindow::setWalks(std::shared_ptr<const MultiTrace> walks, std::share
     v->addWidget(pane->view, 1);
     // Three views: the third under the first two, as wide as both (no empty corner).
     viewsGrid_->addWidget(pane->box, i / columns, i % columns, 1, n == 3 && i == 2 ? 2 : 1);
-    // The walk's own trace shares the document's lifetime.
+    // The walk's own trace shares the document's lifetime. Without the scene, a view draws the primitives its
+    // trace names: every view gets those of all the walks, so that they show the same geometry.
     std::shared_ptr<const Trace> trace(walks_, &walk);
+    if (!scene_ && n > 1) {
+      auto withAll = std::make_shared<Trace>(walk);
+      withAll->primitives = allPrimitives;
+      trace = withAll;
+    }
     if (scene_) pane->session->setScene(scene_);
     if (i < int(structures_.size())) pane->session->setStructure(structures_[size_t(i)]);
     pane->session->setTrace(trace, source);
