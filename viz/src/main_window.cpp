@@ -129,6 +129,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
   connect(structure_, &StructurePanel::buildRequested, this, &MainWindow::buildStructure);
+  connect(structure_, &StructurePanel::buildRequested, this, [this] { compareBuilt_.clear(); });
   connect(imageView_, &ImageView::renderRequested, this, &MainWindow::renderPicture);
   connect(imageView_, &ImageView::heatRequested, this, &MainWindow::computeHeat);
   connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
@@ -1043,7 +1044,18 @@ void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {
   QApplication::setOverrideCursor(Qt::WaitCursor);
   try {
     std::vector<std::shared_ptr<const StructureData>> built;
-    for (const QString& k : kinds) built.push_back(buildStructureData(scene, k.toStdString(), structure_->options()));
+    // Built once per scene and options (a build asked for in the structure panel forgets them): the next pixel
+    // clicked walks the same structures.
+    for (const auto& [key, b] : compareBuilt_)
+      if (b->scene != scene) {
+        compareBuilt_.clear();
+        break;
+      }
+    for (const QString& k : kinds) {
+      std::shared_ptr<const StructureData>& b = compareBuilt_[k];
+      if (!b) b = buildStructureData(scene, k.toStdString(), structure_->options());
+      built.push_back(b);
+    }
     compareWindow()->setWalks(recordComparePixel(built, session_->imageWidth(), session_->imageHeight(), x, y,
                                                  imageView_->secondaryRays()),
                               scene, built, QString::fromStdString(scene->path));

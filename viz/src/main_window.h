@@ -207,6 +207,7 @@ class MainWindow : public QMainWindow {
   QString lastError_;
   CompareWindow* compare_ = nullptr;
   QStringList compareKinds_;  // picked in Reports > Compare...: a clicked pixel is compared through them
+  std::map<QString, std::shared_ptr<const StructureData>> compareBuilt_;  // by kind, for the next click
 };
 
 }  // namespace raystep::viz
