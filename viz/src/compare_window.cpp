@@ -59,6 +59,33 @@ QString structureTitle(const std::string& kind) {
   return it == names.end() ? QString::fromStdString(kind) : QString(it->second);
 }
 
+QString swatch(const QColor& c, const QString& text) {
+  return QString("<span style='background:%1'>&nbsp;&nbsp;&nbsp;&nbsp;</span>&nbsp;%2&nbsp;&nbsp; ")
+      .arg(c.name(), text);
+}
+
+// Every colour the views use for these structures, once (the views have no legend of their own).
+QString legendFor(const QStringList& kinds) {
+  QString t = swatch(palette::currentCell, QObject::tr("cell or node at t")) +
+              swatch(palette::visitedCell, QObject::tr("visited before")) +
+              swatch(palette::stackNode, QObject::tr("waiting on the stack"));
+  bool bvh = false, octree = false;
+  for (const QString& k : kinds) {
+    bvh = bvh || isBvhKind(k.toStdString());
+    octree = octree || k == "octree";
+  }
+  if (bvh || octree)
+    t += swatch(palette::bvhChildFirst,
+                bvh ? QObject::tr("first child (BVH: its box)") : QObject::tr("first child on the ray")) +
+         swatch(palette::bvhChildOther, QObject::tr("the other children"));
+  if (bvh) t += swatch(palette::bvhSkipped, QObject::tr("skipped (BVH)"));
+  return t + swatch(palette::ray, QObject::tr("ray up to t")) +
+         swatch(palette::rayAhead, QObject::tr("ray beyond t")) +
+         swatch(palette::segment, QObject::tr("current [tmin, tmax]")) +
+         swatch(palette::hitCandidate, QObject::tr("nearest hit so far")) +
+         swatch(palette::hitFinal, QObject::tr("accepted hit"));
+}
+
 QString num(double v) {
   return std::isfinite(v) ? QString::number(v, 'f', 3) : QString(v > 0 ? "inf" : "-inf");
 }
@@ -182,17 +209,6 @@ CompareWindow::CompareWindow(QWidget* parent) : QWidget(parent, Qt::Window) {
   connect(slider_, &QSlider::valueChanged, this, &CompareWindow::setSliderPosition);
   connect(rayCombo_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &CompareWindow::setRay);
 
-  auto swatch = [](const QColor& c, const QString& text) {
-    return QString("<span style='background:%1'>&nbsp;&nbsp;&nbsp;&nbsp;</span>&nbsp;%2&nbsp;&nbsp; ")
-        .arg(c.name(), text);
-  };
-  legend_->setText(swatch(palette::currentCell, tr("cell or node at t")) +
-                   swatch(palette::visitedCell, tr("visited before")) +
-                   swatch(palette::stackNode, tr("waiting on the stack")) +
-                   swatch(palette::ray, tr("ray up to t")) + swatch(palette::rayAhead, tr("ray beyond t")) +
-                   swatch(palette::segment, tr("current [tmin, tmax]")) +
-                   swatch(palette::hitCandidate, tr("nearest hit so far")) +
-                   swatch(palette::hitFinal, tr("accepted hit")));
   resize(1280, 800);
 }
 
@@ -288,6 +304,7 @@ void CompareWindow::setWalks(std::shared_ptr<const MultiTrace> walks, std::share
                    ? source
                    : QFileInfo(QString::fromStdString(walks_->scene_path)).fileName()));
   setWindowTitle(tr("The same ray, side by side: %1").arg(names.join(", ")));
+  legend_->setText(legendFor(names));
 
   {
     const QSignalBlocker block(rayCombo_);
