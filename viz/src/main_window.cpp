@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "aa_report_view.h"
+#include "compare_window.h"
 #include "event_list.h"
 #include "grid_sweep_view.h"
 #include "image_view.h"
@@ -36,14 +37,13 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/multi_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
-#include "compare_window.h"
-#include "raystep/trace/multi_trace.h"
 #include "structure_panel.h"
 #include "timeline.h"
 #include "tree_view.h"
@@ -271,8 +271,8 @@ void MainWindow::buildMenus() {
     if (v->state() == "idle" && session_->structure()) v->start();
   });
   reports->addAction(tr("&Compare structures on one ray (side by side)..."), this, [this] {
-    const QStringList kinds =
-        pickCompareStructures(this, compareKinds_.isEmpty() ? QStringList{"grid", "kd", "bvh"} : compareKinds_);
+    const QStringList kinds = pickCompareStructures(
+        this, compareKinds_.isEmpty() ? QStringList{"grid", "kd", "bvh"} : compareKinds_);
     if (!kinds.isEmpty()) setCompareStructures(kinds);
   });
   reports->addAction(tr("&Grid sweep: density d against cost..."), this, [this] {
@@ -1044,8 +1044,8 @@ void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {
   QApplication::setOverrideCursor(Qt::WaitCursor);
   try {
     std::vector<std::shared_ptr<const StructureData>> built;
-    // Built once per scene and options (a build asked for in the structure panel forgets them): the next pixel
-    // clicked walks the same structures.
+    // Built once per scene and options (a build asked for in the structure panel forgets them): the next
+    // pixel clicked walks the same structures.
     for (const auto& [key, b] : compareBuilt_)
       if (b->scene != scene) {
         compareBuilt_.clear();

@@ -128,8 +128,8 @@ class MainWindow : public QMainWindow {
   CompareWindow* compareWindow();
   CompareWindow* compareWindowIfMade() const { return compare_; }
   void comparePixel(const QStringList& kinds, int x, int y);
-  // What Reports > Compare...'s dialog does on OK: the traced pixel (if any) compared through `kinds` now, and
-  // each pixel clicked from then on while the window is open.
+  // What Reports > Compare...'s dialog does on OK: the traced pixel (if any) compared through `kinds` now,
+  // and each pixel clicked from then on while the window is open.
   void setCompareStructures(const QStringList& kinds);
 
   Session* session() const { return session_; }

@@ -35,9 +35,9 @@
 #include "presenter.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
-#include "raystep/trace/multi_trace.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/heatmap.h"
+#include "raystep/trace/multi_trace.h"
 #include "raystep/util/error.h"
 #include "replay.h"
 #include "report_script.h"
@@ -266,20 +266,24 @@ void defineOptions(QCommandLineParser& p) {
   opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).",
       "FILE");
   opt("compare",
-      "The same ray side by side: with a scene and --pixel X,Y, the walks of 2 to 4 structures (e.g. grid,kd,bvh) "
+      "The same ray side by side: with a scene and --pixel X,Y, the walks of 2 to 4 structures (e.g. "
+      "grid,kd,bvh) "
       "in one window, with one camera, one timeline over t, their counters and their cost against t.",
       "LIST");
-  opt("trace", "Open a trace written by `raystep trace` (a version 5 trace of several structures opens side by side).",
+  opt("trace",
+      "Open a trace written by `raystep trace` (a version 5 trace of several structures opens side by side).",
       "FILE");
   opt("compare-pick",
       "Then pick these structures in Reports > Compare... (the traced pixel, if any, opens side by side).",
       "LIST");
   opt("click-pixel", "Then click pixel X,Y of the picture, as a user would.", "X,Y");
   opt("drag-view",
-      "Side by side: drag the mouse across view I by DX,DY pixels from its centre, as a user turns the camera.",
+      "Side by side: drag the mouse across view I by DX,DY pixels from its centre, as a user turns the "
+      "camera.",
       "I:DX,DY");
   opt("at-t", "Side by side: move the timeline to the ray parameter t.", "T");
-  opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.", "N");
+  opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.",
+      "N");
   defineReportOptions(p);
   opt("quit", "Quit when done (scripted mode).");
 }
@@ -606,7 +610,8 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
   } else {
     const QString path = p.isSet("trace") ? p.value("trace") : p.positionalArguments().value(0);
     if (p.isSet("trace") && !p.positionalArguments().isEmpty()) fail("give --trace FILE or a file, not both");
-    cw->setWalks(std::make_shared<const MultiTrace>(read_multi_trace_json(path.toStdString())), nullptr, {}, path);
+    cw->setWalks(std::make_shared<const MultiTrace>(read_multi_trace_json(path.toStdString())), nullptr, {},
+                 path);
   }
   cw->resize(ww, wh);
   cw->show();
@@ -640,8 +645,8 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
     std::smatch m;
     const std::string spec = p.value("drag-view").toStdString();
     if (!std::regex_match(spec, m, re) || std::stoi(m[1]) >= cw->viewCount())
-      fail("--drag-view '" + spec + "': expected I:DX,DY with I a view (0.." + std::to_string(cw->viewCount() - 1) +
-           ")");
+      fail("--drag-view '" + spec + "': expected I:DX,DY with I a view (0.." +
+           std::to_string(cw->viewCount() - 1) + ")");
     QWidget* gl = cw->view(std::stoi(m[1]))->findChild<QOpenGLWidget*>();
     if (!gl) fail("--drag-view: the view has no OpenGL widget");
     const QPoint c(gl->width() / 2, gl->height() / 2), d(std::stoi(m[2]), std::stoi(m[3]));
@@ -685,7 +690,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",        "node",
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
-      "sample",        "square",         "sample-overlay",  "click-sample", "compare-pick", "click-pixel"};
+      "sample",        "square",         "sample-overlay",  "click-sample",   "compare-pick", "click-pixel"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
