@@ -1041,32 +1041,36 @@ void MainWindow::setCompareStructures(const QStringList& kinds) {
 void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {
   std::shared_ptr<const SceneData> scene = session_->sceneShared();
   if (!scene) return showError(tr("Open a scene first: the structures are built over it."));
-  QApplication::setOverrideCursor(Qt::WaitCursor);
-  try {
-    std::vector<std::shared_ptr<const StructureData>> built;
-    // Built once per scene and options (a build asked for in the structure panel forgets them): the next
-    // pixel clicked walks the same structures.
-    for (const auto& [key, b] : compareBuilt_)
-      if (b->scene != scene) {
-        compareBuilt_.clear();
-        break;
-      }
-    for (const QString& k : kinds) {
-      std::shared_ptr<const StructureData>& b = compareBuilt_[k];
-      if (!b) b = buildStructureData(scene, k.toStdString(), structure_->options());
-      built.push_back(b);
+  // Built once per scene and options (a build asked for in the structure panel forgets them): the next pixel
+  // clicked walks the same structures.
+  for (const auto& [key, b] : compareBuilt_)
+    if (b->scene != scene) {
+      compareBuilt_.clear();
+      break;
     }
-    compareWindow()->setWalks(recordComparePixel(built, session_->imageWidth(), session_->imageHeight(), x, y,
-                                                 imageView_->secondaryRays()),
-                              scene, built, QString::fromStdString(scene->path));
-    QApplication::restoreOverrideCursor();
-  } catch (const std::exception& e) {
-    QApplication::restoreOverrideCursor();
-    if (scripted_) throw;
-    return showError(QString::fromStdString(e.what()));
-  }
-  compare_->show();
-  compare_->raise();
+  std::vector<std::shared_ptr<const StructureData>> kept;
+  for (const QString& k : kinds) kept.push_back(compareBuilt_.count(k) ? compareBuilt_[k] : nullptr);
+  const StructureOptions options = structure_->options();
+  const int w = session_->imageWidth(), h = session_->imageHeight();
+  const bool secondary = imageView_->secondaryRays();
+  // The builds and the walks off the GUI thread (a kd-tree or BSP tree over a big mesh takes seconds).
+  runTask("compare", tr("Building %1 for the side-by-side view...").arg(kinds.join(", ")),
+          [this, scene, kinds, kept, options, w, h, x, y, secondary] {
+            std::vector<std::shared_ptr<const StructureData>> built = kept;
+            for (int i = 0; i < kinds.size(); ++i)
+              if (!built[size_t(i)])
+                built[size_t(i)] = buildStructureData(scene, kinds[i].toStdString(), options);
+            auto walks = recordComparePixel(built, w, h, x, y, secondary);
+            return std::function<void()>([this, scene, kinds, built, walks, x, y] {
+              if (session_->sceneShared() != scene) return;  // another scene meanwhile
+              for (int i = 0; i < kinds.size(); ++i) compareBuilt_[kinds[i]] = built[size_t(i)];
+              compareWindow()->setWalks(walks, scene, built, QString::fromStdString(scene->path));
+              compare_->show();
+              compare_->raise();
+              statusBar()->showMessage(
+                  tr("Pixel (%1, %2) side by side through %3.").arg(x).arg(y).arg(kinds.join(", ")));
+            });
+          });
 }
 
 }  // namespace raystep::viz
