@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "aa_report_view.h"
+#include "compare_window.h"
 #include "event_list.h"
 #include "grid_sweep_view.h"
 #include "image_view.h"
@@ -36,6 +37,7 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/multi_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
 #include "sah_chart.h"
@@ -127,11 +129,15 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   statusBar()->showMessage(tr("Open a scene or a trace (File > Open)."));
 
   connect(structure_, &StructurePanel::buildRequested, this, &MainWindow::buildStructure);
+  connect(structure_, &StructurePanel::buildRequested, this, [this] { compareBuilt_.clear(); });
   connect(imageView_, &ImageView::renderRequested, this, &MainWindow::renderPicture);
   connect(imageView_, &ImageView::heatRequested, this, &MainWindow::computeHeat);
   connect(imageView_, &ImageView::pixelClicked, this, [this](int x, int y) {
     try {
       tracePixel(x, y);
+      // Reports > Compare...: the clicked pixel through the structures picked, while their window is open.
+      if (!compareKinds_.isEmpty() && (!compare_ || compare_->viewCount() == 0 || compare_->isVisible()))
+        comparePixel(compareKinds_, x, y);
       // An anti-aliased pixel opens its inspector (without anti-aliasing it stays as the user left it).
       if (const TracePixel* px = session_->pixel(); px && px->sampling.aa.mode != AntiAliasing::Mode::none)
         showPixelInspector();
@@ -263,6 +269,11 @@ void MainWindow::buildMenus() {
     v->show();
     v->raise();
     if (v->state() == "idle" && session_->structure()) v->start();
+  });
+  reports->addAction(tr("&Compare structures on one ray (side by side)..."), this, [this] {
+    const QStringList kinds = pickCompareStructures(
+        this, compareKinds_.isEmpty() ? QStringList{"grid", "kd", "bvh"} : compareKinds_);
+    if (!kinds.isEmpty()) setCompareStructures(kinds);
   });
   reports->addAction(tr("&Grid sweep: density d against cost..."), this, [this] {
     GridSweepView* v = gridSweepView();
@@ -541,6 +552,19 @@ void MainWindow::runTask(const QString& kind, const QString& what,
 }
 
 void MainWindow::openFile(const QString& path) {
+  if (isMultiTraceFile(path)) {  // several structures' walks: the side-by-side window
+    std::shared_ptr<const MultiTrace> walks;
+    try {
+      walks = std::make_shared<const MultiTrace>(read_multi_trace_json(path.toStdString()));
+    } catch (const std::exception& e) {
+      if (scripted_ || inPlace_) throw;
+      return showError(QString::fromStdString(e.what()));
+    }
+    compareWindow()->setWalks(walks, nullptr, {}, path);
+    compare_->show();
+    compare_->raise();
+    return;
+  }
   if (isTraceFile(path))
     openTrace(path);
   else
@@ -997,6 +1021,56 @@ void MainWindow::exportTrace(const QString& path) {
     if (scripted_) throw;
     showError(QString::fromStdString(e.what()));
   }
+}
+
+CompareWindow* MainWindow::compareWindow() {
+  if (!compare_) compare_ = new CompareWindow(this);
+  return compare_;
+}
+
+void MainWindow::setCompareStructures(const QStringList& kinds) {
+  compareKinds_ = kinds;
+  const TracedRay* r = session_->scene() ? session_->ray() : nullptr;
+  if (r && r->has_pixel)
+    comparePixel(kinds, r->pixel[0], r->pixel[1]);
+  else
+    statusBar()->showMessage(
+        tr("Click a pixel of the picture: its ray through %1 opens side by side.").arg(kinds.join(", ")));
+}
+
+void MainWindow::comparePixel(const QStringList& kinds, int x, int y) {
+  std::shared_ptr<const SceneData> scene = session_->sceneShared();
+  if (!scene) return showError(tr("Open a scene first: the structures are built over it."));
+  // Built once per scene and options (a build asked for in the structure panel forgets them): the next pixel
+  // clicked walks the same structures.
+  for (const auto& [key, b] : compareBuilt_)
+    if (b->scene != scene) {
+      compareBuilt_.clear();
+      break;
+    }
+  std::vector<std::shared_ptr<const StructureData>> kept;
+  for (const QString& k : kinds) kept.push_back(compareBuilt_.count(k) ? compareBuilt_[k] : nullptr);
+  const StructureOptions options = structure_->options();
+  const int w = session_->imageWidth(), h = session_->imageHeight();
+  const bool secondary = imageView_->secondaryRays();
+  // The builds and the walks off the GUI thread (a kd-tree or BSP tree over a big mesh takes seconds).
+  runTask("compare", tr("Building %1 for the side-by-side view...").arg(kinds.join(", ")),
+          [this, scene, kinds, kept, options, w, h, x, y, secondary] {
+            std::vector<std::shared_ptr<const StructureData>> built = kept;
+            for (int i = 0; i < kinds.size(); ++i)
+              if (!built[size_t(i)])
+                built[size_t(i)] = buildStructureData(scene, kinds[i].toStdString(), options);
+            auto walks = recordComparePixel(built, w, h, x, y, secondary);
+            return std::function<void()>([this, scene, kinds, built, walks, x, y] {
+              if (session_->sceneShared() != scene) return;  // another scene meanwhile
+              for (int i = 0; i < kinds.size(); ++i) compareBuilt_[kinds[i]] = built[size_t(i)];
+              compareWindow()->setWalks(walks, scene, built, QString::fromStdString(scene->path));
+              compare_->show();
+              compare_->raise();
+              statusBar()->showMessage(
+                  tr("Pixel (%1, %2) side by side through %3.").arg(x).arg(y).arg(kinds.join(", ")));
+            });
+          });
 }
 
 }  // namespace raystep::viz

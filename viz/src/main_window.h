@@ -43,6 +43,7 @@ class Presenter;
 class AaReportView;
 class GridSweepView;
 class PixelInspector;
+class CompareWindow;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -121,6 +122,16 @@ class MainWindow : public QMainWindow {
   // An error in a dialog (auto-closed in scripted mode); the window goes on.
   void reportError(const QString& message) { showError(message); }
 
+  // The same ray side by side (compare_window.h), a window of its own made when first asked for; comparePixel
+  // builds the structures named (with the structure panel's options) over the current scene and shows pixel
+  // (x, y)'s walks through them. Reports > Compare... picks them; each pixel clicked then is compared too.
+  CompareWindow* compareWindow();
+  CompareWindow* compareWindowIfMade() const { return compare_; }
+  void comparePixel(const QStringList& kinds, int x, int y);
+  // What Reports > Compare...'s dialog does on OK: the traced pixel (if any) compared through `kinds` now,
+  // and each pixel clicked from then on while the window is open.
+  void setCompareStructures(const QStringList& kinds);
+
   Session* session() const { return session_; }
   SceneView* sceneView() const { return sceneView_; }
   ImageView* imageView() const { return imageView_; }
@@ -194,6 +205,9 @@ class MainWindow : public QMainWindow {
   int running_ = 0;
   int sizeW_ = 0, sizeH_ = 0;
   QString lastError_;
+  CompareWindow* compare_ = nullptr;
+  QStringList compareKinds_;  // picked in Reports > Compare...: a clicked pixel is compared through them
+  std::map<QString, std::shared_ptr<const StructureData>> compareBuilt_;  // by kind, for the next click
 };
 
 }  // namespace raystep::viz

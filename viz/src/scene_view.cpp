@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <map>
 #include <unordered_map>
@@ -21,6 +22,7 @@
 
 #include <QVTKOpenGLNativeWidget.h>
 #include <vtkActor.h>
+#include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
 #include <vtkCellPicker.h>
 #include <vtkCellArray.h>
@@ -268,6 +270,7 @@ struct SceneView::Impl {
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
   bool rayDrawn = false;
+  float rayMark = std::numeric_limits<float>::quiet_NaN();  // setRayMark: the ray bright up to here
 
   const TraceNode* node(int32_t id) const {
     auto it = nodes.find(id);
@@ -370,6 +373,15 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.base->SetBackground(bg.redF(), bg.greenF(), bg.blueF());
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   d.window->GetInteractor()->SetInteractorStyle(style);
+  {  // a drag or the wheel moved the camera: views sharing it (the side-by-side view) draw again
+    vtkNew<vtkCallbackCommand> moved;
+    moved->SetClientData(this);
+    moved->SetCallback([](vtkObject*, unsigned long, void* self, void*) {
+      Q_EMIT static_cast<SceneView*>(self)->cameraMoved();
+    });
+    style->AddObserver(vtkCommand::InteractionEvent, moved);
+    style->AddObserver(vtkCommand::EndInteractionEvent, moved);
+  }
   layout->addWidget(d.widget, 1);
 
   // Actors, made once; each step only changes their data.
@@ -1016,6 +1028,7 @@ void SceneView::updateStep() {
     float tNow = s.hasInterval ? std::clamp(s.tMax, tStart, tEnd) : tStart;
     if (s.ended) tNow = tEnd;
     float tWalked = s.hasInterval && !s.ended ? std::clamp(s.tMin, tStart, tEnd) : tNow;
+    if (std::isfinite(d.rayMark)) tNow = tWalked = std::clamp(d.rayMark, tStart, tEnd);  // the compare's t
     glm::vec3 now = ray->ray.at(tNow), walked = ray->ray.at(tWalked);
     if (tWalked > tStart) {
       vtkIdType ids[2] = {rpts->InsertNextPoint(d.rayFrom.x, d.rayFrom.y, d.rayFrom.z),
@@ -1309,10 +1322,29 @@ QJsonObject SceneView::dumpState() const {
     o["ray"] = QJsonObject{{"from", QJsonArray{d.rayFrom.x, d.rayFrom.y, d.rayFrom.z}},
                            {"to", QJsonArray{d.rayTo.x, d.rayTo.y, d.rayTo.z}},
                            {"projected_samples", samples}};
+    if (std::isfinite(d.rayMark)) o["ray_mark"] = double(d.rayMark);
   }
   o["hit_marker"] = d.hitActor->GetVisibility() ? (s.accepted ? "accepted" : "candidate") : "none";
   o["backdrop"] = d.backdrop->cached() ? "image" : "drawn";  // the scene's layer kept as an image, or drawn
   return o;
+}
+
+void SceneView::setCompact(bool on) {
+  if (QLayout* bar = layout()->itemAt(0)->layout())
+    for (int i = 0; i < bar->count(); ++i)
+      if (QWidget* w = bar->itemAt(i)->widget()) w->setVisible(!on);
+  d_->legend->setVisible(!on);
+  d_->widget->setMinimumSize(on ? QSize(200, 150) : QSize(320, 240));  // four side by side on a laptop
+}
+
+void SceneView::shareCamera(SceneView* leader) {
+  vtkCamera* cam = leader->d_->base->GetActiveCamera();
+  for (vtkRenderer* r : {d_->base.Get(), d_->planes.Get(), d_->overlay.Get()}) r->SetActiveCamera(cam);
+}
+
+void SceneView::setRayMark(float t) {
+  d_->rayMark = t;
+  updateStep();
 }
 
 }  // namespace raystep::viz

@@ -45,8 +45,16 @@ class SceneView : public QWidget {
   // A click on the scene at window position `at` (as a user makes it, without dragging): the point picked on
   // the geometry is reported by pointPicked; false when nothing was hit.
   bool pickAt(const QPoint& at);
+  // The side-by-side view (compare_window.h): no tool bar nor legend (the compare window has one of each),
+  // the camera of `leader` (one camera for every view: cameraMoved tells the others to draw again), and the
+  // ray drawn bright up to t (NaN: up to the walk's current interval, as always).
+  void setCompact(bool on);
+  void shareCamera(SceneView* leader);
+  void setRayMark(float t);
 
  Q_SIGNALS:
+  // The user turned, moved or zoomed the camera (a drag or the wheel in this view).
+  void cameraMoved();
   // A click (without dragging) hit the scene at this world point.
   void pointPicked(float x, float y, float z);
 

@@ -15,12 +15,16 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QMouseEvent>
+#include <QOpenGLWidget>
 #include <QScreen>
+#include <QSlider>
 #include <QTest>
 #include <QThread>
 #include <QTreeView>
 #include <map>
 
+#include "compare_model.h"
+#include "compare_window.h"
 #include "event_list.h"
 #include "handout.h"
 #include "image_view.h"
@@ -33,6 +37,7 @@
 #include "raystep/lesson/lesson.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/heatmap.h"
+#include "raystep/trace/multi_trace.h"
 #include "raystep/util/error.h"
 #include "replay.h"
 #include "report_script.h"
@@ -152,6 +157,7 @@ QJsonObject dumpState(MainWindow& w) {
   if (const Trace* t = s->trace()) o["trace_rays"] = int(t->rays.size());
   o["last_error"] = w.lastError();
   if (w.presenter()) o["lesson"] = w.presenter()->dumpState();
+  if (CompareWindow* cw = w.compareWindowIfMade(); cw && cw->isVisible()) o["compare"] = cw->dumpState();
   addReportState(w, o);
   return o;
 }
@@ -259,6 +265,25 @@ void defineOptions(QCommandLineParser& p) {
       "LIST");
   opt("open-lesson-bad", "After the set-up, open a lesson through the GUI path (errors go to a dialog).",
       "FILE");
+  opt("compare",
+      "The same ray side by side: with a scene and --pixel X,Y, the walks of 2 to 4 structures (e.g. "
+      "grid,kd,bvh) "
+      "in one window, with one camera, one timeline over t, their counters and their cost against t.",
+      "LIST");
+  opt("trace",
+      "Open a trace written by `raystep trace` (a version 5 trace of several structures opens side by side).",
+      "FILE");
+  opt("compare-pick",
+      "Then pick these structures in Reports > Compare... (the traced pixel, if any, opens side by side).",
+      "LIST");
+  opt("click-pixel", "Then click pixel X,Y of the picture, as a user would.", "X,Y");
+  opt("drag-view",
+      "Side by side: drag the mouse across view I by DX,DY pixels from its centre, as a user turns the "
+      "camera.",
+      "I:DX,DY");
+  opt("at-t", "Side by side: move the timeline to the ray parameter t.", "T");
+  opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.",
+      "N");
   defineReportOptions(p);
   opt("quit", "Quit when done (scripted mode).");
 }
@@ -284,6 +309,10 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   if (files.size() > 1) fail("give one scene or trace file");
   // The file as given: a scene, a mesh or a trace; opening it says what is wrong with it.
   if (!files.isEmpty()) st.scene = files[0].toStdString();
+  if (p.isSet("trace")) {
+    if (!files.isEmpty()) fail("give --trace FILE or a file, not both");
+    st.scene = p.value("trace").toStdString();
+  }
   if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
   if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
   static const QStringList flags = {"secondary", "follow", "translucent", "inspect", "sample-overlay"};
@@ -399,6 +428,19 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
                    worst);
   }
   if (p.isSet("keys")) pressKeys(window, p.value("keys"));
+  if (p.isSet("compare-pick")) {  // the dialog's OK, with these boxes ticked
+    const std::vector<std::string> kinds = parseCompareList(p.value("compare-pick").toStdString());
+    QStringList list;
+    for (const std::string& k : kinds) list << QString::fromStdString(k);
+    window.setCompareStructures(list);
+  }
+  if (p.isSet("click-pixel")) {  // a click on the picture where the pixel is drawn
+    std::vector<int> at = parseInts("click-pixel", p.value("click-pixel"), 2, 0);
+    settle(window);
+    ImageCanvas* canvas = window.imageView()->canvas();
+    QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->widgetPosOf(at[0], at[1]));
+    QApplication::processEvents();
+  }
   if (p.isSet("pick-3d")) {  // a click in the 3D view selects the kd-tree leaf holding the picked point
     const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
     if (!kd) fail("--pick-3d: no kd-tree (open a scene with --accel kd or kd-median)");
@@ -543,6 +585,92 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
   return quit ? 0 : -1;
 }
 
+// The side-by-side view alone: --compare LIST over a scene's pixel, or a version 5 trace; then the scripted
+// actions on its timeline and its outputs.
+int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool anyScript, int ww, int wh) {
+  CompareWindow* cw = window.compareWindow();
+  if (p.isSet("compare")) {
+    // The list first: a wrong one costs nothing (no scene read, nothing built).
+    const std::vector<std::string> kinds = parseCompareList(p.value("compare").toStdString());
+    LessonState st = stateFromOptions(p);
+    if (st.scene.empty() || MainWindow::isTraceFile(QString::fromStdString(st.scene)))
+      fail("--compare needs a scene or a mesh (a trace of several structures opens with --trace FILE)");
+    if (!st.pixel) fail("--compare needs --pixel X,Y");
+    std::shared_ptr<const SceneData> scene = loadSceneData(st.scene);
+    const int w = st.size ? (*st.size)[0] : scene->scene.render.width;
+    const int h = st.size ? (*st.size)[1] : scene->scene.render.height;
+    const int px = (*st.pixel)[0], py = (*st.pixel)[1];
+    if (px >= w || py >= h)
+      fail("--pixel " + std::to_string(px) + "," + std::to_string(py) + ": outside the " + std::to_string(w) +
+           "x" + std::to_string(h) + " image");
+    std::vector<std::shared_ptr<const StructureData>> built;
+    for (const std::string& k : kinds) built.push_back(buildStructureData(scene, k, st.structure));
+    cw->setWalks(recordComparePixel(built, w, h, px, py, st.secondary), scene, built,
+                 QString::fromStdString(st.scene));
+  } else {
+    const QString path = p.isSet("trace") ? p.value("trace") : p.positionalArguments().value(0);
+    if (p.isSet("trace") && !p.positionalArguments().isEmpty()) fail("give --trace FILE or a file, not both");
+    cw->setWalks(std::make_shared<const MultiTrace>(read_multi_trace_json(path.toStdString())), nullptr, {},
+                 path);
+  }
+  cw->resize(ww, wh);
+  cw->show();
+  if (!anyScript) return -1;
+  for (int i = 0; i < 5; ++i) {
+    QApplication::processEvents();
+    QThread::msleep(5);
+  }
+  if (p.isSet("ray")) {
+    bool ok = false;
+    const int r = p.value("ray").toInt(&ok);
+    if (!ok || r < 0 || r >= cw->rayCount())
+      fail("--ray " + p.value("ray").toStdString() + ": no such ray in the walks");
+    cw->setRay(r);
+  }
+  if (p.isSet("at-t")) {
+    bool ok = false;
+    const double t = p.value("at-t").toDouble(&ok);
+    if (!ok || !std::isfinite(t)) fail("--at-t '" + p.value("at-t").toStdString() + "': expected a number");
+    cw->setT(t);
+  }
+  if (p.isSet("slider")) {
+    bool ok = false;
+    const int pos = p.value("slider").toInt(&ok);
+    if (!ok || pos < 0 || pos > 1000)
+      fail("--slider '" + p.value("slider").toStdString() + "': expected 0 .. 1000");
+    cw->findChild<QSlider*>("compareSlider")->setValue(pos);  // as a drag moves it
+  }
+  if (p.isSet("drag-view")) {  // press, move with the button held, release: the trackball turns the camera
+    static const std::regex re("([0-9]+):(-?[0-9]{1,4}),(-?[0-9]{1,4})");
+    std::smatch m;
+    const std::string spec = p.value("drag-view").toStdString();
+    if (!std::regex_match(spec, m, re) || std::stoi(m[1]) >= cw->viewCount())
+      fail("--drag-view '" + spec + "': expected I:DX,DY with I a view (0.." +
+           std::to_string(cw->viewCount() - 1) + ")");
+    QWidget* gl = cw->view(std::stoi(m[1]))->findChild<QOpenGLWidget*>();
+    if (!gl) fail("--drag-view: the view has no OpenGL widget");
+    const QPoint c(gl->width() / 2, gl->height() / 2), d(std::stoi(m[2]), std::stoi(m[3]));
+    auto send = [gl](QEvent::Type type, const QPoint& at, Qt::MouseButton button, Qt::MouseButtons held) {
+      QMouseEvent e(type, at, gl->mapToGlobal(at), button, held, Qt::NoModifier);
+      QApplication::sendEvent(gl, &e);
+      QApplication::processEvents();
+    };
+    send(QEvent::MouseButtonPress, c, Qt::LeftButton, Qt::LeftButton);
+    for (int k = 1; k <= 10; ++k) send(QEvent::MouseMove, c + d * k / 10, Qt::NoButton, Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, c + d, Qt::LeftButton, Qt::NoButton);
+  }
+  for (int i = 0; i < 5; ++i) {
+    QApplication::processEvents();
+    QThread::msleep(5);
+  }
+  cw->renderNow();
+  QApplication::processEvents();
+  if (p.isSet("screenshot") && !cw->grab().save(p.value("screenshot"), "PNG"))
+    fail("cannot write " + p.value("screenshot").toStdString());
+  if (p.isSet("dump-state")) writeJson(p.value("dump-state"), QJsonObject{{"compare", cw->dumpState()}});
+  return quit ? 0 : -1;
+}
+
 }  // namespace
 
 int runCommandLine(MainWindow& window, const QStringList& arguments) {
@@ -562,7 +690,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",        "node",
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
-      "sample",        "square",         "sample-overlay",  "click-sample"};
+      "sample",        "square",         "sample-overlay",  "click-sample",   "compare-pick", "click-pixel"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);
@@ -583,6 +711,10 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
         fail("--lesson names the scenes itself: give no scene or trace file");
       return runLesson(window, p, quit, anyScript);
     }
+    const QString file = p.isSet("trace") ? p.value("trace") : p.positionalArguments().value(0);
+    if (p.isSet("compare") || (!file.isEmpty() && isMultiTraceFile(file)))
+      return runCompare(window, p, quit,
+                        anyScript || p.isSet("at-t") || p.isSet("slider") || p.isSet("drag-view"), ww, wh);
     LessonState st = stateFromOptions(p);
 
     if (!anyScript) {  // interactive: open in the background and return to the event loop
