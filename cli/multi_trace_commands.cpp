@@ -17,62 +17,21 @@
 
 namespace raystep::cli {
 
-namespace {
-
-// The names of --accel A,B,...: each known, none twice, kMinWalks to kMaxWalks of them.
-std::vector<std::string> walk_names(const std::string& list) {
-  const std::string option = "trace: --accel '" + list + "'";
-  std::vector<std::string> names;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = list.find(',', start);
-    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (names.size() > size_t(kMaxWalks))
-    throw InputError("", 0,
-                     option + ": " + std::to_string(names.size()) + " structures, at most " +
-                         std::to_string(kMaxWalks) + " in one trace");
-  const std::vector<std::string> known = accelerator_names();
-  std::set<std::string> seen;
-  for (const std::string& n : names) {
-    if (n.empty()) throw InputError("", 0, option + ": an empty name (names are separated by single commas)");
-    if (std::find(known.begin(), known.end(), n) == known.end() && !parse_bvol_kind(n)) {
-      std::string all;
-      for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
-      throw InputError("", 0, option + ": unknown structure '" + n + "' (one of " + all + ")");
-    }
-    if (!seen.insert(n).second) throw InputError("", 0, option + ": " + n + " is listed twice");
-  }
-  return names;
-}
-
-}  // namespace
-
 int run_multi_trace(const TraceArgs& a) {
   if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
   if (a.aa) throw InputError("", 0, "trace: --aa records one structure's pixel (give one --accel name)");
   if (a.build_events)
     throw InputError("", 0, "trace: --build-events records one kd-tree's build (give one --accel name)");
-  const std::vector<std::string> names = walk_names(a.structure.accel);
-  // Every structure made (not built) and checked before the scene is read: a wrong list costs nothing.
+  const std::vector<std::string> names =
+      parse_walk_list(a.structure.accel, "trace: --accel '" + a.structure.accel + "'", kMinWalks, kMaxWalks);
+  // Every structure made (not built) before the scene is read: a wrong option costs nothing.
   std::vector<std::unique_ptr<Accelerator>> accels;
   for (const std::string& n : names) {
     StructureArgs s = a.structure;
     s.accel = n;
     accels.push_back(build_structure(s));
-    if (!records_events(*accels.back()))
-      throw InputError("", 0,
-                       "trace: --accel '" + a.structure.accel + "': " + n +
-                           " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, "
-                           "bvh8, octree or bsp)");
   }
-  if (names.size() < size_t(kMinWalks))
-    throw InputError("", 0,
-                     "trace: --accel '" + a.structure.accel + "': give " + std::to_string(kMinWalks) +
-                         " to " + std::to_string(kMaxWalks) + " structures, separated by commas");
   check_output_folder(a.output);
   Scene scene = load_scene(a.scene);
 

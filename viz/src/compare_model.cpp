@@ -7,47 +7,14 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/geometry/numerics.h"
+#include "raystep/trace/multi_trace.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
 
 namespace raystep::viz {
 
 std::vector<std::string> parseCompareList(const std::string& list) {
-  const std::string option = "--compare '" + list + "'";
-  std::vector<std::string> names;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = list.find(',', start);
-    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (names.size() > size_t(kMaxCompareViews))
-    throw InputError("", 0,
-                     option + ": " + std::to_string(names.size()) + " structures, at most " +
-                         std::to_string(kMaxCompareViews) + " side by side");
-  const std::vector<std::string> known = accelerator_names();
-  std::set<std::string> seen;
-  for (const std::string& n : names) {
-    if (n.empty()) throw InputError("", 0, option + ": an empty name (names are separated by single commas)");
-    if (std::find(known.begin(), known.end(), n) == known.end() && !parse_bvol_kind(n)) {
-      std::string all;
-      for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
-      throw InputError("", 0, option + ": unknown structure '" + n + "' (one of " + all + ")");
-    }
-    if (!seen.insert(n).second) throw InputError("", 0, option + ": " + n + " is listed twice");
-    if (!records_events(*make_accelerator(n)))
-      throw InputError(
-          "", 0,
-          option + ": " + n +
-              " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
-              "octree or bsp)");
-  }
-  if (names.size() < size_t(kMinCompareViews))
-    throw InputError("", 0,
-                     option + ": give " + std::to_string(kMinCompareViews) + " to " +
-                         std::to_string(kMaxCompareViews) + " structures, separated by commas");
-  return names;
+  return parse_walk_list(list, "--compare '" + list + "'", kMinCompareViews, kMaxCompareViews);
 }
 
 namespace {

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "raystep/accel/bounding_volumes.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
@@ -29,6 +31,44 @@ MultiTrace record_walks(const Geometry& geometry, const std::vector<const Accele
   for (const Accelerator* accel : accels)
     m.walks.push_back(record_trace(geometry, *accel, rays, scene_path, scene_hash));
   return m;
+}
+
+std::vector<std::string> parse_walk_list(const std::string& list, const std::string& where, int min_count,
+                                         int max_count) {
+  std::vector<std::string> names;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = list.find(',', start);
+    names.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (names.size() > size_t(max_count))
+    throw InputError(
+        "", 0,
+        where + ": " + std::to_string(names.size()) + " structures, at most " + std::to_string(max_count));
+  const std::vector<std::string> known = accelerator_names();
+  std::set<std::string> seen;
+  for (const std::string& n : names) {
+    if (n.empty()) throw InputError("", 0, where + ": an empty name (names are separated by single commas)");
+    if (std::find(known.begin(), known.end(), n) == known.end() && !parse_bvol_kind(n)) {
+      std::string all;
+      for (const std::string& k : known) all += (all.empty() ? "" : ", ") + k;
+      throw InputError("", 0, where + ": unknown structure '" + n + "' (one of " + all + ")");
+    }
+    if (!seen.insert(n).second) throw InputError("", 0, where + ": " + n + " is listed twice");
+    if (!records_events(*make_accelerator(n)))
+      throw InputError(
+          "", 0,
+          where + ": " + n +
+              " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
+              "octree or bsp)");
+  }
+  if (names.size() < size_t(min_count))
+    throw InputError("", 0,
+                     where + ": give " + std::to_string(min_count) + " to " + std::to_string(max_count) +
+                         " structures, separated by commas");
+  return names;
 }
 
 std::string multi_trace_to_json(const MultiTrace& m) {

@@ -35,6 +35,12 @@ MultiTrace record_walks(const Geometry& geometry, const std::vector<const Accele
                         const std::vector<RayRequest>& rays, const std::string& scene_path,
                         const std::string& scene_hash);
 
+// The names of a list "A,B,...", as `raystep trace --accel` and `raystep-gui --compare` take it: each a known
+// structure that records events, none twice, min_count to max_count of them. Otherwise throws
+// InputError("", 0, where + ": ...") with where naming the option, e.g. "trace: --accel 'grid,kd,grid'".
+std::vector<std::string> parse_walk_list(const std::string& list, const std::string& where, int min_count,
+                                         int max_count);
+
 std::string multi_trace_to_json(const MultiTrace& trace);
 void write_multi_trace_json(const std::string& path, const MultiTrace& trace);  // atomically
 // One file, one event per row: a "walk" column (the walk's index) first, then the single trace's columns.
