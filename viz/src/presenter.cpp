@@ -117,7 +117,7 @@ void Presenter::goTo(int index) {
   answer_.reset();
   revealed_ = false;
   pane_->showStep(lesson_, index);
-  pane_->quiz()->setQuestion(step.ask);
+  pane_->quiz()->setQuestion(step.ask, step.state.accel);
   window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane,
                                  step.state.accel == "kd-median" ? "median builder" : "SAH");
   concealWalk(false);

@@ -289,7 +289,8 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   static const QStringList flags = {"secondary", "follow", "translucent", "inspect", "sample-overlay"};
   for (const std::string& key : lesson_setting_keys()) {
     const QString name = QString::fromStdString(key);
-    if (key == "scene" || key == "show" || !p.isSet(name)) continue;
+    // --report: the report options' own (report_script.cpp), run and waited for after the state is entered.
+    if (key == "scene" || key == "show" || key == "report" || !p.isSet(name)) continue;
     const std::string value = flags.contains(name) ? std::string("on") : p.value(name).toStdString();
     if (key == "node") {  // any whole number: the tree's size decides (the message names its range)
       bool ok = false;
