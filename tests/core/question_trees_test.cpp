@@ -168,7 +168,7 @@ TEST(QuestionAcceptance, OctreeFirstChildAndNextCellFollowRevelles) {
   const OctreeData& tree = dynamic_cast<const Octree&>(*accel).data();
   Trace trace = record_trace(g, *accel, random_rays(32), "soup", "");
   ASSERT_EQ(trace.structure.kind, "octree");
-  int first_child = 0, by_planes = 0, next_cell = 0, siblings = 0, upward = 0, stops = 0;
+  int first_child = 0, by_planes = 0, next_cell = 0, siblings = 0, upward = 0, stops = 0, grazed = 0;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
     const TracedRay& ray = trace.rays[size_t(r)];
     const Ray& q = ray.ray;
@@ -240,6 +240,13 @@ TEST(QuestionAcceptance, OctreeFirstChildAndNextCellFollowRevelles) {
           continue;
         }
         ASSERT_EQ(a.node, ev[size_t(next)].node) << a.why;
+        if (ev[size_t(next)].t_max_node <= ev[size_t(next)].t_min_node || e.t_max_node <= e.t_min_node) {
+          // From or to a cell the ray only grazes (its interval a point), walked by the kernel's rounding
+          // rule: said so.
+          EXPECT_NE(a.why.find("grazes"), std::string::npos) << a.why;
+          if (at == i) ++grazed;
+          continue;
+        }
         // The next cell touches the leaf on its exit face, and begins where the leaf ends.
         const Bounds3& nb = tree.info[size_t(a.node)].box;
         const float face = std::signbit(q.direction[exit]) ? info.box.lo[exit] : info.box.hi[exit];
@@ -257,8 +264,8 @@ TEST(QuestionAcceptance, OctreeFirstChildAndNextCellFollowRevelles) {
   }
   std::printf(
       "octree: %d first-child answers (%d the planes' first child), %d next-cell answers at leaves (%d "
-      "siblings, %d up the tree, %d stops)\n",
-      first_child, by_planes, next_cell, siblings, upward, stops);
+      "siblings, %d up the tree, %d from or to a grazed cell, %d stops)\n",
+      first_child, by_planes, next_cell, siblings, upward, grazed, stops);
   EXPECT_GE(first_child, 400);
   EXPECT_GE(by_planes, first_child * 99 / 100);  // rays start outside the root: only a grazed child differs
   EXPECT_GE(siblings, 200);

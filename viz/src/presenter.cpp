@@ -172,6 +172,7 @@ void Presenter::goToReportingErrors(int index) {
 
 void Presenter::concealWalk(bool on) {
   window_.statePanel()->setConceal(on);
+  window_.sceneView()->setConceal(on);
   window_.eventList()->setConcealAfter(on ? window_.session()->step() : -1);
 }
 

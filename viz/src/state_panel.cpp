@@ -419,6 +419,12 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
   QString t = c.entryAxis >= 0
                   ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
                   : QString();
+  // The centre planes' t: with the entry t, Revelles' first child (the far half where one comes before it).
+  QStringList mids;
+  for (int a = 0; a < 3; ++a)
+    if (c.moving[a]) mids << tr("%1 at %2").arg(axisName(a)).arg(num(c.tMid[a]));
+  if (!mids.isEmpty())
+    t += (t.isEmpty() ? QString() : QString("<br>")) + tr("centre planes: ") + mids.join(", ");
   if (conceal_) {
     crossing_->setText(t + tr("<br><i>order: ? (the quiz asks it)</i>"));
     return;

@@ -390,9 +390,15 @@ Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
   // The cell's exit plane: the smallest exit t (ties to the lower axis, as the kernel).
   const CellPlanes p = cell_planes(n->box, r.ray);
   const int exit = p.t1[0] <= p.t1[1] && p.t1[0] <= p.t1[2] ? 0 : (p.t1[1] <= p.t1[2] ? 1 : 2);
-  std::string w = "Cell " + std::to_string(e.node) + " is left at t_exit = " + num(e.t_max_node) +
-                  " through its face normal to " + axis_name(exit) +
-                  " (exit t: " + planes_text(p.t1, p.moving) + "; the smallest). ";
+  const bool grazed = e.t_max_node <= e.t_min_node;  // a point: walked for rounding's sake (octree.h)
+  std::string w =
+      grazed ? "The ray only grazes cell " + std::to_string(e.node) + " (its interval [" + num(e.t_min_node) +
+                   ", " + num(e.t_max_node) +
+                   "] is a point; the walk visits it so that rounding never skips a cell the exact ray "
+                   "touches). "
+             : "Cell " + std::to_string(e.node) + " is left at t_exit = " + num(e.t_max_node) +
+                   " through its face normal to " + axis_name(exit) +
+                   " (exit t: " + planes_text(p.t1, p.moving) + "; the smallest). ";
   if (accepted && accepted->reason == AcceptReason::any_hit) {
     a.why = "A shadow ray stops at its first hit, t = " + num(accepted->t) + ": the walk ends in cell " +
             std::to_string(e.node) + ".";
@@ -424,7 +430,9 @@ Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
   int pops = 0;
   for (size_t i = after; i < size_t(next); ++i) pops += ev[i].type == EventType::pop;
   const Event& to = ev[size_t(next)];
-  if (octant >= 0 && pops == 0 && parent->children[size_t(octant ^ (1 << exit))] == a.node) {
+  if (grazed) {
+    w += "The walk goes on with the next cell in entry order, " + cell_name(*c.trace, a.node) + ".";
+  } else if (octant >= 0 && pops == 0 && parent->children[size_t(octant ^ (1 << exit))] == a.node) {
     w += "Across it lies its sibling " + octant_name(a.octant) + ", node " + std::to_string(a.node) +
          ": Revelles' table sends the walk from one child to the next by the plane it leaves by.";
   } else if (octant >= 0 && bool((octant >> exit) & 1) == forward && pops > 0) {
@@ -435,7 +443,14 @@ Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
   } else {
     w += "The walk goes on in " + cell_name(*c.trace, a.node) + ".";
   }
-  w += " It begins where this cell ends, at t = " + num(to.t_min_node) + ".";
+  if (to.t_max_node <= to.t_min_node)
+    w += " The ray only grazes that cell (its interval [" + num(to.t_min_node) + ", " + num(to.t_max_node) +
+         "] is a point): the walk visits such a cell too, so that rounding never skips a cell the exact ray "
+         "touches.";
+  else if (!grazed)
+    w += " It begins where this cell ends, at t = " + num(to.t_min_node) + ".";
+  else
+    w += " It begins at t = " + num(to.t_min_node) + ".";
   const Event* deferred = nullptr;
   for (size_t i = size_t(at); i < size_t(next) && !deferred; ++i)
     if (ev[i].type == EventType::hit_deferred) deferred = &ev[i];
