@@ -316,6 +316,10 @@ Answer octree_first_child(QuestionKind kind, const QuestionContext& c, int node_
               (far ? " < t_in: the ray is already in the far half, " : " > t_in: still the near half, ") +
               axis_name(b) + (upper ? "+" : "-");
   }
+  if (!inside && p.moving[p.entry])
+    halves += std::string(halves.empty() ? "" : "; ") + axis_name(p.entry) +
+              ", the entry plane's axis: the near half, " + axis_name(p.entry) +
+              (std::signbit(r.ray.direction[p.entry]) ? "+" : "-");
   if (!halves.empty()) w += "Revelles' first child: " + halves + ". ";
   // The order by the exit planes (the paper's table), as far as the planes go.
   std::string order;
