@@ -22,7 +22,7 @@ struct EventSpec {
   std::string text;  // as written ("12", "cell:3"), for messages and the command line
 };
 
-// The selected kd-tree node: none, by id, or by its L/R path from the root.
+// The selected tree node: none, by id, or by its path from the root (L/R, or octant digits: tree_nodes.h).
 struct NodeSpec {
   enum class By { none, id, path } by = By::none;
   int id = -1;
