@@ -229,7 +229,9 @@ void defineOptions(QCommandLineParser& p) {
       "same with no node selected).",
       "NAME");
   opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
-  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.",
+  opt("node-path",
+      "A tree: select the node at this path from the root: kd-tree and BSP tree L below, R above (e.g. LRL); "
+      "binary BVH L first child, R second; octree one octant digit 0..7 per level (e.g. 03).",
       "PATH");
   opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).",
       "X,Y");
