@@ -44,15 +44,16 @@ TEST(BvolReport, BarsAreTheReportsRowsForEachKind) {
   for (size_t k = 0; k < 4; ++k) {
     const json& row = rows[k];
     EXPECT_EQ(row["kind"], kinds[k]);
-    EXPECT_EQ(row["objects"], 7);  // five walls, the box and the sphere
+    EXPECT_EQ(row["objects"], 7);                                      // five walls, the box and the sphere
     EXPECT_DOUBLE_EQ(row["volume_tests_per_ray"].get<double>(), 7.0);  // every volume on every ray
     EXPECT_EQ(row["disagreements"], 0);
     // Each bar is its row's number (float columns).
     const double tol = 1e-5;
     EXPECT_NEAR(bar(b["series"], "entered_per_ray", k), row["entered_per_ray"].get<double>(), tol);
-    EXPECT_NEAR(bar(b["series"], "false_positives_per_ray", k), row["false_positives_per_ray"].get<double>(), tol);
-    EXPECT_NEAR(bar(b["series"], "false_positive_percent", k), 100.0 * row["false_positive_rate"].get<double>(),
-                1e-3);
+    EXPECT_NEAR(bar(b["series"], "false_positives_per_ray", k), row["false_positives_per_ray"].get<double>(),
+                tol);
+    EXPECT_NEAR(bar(b["series"], "false_positive_percent", k),
+                100.0 * row["false_positive_rate"].get<double>(), 1e-3);
     EXPECT_NEAR(bar(b["series"], "prim_tests_per_ray", k), row["prim_tests_per_ray"].get<double>(), tol);
     EXPECT_NEAR(bar(b["series"], "ns_per_ray", k), row["ns_per_ray"].get<double>(),
                 1e-5 * row["ns_per_ray"].get<double>());
@@ -69,8 +70,8 @@ TEST(BvolReport, BarsAreTheReportsRowsForEachKind) {
 #ifdef RAYSTEP_CLI_EXE
   // The same measurement from the command line: the same counts per kind.
   const std::string dir = kOut + "/bvol-report-cli";
-  const std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' bvol-report " + quote(kCornell) + " --reps 1 -o " +
-                          quote(dir) + " > /dev/null 2>&1";
+  const std::string cmd = "'" + std::string(RAYSTEP_CLI_EXE) + "' bvol-report " + quote(kCornell) +
+                          " --reps 1 -o " + quote(dir) + " > /dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0);
   const std::string csv = slurp(dir + "/bvol_report.csv");
   for (size_t k = 0; k < 4; ++k) {

@@ -294,7 +294,8 @@ void Session::setSquare(int index) {
 }
 
 void Session::setSelectedNode(int node) {
-  // A node of any tree the tree view shows (kd-tree, binary BVH, octree, BSP tree), by the ids trace events use.
+  // A node of any tree the tree view shows (kd-tree, binary BVH, octree, BSP tree), by the ids trace events
+  // use.
   const std::unique_ptr<TreeShape> tree = structure_ ? treeShapeOf(*structure_) : nullptr;
   const size_t nodes = tree ? tree->size() : 0;
   if (node < -1 || (node >= 0 && size_t(node) >= nodes)) return;

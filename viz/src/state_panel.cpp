@@ -428,9 +428,9 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
         exits << tr("%1 at %2").arg(axisName(a)).arg(num(t1));
         if (exit < 0 || t1 < best) exit = a, best = t1;
       }
-      crossing_->setText(tr("leaf cell; exit planes: %1").arg(exits.join(", ")) +
-                         (conceal_ || exit < 0 ? QString()
-                                               : tr("<br>leaves by %1 (the smallest)").arg(axisName(exit))));
+      crossing_->setText(
+          tr("leaf cell; exit planes: %1").arg(exits.join(", ")) +
+          (conceal_ || exit < 0 ? QString() : tr("<br>leaves by %1 (the smallest)").arg(axisName(exit))));
       return;
     }
     crossing_->setText(tr("<i>- (the current node is not an inner cell whose children are walked)</i>"));

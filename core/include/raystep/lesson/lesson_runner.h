@@ -30,9 +30,9 @@ struct StepWorld {
 
 class LessonRunner {
  public:
-  // Throws InputError("", 0, "what") when the state cannot be reached: the scene does not load, the pixel lies
-  // outside the picture, the ray or event does not exist, a node option without a tree, the question does
-  // not apply.
+  // Throws InputError("", 0, "what") when the state cannot be reached: the scene does not load, the pixel
+  // lies outside the picture, the ray or event does not exist, a node option without a tree, the question
+  // does not apply.
   StepWorld enter(const LessonState& state, std::optional<QuestionKind> ask = std::nullopt);
 
  private:
