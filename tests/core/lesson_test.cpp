@@ -75,7 +75,7 @@ TEST(Lesson, EveryKeyCarriesOver) {
   ASSERT_EQ(l.steps.size(), 2u);
   EXPECT_EQ(l.steps[0].changes.size(), 34u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 37u);  // + step, node and sample, tested below
+  EXPECT_EQ(lesson_setting_keys().size(), 38u);  // + step, node, sample (below) and report (not carried over)
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");
@@ -322,7 +322,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("translucent: \n")), f + "7: translucent '': expected on or off");
   EXPECT_EQ(error_of(lesson_with("zoom: 65\n")), f + "7: zoom '65': expected a number in [0, 64] (0: fit)");
   EXPECT_EQ(error_of(lesson_with("show: movie\n")),
-            f + "7: show 'movie': expected window, 3d, chart or picture");
+            f + "7: show 'movie': expected window, 3d, chart, picture or report");
   EXPECT_EQ(
       error_of(lesson_with("ask: guess\n")),
       f + "7: ask 'guess': expected one of next-cell, dda-axis, first-child, next-pop, sah-plane, subdivide");

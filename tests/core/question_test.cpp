@@ -445,8 +445,9 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
   EXPECT_EQ(check_error(head + "pixel: 160,200\nstep: 100000\n```\n")
                 .rfind(f + "6: step 'S': step 100000: the ray has ", 0),
             0u);
-  EXPECT_EQ(check_error(head + "node: 3\n```\n"), f + "5: step 'S': node: no kd-tree or BVH (accel: kd, "
-                                                      "kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
+  EXPECT_EQ(check_error(head + "node: 3\n```\n"),
+            f + "5: step 'S': node: no tree (accel: kd, kd-median, bvh, "
+                "bvh-sweep, bvh-median, bvh4, bvh8, bsp or octree)");
   EXPECT_EQ(check_error(head + "accel: kd\nnode-path: LLLLLLLLLLLLLLLLLLLLLLLLLL\n```\n")
                 .rfind(f + "6: step 'S': node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLL': ", 0),
             0u);
@@ -456,9 +457,10 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
   EXPECT_EQ(check_error(head + "step-to: cell:2\n```\n"),
             f + "5: step 'S': step-to cell:2: no traced pixel (pixel: X,Y)");
   // A later step without the setting in it: the step's heading.
-  EXPECT_EQ(check_error(head + "accel: kd\nnode: 1\n```\n## B\n```raystep\naccel: grid\n```\n"),
-            f + "10: step 'B': node: no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, "
-                "bvh4 or bvh8)");
+  EXPECT_EQ(
+      check_error(head + "accel: kd\nnode: 1\n```\n## B\n```raystep\naccel: grid\n```\n"),
+      f + "10: step 'B': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, bsp "
+          "or octree)");
   EXPECT_EQ(check_error(head + "pixel: 160,200\n```\n## B\n\nask\n\n```raystep\nask: next-pop\n```\n"),
             f + "12: step 'B': next-pop: the ray walks a grid, not a tree (accel: kd, kd-median or a BVH)");
 }
@@ -557,10 +559,11 @@ TEST(LessonRunner, RecordsBvhTraces) {
   const std::string head = "# T\n## S\n```raystep\nscene: ../scenes/cornell.json\naccel: bvh\n";
   EXPECT_EQ(check_error(head + "node: 99999\n```\n").rfind(f + "6: step 'S': node 99999: the BVH has ", 0),
             0u);
-  EXPECT_EQ(
-      check_error(head + "node-path: LR\n```\n"),
-      f + "6: step 'S': node-path: a path of L (below) and R (above) names a kd-tree's node; give a BVH's "
-          "node by id (node: ID)");
+  // A binary BVH's node by its path (L the first child, R the second), as the debugger takes it.
+  EXPECT_EQ(check_error(head + "node-path: LR\n```\n"), "no error");
+  EXPECT_EQ(check_error(head + "node-path: LLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLL\n```\n")
+                .rfind(f + "6: step 'S': node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLLLLLLLL': node ", 0),
+            0u);
   EXPECT_EQ(check_error(head + "bvh-leaf: 4\nbvh-max-leaf: 2\n```\n"),
             f + "7: step 'S': building the bvh: bvh: max_leaf_size must be at least leaf_size");
 }

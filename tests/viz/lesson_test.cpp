@@ -51,6 +51,19 @@ json withoutLessonFields(json j) {
   if (j.contains("view")) j["view"].erase("backdrop");
   if (j.contains("sah") && j["sah"].value("visible", true) == false) j["sah"].erase("viewport");
   if (j.contains("sah")) j["sah"].erase("concealed");
+  // A report window a step opened (`report:`): a closed one is as good as none (a fresh run never made it),
+  // and its times vary from run to run; its counts are compared.
+  for (const char* r : {"aa_report", "grid_sweep", "bvol_report"}) {
+    if (!j.contains(r)) continue;
+    if (j[r].value("visible", true) == false) {
+      j.erase(r);
+      continue;
+    }
+    if (std::string(r) == "bvol_report") {
+      for (json& row : j[r]["rows"]) row.erase("ns_per_ray");
+      j[r]["series"].erase("ns_per_ray");
+    }
+  }
   return j;
 }
 
@@ -209,7 +222,15 @@ void checkWalk(const raystep::Lesson& lesson, const std::vector<int>& steps, con
     std::string where;
     EXPECT_TRUE(sameJson(a, b, &where)) << where;
     raystep::Rgb8Image view = raystep::read_png_rgb8(dir + "/step-" + std::to_string(n) + ".png");
-    EXPECT_EQ(differingPixels(view, f.view), 0u) << "3D view differs from the scripted run's";
+    // At a walk question the 3D view outlines an octree cell's children in one colour, not in the order the
+    // ray crosses them (the answer): drawn differently from the scripted run by design, the same children.
+    const bool concealedChildren = !question.empty() && question != "sah-plane" && question != "subdivide" &&
+                                   entered["view"].contains("octree_children_drawn") &&
+                                   !entered["view"]["octree_children_drawn"].empty();
+    if (concealedChildren)
+      EXPECT_EQ(entered["view"]["octree_children_drawn"], f.state["view"]["octree_children_drawn"]);
+    else
+      EXPECT_EQ(differingPixels(view, f.view), 0u) << "3D view differs from the scripted run's";
   }
 }
 

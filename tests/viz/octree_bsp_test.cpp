@@ -204,6 +204,33 @@ TEST(OctreeBsp, OctreeAndBspOptionsReachTheBuild) {
   EXPECT_NE(own.find("planes: 0 axis, 0 face diagonal, 0 body diagonal"), std::string::npos) << own;
 }
 
+// --node-path (core's tree_nodes.h: path to id) selects the node whose path the tree view finds back from its
+// parents (the model's id to path), and the 3D view draws that node; --node ID selects it by id.
+TEST(OctreeBsp, NodePathSelectsTheOctreesAndBspTreesNode) {
+  struct Case {
+    std::string args, path;
+  };
+  for (const Case& c :
+       {Case{"'" + kCornell + "' --accel octree --octree-leaf 2", "03"},
+        Case{"'" + kCornell + "' --accel octree --octree-leaf 2", "0"},
+        Case{"'" + kTilted + "' --accel bsp", "LR"}, Case{"'" + kTilted + "' --accel bsp", "RL"}}) {
+    const std::string tag = "node_path_" + c.path, st = kOut + "/" + tag + ".json";
+    GuiRun r = gui(c.args + " --node-path " + c.path + " --dump-state '" + st + "' --quit", tag);
+    ASSERT_EQ(r.code, 0) << c.args << ": " << r.err;
+    const json s = readJson(st);
+    const int node = s["selected_node"].get<int>();
+    EXPECT_GT(node, 0) << c.args << " " << c.path;
+    EXPECT_EQ(s["tree"]["selected_path"], c.path) << c.args;
+    EXPECT_EQ(s["tree"]["current_row_node"], node);
+    EXPECT_EQ(s["view"]["selected_node"]["node"], node);
+    // The same node by id.
+    const std::string st2 = kOut + "/" + tag + "_id.json";
+    r = gui(c.args + " --node " + std::to_string(node) + " --dump-state '" + st2 + "' --quit", tag + "_id");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(readJson(st2)["tree"]["selected_path"], c.path);
+  }
+}
+
 TEST(OctreeBsp, OctreeBspBadOptionsExit2) {
   for (const std::string& args :
        {std::string("--accel octree --octree-leaf 0"), std::string("--accel bsp --bsp-directions sideways"),

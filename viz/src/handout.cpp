@@ -8,6 +8,9 @@
 #include <QTemporaryDir>
 #include <QThread>
 
+#include "aa_report_view.h"
+#include "bvol_report_view.h"
+#include "grid_sweep_view.h"
 #include "image_view.h"
 #include "lesson_pane.h"
 #include "main_window.h"
@@ -27,8 +30,22 @@ QString esc(const std::string& s) {
   return QString::fromStdString(s).toHtmlEscaped();
 }
 
-// The figure the step's `show:` names, drawn as the window shows it now.
-QImage figureOf(MainWindow& w, const std::string& show) {
+// The figure the step's `show:` names, drawn as the window shows it now; `report`: the first report window
+// the step opens (the window, when it opens none).
+QImage figureOf(MainWindow& w, const LessonState& state) {
+  const std::string& show = state.show;
+  if (show == "report") {
+    const std::string first = state.report.substr(0, state.report.find(','));
+    ReportWindow* v = first == "aa"           ? static_cast<ReportWindow*>(w.aaReportView())
+                      : first == "grid-sweep" ? static_cast<ReportWindow*>(w.gridSweepView())
+                      : first == "bvol"       ? static_cast<ReportWindow*>(w.bvolReportView())
+                                              : nullptr;
+    if (v) {
+      v->waitForFinished(240000);
+      v->renderNow();
+      return v->grab().toImage();
+    }
+  }
   if (show == "3d") return w.sceneView()->grabView();
   if (show == "chart") return w.sahChart()->grabChart();
   if (show == "picture") return w.imageView()->canvas()->grab().toImage();
@@ -69,7 +86,7 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
     w.sahChart()->renderNow();
     QApplication::processEvents();
     const QString png = QString("step-%1.png").arg(i + 1);
-    QImage figure = figureOf(w, step.state.show);
+    QImage figure = figureOf(w, step.state);
     if (figure.isNull() || !figure.save(tmp.path() + "/" + png, "PNG"))
       fail("cannot write " + (tmp.path() + "/" + png).toStdString());
 
@@ -84,9 +101,11 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
             .arg(QString::fromStdString(step.state.show == "3d"        ? "the 3D view"
                                         : step.state.show == "chart"   ? "the SAH chart"
                                         : step.state.show == "picture" ? "the picture"
+                                        : step.state.show == "report"  ? "the report window"
                                                                        : "the debugger"));
     if (step.ask) {
-      html += "<div class=\"question\">\n<p><b>Predict:</b> " + esc(question_prompt(*step.ask)) + "</p>\n";
+      html += "<div class=\"question\">\n<p><b>Predict:</b> " +
+              esc(question_prompt(*step.ask, step.state.accel)) + "</p>\n";
       if (const auto& a = presenter.answer())
         html += "<details><summary>Answer</summary>\n<p>" + esc(a->text) + "</p>\n<p>" + esc(a->why) +
                 "</p>\n</details>\n";

@@ -4,11 +4,15 @@
 #include <QFileInfo>
 #include <QThread>
 
+#include "aa_report_view.h"
+#include "bvol_report_view.h"
+#include "grid_sweep_view.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "main_window.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/lesson/tree_nodes.h"
 #include "raystep/util/error.h"
 #include "replay.h"
 #include "scene_view.h"
@@ -40,6 +44,35 @@ bool samePath(const std::string& a, const std::string& b) {
   if (a == b) return true;
   QFileInfo fa(QString::fromStdString(a)), fb(QString::fromStdString(b));
   return fa.exists() && fb.exists() && fa.canonicalFilePath() == fb.canonicalFilePath();
+}
+
+// The report windows the step names (`report:`), opened and run on the scene; the others closed. Scripted,
+// the run is waited for, so that a screenshot or a handout shows its result. A report already done is kept,
+// except the bounding-volume report, which is quick and is run again for the step's scene.
+void enterReports(MainWindow& w, const LessonState& st) {
+  const QStringList named = QString::fromStdString(st.report).split(',', Qt::SkipEmptyParts);
+  auto enter = [&](ReportWindow* v, const QString& name, bool rerun) {
+    if (!named.contains(name)) {
+      if (v->isVisible()) v->hide();
+      return;
+    }
+    if (!w.session()->scene()) fail("report " + name.toStdString() + ": open a scene (a trace has none)");
+    v->show();
+    v->raise();
+    if (rerun || v->state() != "done") {
+      const QString error = v->start();
+      if (!error.isEmpty()) fail("report " + name.toStdString() + ": " + error.toStdString());
+    }
+    if (w.scripted() && !v->waitForFinished(240000))
+      fail("report " + name.toStdString() + ": the report did not finish in time");
+  };
+  // Made only when named (or made before): a step without reports opens no window.
+  if (named.contains("aa") || w.findChild<AaReportView*>("aaReportView"))
+    enter(w.aaReportView(), "aa", false);
+  if (named.contains("grid-sweep") || w.findChild<GridSweepView*>("gridSweepView"))
+    enter(w.gridSweepView(), "grid-sweep", false);
+  if (named.contains("bvol") || w.findChild<BvolReportView*>("bvolReportView"))
+    enter(w.bvolReportView(), "bvol", true);
 }
 
 }  // namespace
@@ -160,11 +193,10 @@ void enterState(MainWindow& w, const LessonState& st) {
     // The octree and the BSP tree: their tree view and a node by id (no SAH inspector, no path).
     const std::unique_ptr<TreeShape> other =
         !kd && !bvh && s->structure() ? treeShapeOf(*s->structure()) : nullptr;
-    if (!kd && !bvh && (!other || st.node.by == NodeSpec::By::path))
+    if (!kd && !bvh && !other)
       fail(std::string(what) +
-           ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
-           "bvh-sweep or bvh-median" +
-           (other ? "; an octree or BSP tree takes --node ID" : "") + ")");
+           ": no tree (open a scene with --accel kd, kd-median, bvh, bvh-sweep, bvh-median, octree or "
+           "bsp)");
     const size_t count = kd ? kd->data().nodes.size() : bvh ? bvh->data().nodes.size() : other->size();
     const std::string name = kd ? "kd-tree" : bvh ? "BVH" : other->name();
     if (st.node.by == NodeSpec::By::id) {
@@ -174,14 +206,10 @@ void enterState(MainWindow& w, const LessonState& st) {
       node = st.node.id;
     }
     if (st.node.by == NodeSpec::By::path) {
-      try {
-        node =
-            int(kd ? kd_node_by_path(kd->data(), st.node.path) : bvh_node_by_path(bvh->data(), st.node.path));
+      try {  // the lesson layer's paths (tree_nodes.h): L/R, or an octree's octant digits
+        node = int(lesson_node_by_path(*s->structure()->accel, st.node.path));
       } catch (const InputError& e) {
-        std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
-        if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)
-          why = why.substr(colon + 3);
-        fail("--node-path '" + st.node.path + "': " + why);
+        fail("--node-path '" + st.node.path + "': " + e.detail());
       }
     }
   }
@@ -208,6 +236,8 @@ void enterState(MainWindow& w, const LessonState& st) {
   view->restoreHomeCamera();
   if (st.follow) view->setFollowCell(true);
   view->renderNow();
+
+  enterReports(w, st);
 }
 
 }  // namespace raystep::viz

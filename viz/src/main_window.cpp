@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "aa_report_view.h"
+#include "bvol_report_view.h"
 #include "compare_window.h"
 #include "event_list.h"
 #include "grid_sweep_view.h"
@@ -281,11 +282,22 @@ void MainWindow::buildMenus() {
     v->raise();
     if (v->state() == "idle" && session_->scene()) v->start();
   });
+  reports->addAction(tr("&Bounding volumes: kinds against false positives..."), this, [this] {
+    BvolReportView* v = bvolReportView();
+    v->show();
+    v->raise();
+    if (v->state() == "idle" && session_->scene()) v->start();
+  });
 }
 
 AaReportView* MainWindow::aaReportView() {
   if (!aaReport_) aaReport_ = new AaReportView(session_, this);
   return aaReport_;
+}
+
+BvolReportView* MainWindow::bvolReportView() {
+  if (!bvolReport_) bvolReport_ = new BvolReportView(session_, this);
+  return bvolReport_;
 }
 
 GridSweepView* MainWindow::gridSweepView() {

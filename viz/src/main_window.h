@@ -42,6 +42,7 @@ class LessonPane;
 class Presenter;
 class AaReportView;
 class GridSweepView;
+class BvolReportView;
 class PixelInspector;
 class CompareWindow;
 
@@ -102,6 +103,7 @@ class MainWindow : public QMainWindow {
   // asked for). The sweep's slider rebuilds the grid here at the density it chooses.
   AaReportView* aaReportView();
   GridSweepView* gridSweepView();
+  BvolReportView* bvolReportView();        // the kinds of bounding volumes
   void buildGridAtDensity(float density);  // the structure panel's grid options with density d, built
 
   // Presenter mode: the lesson pane docked on the right, beside the debugger, and the presenter that enters
@@ -170,6 +172,7 @@ class MainWindow : public QMainWindow {
   SahChart* sahChart_;
   AaReportView* aaReport_ = nullptr;
   GridSweepView* gridSweep_ = nullptr;
+  BvolReportView* bvolReport_ = nullptr;
   QDockWidget* kdDock_;
   PixelInspector* pixelInspector_;
   QDockWidget* pixelDock_;

@@ -117,7 +117,7 @@ void Presenter::goTo(int index) {
   answer_.reset();
   revealed_ = false;
   pane_->showStep(lesson_, index);
-  pane_->quiz()->setQuestion(step.ask);
+  pane_->quiz()->setQuestion(step.ask, step.state.accel);
   window_.sahChart()->setConceal(step.ask == QuestionKind::sah_plane,
                                  step.state.accel == "kd-median" ? "median builder" : "SAH");
   concealWalk(false);
@@ -172,6 +172,7 @@ void Presenter::goToReportingErrors(int index) {
 
 void Presenter::concealWalk(bool on) {
   window_.statePanel()->setConceal(on);
+  window_.sceneView()->setConceal(on);
   window_.eventList()->setConcealAfter(on ? window_.session()->step() : -1);
 }
 

@@ -13,7 +13,11 @@
 namespace raystep::viz {
 namespace {
 
-QString placeholderOf(QuestionKind kind) {
+QString placeholderOf(QuestionKind kind, const std::string& walk) {
+  if (walk == "octree" && kind == QuestionKind::next_cell)
+    return QObject::tr("octant (e.g. x+ y- z+), node id or stop");
+  if (walk == "octree" && kind == QuestionKind::first_child)
+    return QObject::tr("octant (e.g. x+ y- z+) or node id");
   switch (kind) {
     case QuestionKind::next_cell:
       return QObject::tr("i,j,k or stop (or click a cell in the 3D view)");
@@ -136,8 +140,9 @@ QuizPanel::QuizPanel(QWidget* parent) : QWidget(parent) {
   updateInputs();
 }
 
-void QuizPanel::setQuestion(std::optional<QuestionKind> kind) {
+void QuizPanel::setQuestion(std::optional<QuestionKind> kind, const std::string& walk) {
   kind_ = kind;
+  walk_ = walk;
   input_->clear();
   result_->clear();
   lastRight_.reset();
@@ -156,8 +161,8 @@ void QuizPanel::updateInputs() {
   prompt_->setVisible(asking || predicting);
   if (asking) {
     prompt_->setText(
-        QString("<b>%1</b> %2").arg(tr("Predict:"), QString(question_prompt(*kind_)).toHtmlEscaped()));
-    input_->setPlaceholderText(placeholderOf(*kind_));
+        QString("<b>%1</b> %2").arg(tr("Predict:"), QString(question_prompt(*kind_, walk_)).toHtmlEscaped()));
+    input_->setPlaceholderText(placeholderOf(*kind_, walk_));
   } else if (predicting) {
     prompt_->setText(
         tr("<b>Predict:</b> the %1 the walk goes to next, then <i>Step and check</i>.").arg(unit_));
@@ -166,7 +171,8 @@ void QuizPanel::updateInputs() {
   input_->setVisible(asking || predicting);
   reveal_->setVisible(asking);
   axisButtons_->setVisible(asking && *kind_ == QuestionKind::dda_axis);
-  childInputs_->setVisible(asking && *kind_ == QuestionKind::first_child);
+  // An octree's first child is a cell of eight, not a side of a plane: typed (octant or id).
+  childInputs_->setVisible(asking && *kind_ == QuestionKind::first_child && walk_ != "octree");
   yesNo_->setVisible(asking && *kind_ == QuestionKind::subdivide);
   predictStep_->setVisible(predicting);
   result_->setVisible(!result_->text().isEmpty());

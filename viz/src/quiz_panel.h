@@ -28,7 +28,9 @@ class QuizPanel : public QWidget {
  public:
   explicit QuizPanel(QWidget* parent = nullptr);
   // The step's question (none: the quiz part hides, unless Predict is on).
-  void setQuestion(std::optional<QuestionKind> kind);
+  // walk: the structure asked about ("octree", "bsp": the prompt and inputs in its words; else the
+  // kd-tree's).
+  void setQuestion(std::optional<QuestionKind> kind, const std::string& walk = std::string());
   std::optional<QuestionKind> question() const { return kind_; }
   // A prediction filled in from elsewhere: a cell picked in the 3D view, a candidate clicked on the chart.
   void setPrediction(const QString& text);
@@ -52,6 +54,7 @@ class QuizPanel : public QWidget {
   // A row of buttons, one per answer (object names namePrefix + answer): a click types it and reveals.
   QWidget* answerButtons(const QStringList& answers, const QString& namePrefix);
   std::optional<QuestionKind> kind_;
+  std::string walk_;
   QLabel* prompt_;
   QLineEdit* input_;
   QWidget* axisButtons_;

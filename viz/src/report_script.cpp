@@ -7,6 +7,7 @@
 #include <QThread>
 
 #include "aa_report_view.h"
+#include "bvol_report_view.h"
 #include "grid_sweep_view.h"
 #include "main_window.h"
 #include "raystep/util/error.h"
@@ -52,8 +53,8 @@ void defineReportOptions(QCommandLineParser& p) {
     p.addOption(QCommandLineOption(name, help, value));
   };
   opt("report",
-      "Open a report window on the scene and run it: aa (anti-aliasing error against rays) or grid-sweep "
-      "(the grid's density d against cost); both: aa,grid-sweep.",
+      "Open a report window on the scene and run it: aa (anti-aliasing error against rays), grid-sweep "
+      "(the grid's density d against cost) or bvol (the kinds of bounding volumes); several: aa,grid-sweep.",
       "LIST");
   opt("report-methods", "aa report: anti-aliasing specs, comma-separated (default: the report's).", "LIST");
   opt("report-reference", "aa report: auto, exact or jitter:K.", "REF");
@@ -65,23 +66,25 @@ void defineReportOptions(QCommandLineParser& p) {
   opt("sweep-choose", "grid sweep: then move the slider to d (the main window rebuilds its grid).", "D");
   opt("screenshot-report", "Write a PNG of the anti-aliasing report window.", "FILE");
   opt("screenshot-sweep", "Write a PNG of the grid sweep window.", "FILE");
+  opt("screenshot-bvol", "Write a PNG of the bounding-volume report window.", "FILE");
 }
 
 QStringList reportScriptOptions() {
-  return {"report", "screenshot-report", "screenshot-sweep", "sweep-choose"};
+  return {"report", "screenshot-report", "screenshot-sweep", "screenshot-bvol", "sweep-choose"};
 }
 
 void runReportActions(MainWindow& window, const QCommandLineParser& p) {
   if (!p.isSet("report")) {
-    for (const char* o :
-         {"report-methods", "report-reference", "report-size", "report-seeds", "report-axis",
-          "report-cancel-after", "sweep-densities", "sweep-choose", "screenshot-report", "screenshot-sweep"})
+    for (const char* o : {"report-methods", "report-reference", "report-size", "report-seeds", "report-axis",
+                          "report-cancel-after", "sweep-densities", "sweep-choose", "screenshot-report",
+                          "screenshot-sweep", "screenshot-bvol"})
       if (p.isSet(o)) fail(std::string("--") + o + " needs --report");
     return;
   }
   const QStringList reports = p.value("report").split(',', Qt::SkipEmptyParts);
   for (const QString& r : reports)
-    if (r != "aa" && r != "grid-sweep") fail("--report '" + r.toStdString() + "': expected aa or grid-sweep");
+    if (r != "aa" && r != "grid-sweep" && r != "bvol")
+      fail("--report '" + r.toStdString() + "': expected aa, grid-sweep or bvol");
   if (!window.session()->scene()) fail("--report: open a scene (a trace has none to render)");
   const int cancelAfter = p.isSet("report-cancel-after") ? parseCount(p, "report-cancel-after", 1, 1000) : 0;
   // The report windows beside the main window's size: a report window of its own size, on the same screen.
@@ -135,6 +138,17 @@ void runReportActions(MainWindow& window, const QCommandLineParser& p) {
   } else if (p.isSet("sweep-choose")) {
     fail("--sweep-choose needs --report grid-sweep");
   }
+  if (reports.contains("bvol")) {
+    BvolReportView* v = window.bvolReportView();
+    v->setCancelAfterRows(cancelAfter);
+    v->show();
+    settleWindow(v);
+    const QString error = v->start();
+    if (!error.isEmpty()) fail("--report bvol: " + error.toStdString());
+    if (!v->waitForFinished(kReportTimeoutMs)) fail("--report bvol: the report did not finish in time");
+    if (v->state() == "failed") fail("--report bvol: " + v->lastError().toStdString());
+    settleWindow(v);
+  }
 }
 
 void writeReportOutputs(MainWindow& window, const QCommandLineParser& p) {
@@ -149,11 +163,17 @@ void writeReportOutputs(MainWindow& window, const QCommandLineParser& p) {
     window.gridSweepView()->renderNow();
     saveWindow(window.gridSweepView(), p.value("screenshot-sweep"));
   }
+  if (p.isSet("screenshot-bvol")) {
+    if (!p.value("report").split(',').contains("bvol")) fail("--screenshot-bvol needs --report bvol");
+    window.bvolReportView()->renderNow();
+    saveWindow(window.bvolReportView(), p.value("screenshot-bvol"));
+  }
 }
 
 void addReportState(MainWindow& window, QJsonObject& o) {
   if (auto* v = window.findChild<AaReportView*>("aaReportView")) o["aa_report"] = v->dumpState();
   if (auto* v = window.findChild<GridSweepView*>("gridSweepView")) o["grid_sweep"] = v->dumpState();
+  if (auto* v = window.findChild<BvolReportView*>("bvolReportView")) o["bvol_report"] = v->dumpState();
   const StructureData* s = window.session()->structure();
   if (const UniformGrid* g = s ? s->grid() : nullptr) {
     auto r = g->resolution();

@@ -196,6 +196,7 @@ QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.
 }  // namespace
 
 struct SceneView::Impl {
+  bool conceal = false;  // setConceal
   QVTKOpenGLNativeWidget* widget = nullptr;
   QLabel* legend = nullptr;
   QCheckBox* translucentCheck = nullptr;
@@ -813,7 +814,8 @@ void SceneView::updateBvhChildren() {
       const int32_t id = c.path[k].node;
       const TraceNode* n = d.node(id);
       if (!n) continue;
-      const double f = m > 1 ? double(k) / double(m - 1) : 0.0;
+      // Concealed (a lesson asks which child comes first): all in the last colour, none filled.
+      const double f = d.conceal ? 1.0 : m > 1 ? double(k) / double(m - 1) : 0.0;
       const QColor& a = palette::bvhChildFirst;
       const QColor& b = palette::bvhChildOther;
       QColor col(int(std::lround(a.red() + f * (b.red() - a.red()))),
@@ -824,7 +826,7 @@ void SceneView::updateBvhChildren() {
       int before = int(elines->GetNumberOfCells());
       addBoxEdges(epts, elines, n->box.lo + inset, n->box.hi - inset);
       appendColor(ecolors, col, int(elines->GetNumberOfCells()) - before);
-      if (int(k) == c.visitedSoFar)
+      if (int(k) == c.visitedSoFar && !d.conceal)
         appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
     }
   }
@@ -1109,6 +1111,12 @@ void SceneView::setTranslucent(bool on) {
   d_->translucentCheck->setChecked(on);  // when set from elsewhere (scripted mode)
   d_->translucent = on;
   d_->sceneActor->GetProperty()->SetOpacity(on ? 0.35 : 1.0);
+  updateStep();
+}
+
+void SceneView::setConceal(bool on) {
+  if (d_->conceal == on) return;
+  d_->conceal = on;
   updateStep();
 }
 

@@ -26,6 +26,9 @@ class SceneView : public QWidget {
 
   void setTranslucent(bool on);
   void setFollowCell(bool on);
+  // A lesson's question about the walk's next move: the drawing that gives the answer away waits for Reveal
+  // (an octree cell's children are outlined in one colour, not in the order the ray crosses them).
+  void setConceal(bool on);
   void fitCamera();
   // The camera framing the scene (or trace) as when it was opened, at the view's present size: a lesson step
   // starts from it, so that entering a step gives the view a fresh run of the same state gives, whatever the

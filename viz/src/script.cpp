@@ -235,7 +235,9 @@ void defineOptions(QCommandLineParser& p) {
       "same with no node selected).",
       "NAME");
   opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
-  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.",
+  opt("node-path",
+      "A tree: select the node at this path from the root: kd-tree and BSP tree L below, R above (e.g. LRL); "
+      "binary BVH L first child, R second; octree one octant digit 0..7 per level (e.g. 03).",
       "PATH");
   opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).",
       "X,Y");
@@ -318,7 +320,8 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   static const QStringList flags = {"secondary", "follow", "translucent", "inspect", "sample-overlay"};
   for (const std::string& key : lesson_setting_keys()) {
     const QString name = QString::fromStdString(key);
-    if (key == "scene" || key == "show" || !p.isSet(name)) continue;
+    // --report: the report options' own (report_script.cpp), run and waited for after the state is entered.
+    if (key == "scene" || key == "show" || key == "report" || !p.isSet(name)) continue;
     const std::string value = flags.contains(name) ? std::string("on") : p.value(name).toStdString();
     if (key == "node") {  // any whole number: the tree's size decides (the message names its range)
       bool ok = false;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "kd_tree_model.h"
 #include "raystep/io/image_io.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/pixel_samples.h"
@@ -293,9 +294,10 @@ void Session::setSquare(int index) {
 }
 
 void Session::setSelectedNode(int node) {
-  const KdTree* kd = structure_ ? structure_->kdTree() : nullptr;
-  const Bvh* bvh = structure_ ? structure_->bvh() : nullptr;
-  const size_t nodes = kd ? kd->data().nodes.size() : bvh ? bvh->data().nodes.size() : 0;
+  // A node of any tree the tree view shows (kd-tree, binary BVH, octree, BSP tree), by the ids trace events
+  // use.
+  const std::unique_ptr<TreeShape> tree = structure_ ? treeShapeOf(*structure_) : nullptr;
+  const size_t nodes = tree ? tree->size() : 0;
   if (node < -1 || (node >= 0 && size_t(node) >= nodes)) return;
   if (node == selectedNode_) return;
   selectedNode_ = node;

@@ -413,12 +413,38 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
   // plane the next), those visited so far in bold.
   OctreeChoice c = session_->trace() ? octreeChoice(*session_->trace(), r, s) : OctreeChoice{};
   if (!c.valid) {
+    // A leaf: its exit t per axis; the smallest is the exit plane, across which the next cell lies.
+    const TraceNode* n = session_->trace() && s.nodeEvent >= 0
+                             ? findNode(*session_->trace(), r.events[size_t(s.nodeEvent)].node)
+                             : nullptr;
+    if (n && n->leaf) {
+      QStringList exits;
+      int exit = -1;
+      float best = 0.f;
+      for (int a = 0; a < 3; ++a) {
+        const float d = r.ray.direction[a], inv = 1.f / d;
+        if (!std::isfinite(inv)) continue;
+        const float t1 = ((std::signbit(d) ? n->box.lo[a] : n->box.hi[a]) - r.ray.origin[a]) * inv;
+        exits << tr("%1 at %2").arg(axisName(a)).arg(num(t1));
+        if (exit < 0 || t1 < best) exit = a, best = t1;
+      }
+      crossing_->setText(
+          tr("leaf cell; exit planes: %1").arg(exits.join(", ")) +
+          (conceal_ || exit < 0 ? QString() : tr("<br>leaves by %1 (the smallest)").arg(axisName(exit))));
+      return;
+    }
     crossing_->setText(tr("<i>- (the current node is not an inner cell whose children are walked)</i>"));
     return;
   }
   QString t = c.entryAxis >= 0
                   ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
                   : QString();
+  // The centre planes' t: with the entry t, Revelles' first child (the far half where one comes before it).
+  QStringList mids;
+  for (int a = 0; a < 3; ++a)
+    if (c.moving[a]) mids << tr("%1 at %2").arg(axisName(a)).arg(num(c.tMid[a]));
+  if (!mids.isEmpty())
+    t += (t.isEmpty() ? QString() : QString("<br>")) + tr("centre planes: ") + mids.join(", ");
   if (conceal_) {
     crossing_->setText(t + tr("<br><i>order: ? (the quiz asks it)</i>"));
     return;

@@ -189,7 +189,8 @@ Lesson parse_lesson_text(const std::string& text, const std::string& path) {
       LessonStep step;
       step.title = heading;
       step.line = line_no;
-      if (!lesson.steps.empty()) step.state = lesson.steps.back().state;  // carry over; ask does not
+      if (!lesson.steps.empty()) step.state = lesson.steps.back().state;  // carry over; ask and report do not
+      step.state.report.clear();
       lesson.steps.push_back(std::move(step));
       state_line = 0;
       continue;

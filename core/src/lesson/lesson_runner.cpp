@@ -7,10 +7,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "raystep/accel/bvh.h"
-#include "raystep/accel/kdtree.h"
-#include "raystep/accel/kdtree_sah_curve.h"
-#include "raystep/accel/wide_bvh.h"
+#include "raystep/lesson/tree_nodes.h"
+#include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
@@ -231,42 +229,49 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
     }
   }
 
-  // The tree's selected node: by id, by path (kd-trees: L below, R above), or the root for the SAH panel. A
-  // BVH's ids are its traces' ids.
-  const KdTree* kd = dynamic_cast<const KdTree*>(cache.accel.get());
-  const Bvh* bvh = dynamic_cast<const Bvh*>(cache.accel.get());
-  const WideBvh* wide = dynamic_cast<const WideBvh*>(cache.accel.get());
+  // The tree's selected node: by id, by path (tree_nodes.h: kd-tree and BSP tree L below, R above; BVH L and
+  // R its children; octree a digit per level), or the root for the panel. The ids are the traces' ids.
   if (state.node.by != NodeSpec::By::none || state.panel == "sah" || state.panel == "kd") {
     const char* what = state.node.by == NodeSpec::By::id     ? "node"
                        : state.node.by == NodeSpec::By::path ? "node-path"
                                                              : "panel";
-    if (!kd && !bvh && !wide)
+    const LessonTree tree = lesson_tree(*cache.accel);
+    if (!tree.name)
       fail({what, "accel"}, std::string(what) +
-                                ": no kd-tree or BVH (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, "
-                                "bvh4 or bvh8)");
-    if (!kd && state.node.by == NodeSpec::By::path)
-      fail({"node-path", "accel"},
-           "node-path: a path of L (below) and R (above) names a kd-tree's node; give a "
-           "BVH's node by id (node: ID)");
-    const size_t count = kd    ? kd->data().nodes.size()
-                         : bvh ? bvh->data().nodes.size()
-                               : wide->describe().nodes.size();
-    const char* tree = kd ? "kd-tree" : "BVH";
+                                ": no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
+                                "bsp or octree)");
+    if (state.node.by == NodeSpec::By::path && !tree.paths)
+      fail({"node-path", "accel"}, "node-path: a wide BVH's node is named by id (node: ID)");
+    const size_t count = tree.nodes;
     w.node = state.panel == "sah" ? 0 : -1;
     if (state.node.by == NodeSpec::By::id) {
       if (size_t(state.node.id) >= count)
-        fail({"node"}, "node " + std::to_string(state.node.id) + ": the " + tree + " has " +
+        fail({"node"}, "node " + std::to_string(state.node.id) + ": the " + tree.name + " has " +
                            std::to_string(count) + " nodes (0.." + std::to_string(count - 1) + ")");
       w.node = state.node.id;
     }
     if (state.node.by == NodeSpec::By::path) {
       try {
-        w.node = int(kd_node_by_path(kd->data(), state.node.path));
+        w.node = int(lesson_node_by_path(*cache.accel, state.node.path));
       } catch (const InputError& e) {
-        std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
-        if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)
-          why = why.substr(colon + 3);
-        fail({"node-path"}, "node-path '" + state.node.path + "': " + why);
+        fail({"node-path"}, "node-path '" + state.node.path + "': " + e.detail());
+      }
+    }
+  }
+
+  // The report windows the step opens: each needs a scene with primitives; the bounding-volume report is run
+  // (on a few rays: it is quick), so that a scene it cannot measure fails here rather than in the classroom.
+  if (!state.report.empty()) {
+    if (cache.scene->geometry.size() == 0) fail({"report"}, "report: the scene has no primitives");
+    if (state.report.find("bvol") != std::string::npos) {
+      try {
+        BvolReportOptions o;
+        o.camera_width = 16;
+        o.camera_height = 12;
+        o.reps = 1;
+        run_bvol_report(*cache.scene, o);
+      } catch (const InputError& e) {
+        fail({"report"}, std::string("report bvol: ") + e.detail());
       }
     }
   }

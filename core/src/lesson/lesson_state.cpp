@@ -343,12 +343,14 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                    }},
                   {"node-path",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     // L and R: a kd-tree's, BSP tree's or binary BVH's children; 0..7: an octree's octants.
                      bool ok = !v.empty() && v.size() <= size_t(kKdMaxDepth);
-                     for (char c : v) ok = ok && (c == 'L' || c == 'R');
-                     if (!ok)
+                     bool lr = true, octants = true;
+                     for (char c : v) lr = lr && (c == 'L' || c == 'R'), octants = octants && c >= '0' && c <= '7';
+                     if (!ok || !(lr || octants))
                        bad(k, v,
-                           "a path of L (below) and R (above), 1.." + std::to_string(kKdMaxDepth) +
-                               " letters (the root is node: 0)");
+                           "a path of L (below) and R (above), or of octants 0..7 (an octree), 1.." +
+                               std::to_string(kKdMaxDepth) + " letters (the root is node: 0)");
                      NodeSpec n;
                      n.by = NodeSpec::By::path;
                      n.path = v;
@@ -380,9 +382,27 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                                         const std::string&) { s.sample_overlay = parse_on_off(k, v); }},
                   {"show",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
-                     if (v != "window" && v != "3d" && v != "chart" && v != "picture")
-                       bad(k, v, "window, 3d, chart or picture");
+                     if (v != "window" && v != "3d" && v != "chart" && v != "picture" && v != "report")
+                       bad(k, v, "window, 3d, chart, picture or report");
                      s.show = v;
+                   }},
+                  {"report",
+                   [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
+                     if (v == "none") return void(s.report.clear());
+                     // A list of report windows, each named once.
+                     std::vector<std::string> seen;
+                     size_t start = 0;
+                     for (;;) {
+                       const size_t comma = v.find(',', start);
+                       const std::string r = v.substr(start, comma == std::string::npos ? comma : comma - start);
+                       if ((r != "aa" && r != "grid-sweep" && r != "bvol") ||
+                           std::find(seen.begin(), seen.end(), r) != seen.end())
+                         bad(k, v, "aa, grid-sweep or bvol (several: comma-separated, each once), or none");
+                       seen.push_back(r);
+                       if (comma == std::string::npos) break;
+                       start = comma + 1;
+                     }
+                     s.report = v;
                    }},
               };
   return table;
@@ -465,6 +485,7 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (translucent) a.push_back("--translucent");
   if (zoom) opt("zoom", double_text(*zoom));
   if (sample_overlay) a.push_back("--sample-overlay");
+  if (!report.empty()) opt("report", report);
   return a;
 }
 

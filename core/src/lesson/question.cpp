@@ -10,8 +10,10 @@
 #include <cstdlib>
 #include <vector>
 
+#include "raystep/accel/bsp.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/accel/octree.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
@@ -183,6 +185,344 @@ std::string side(bool below) {
   return below ? "below" : "above";
 }
 
+// ---- The octree (Revelles, Urena and Lastra): first-child and next-cell, from the node events, explained by
+// the cells' planes as the kernel computes them (octree.h: float, by the direction's reciprocal).
+
+bool walks_octree(const QuestionContext& c) {
+  return c.trace && c.trace->structure.kind == "octree";
+}
+
+std::string octant_name(int octant) {
+  std::string s;
+  for (int a = 0; a < 3; ++a) s += std::string(a ? " " : "") + axis_name(a) + ((octant >> a) & 1 ? "+" : "-");
+  return s;
+}
+
+// Which of its parent's eight children a cell is (-1: not found in the trace).
+int octant_of(const Trace& trace, int32_t id, const TraceNode** parent) {
+  const TraceNode* n = find_node(trace, id);
+  *parent = n && n->parent >= 0 ? find_node(trace, n->parent) : nullptr;
+  if (!*parent) return -1;
+  for (size_t k = 0; k < (*parent)->children.size(); ++k)
+    if ((*parent)->children[k] == id) return int(k);
+  return -1;
+}
+
+std::string cell_name(const Trace& trace, int32_t id) {
+  const TraceNode* parent = nullptr;
+  const int octant = octant_of(trace, id, &parent);
+  if (octant < 0) return "cell " + std::to_string(id);
+  return "cell " + std::to_string(id) + " (" + octant_name(octant) + " of cell " +
+         std::to_string(parent->id) + ")";
+}
+
+// A cell's planes along the ray: per axis the entry and exit t (in the direction of travel) and the centre
+// plane's t; an axis the ray does not move along has -inf, +inf and the centre by the origin's side.
+struct CellPlanes {
+  float t0[3], t1[3], mid[3];
+  bool moving[3];
+  int entry = 0;  // the entry plane: the largest t0 (ties to the lower axis, as the kernel)
+  float t_in = 0.f;
+};
+CellPlanes cell_planes(const Bounds3& box, const Ray& ray) {
+  CellPlanes p;
+  for (int a = 0; a < 3; ++a) {
+    const float d = ray.direction[a], inv = 1.f / d, o = ray.origin[a];
+    const bool neg = std::signbit(d);
+    const float m = 0.5f * (box.lo[a] + box.hi[a]);  // the build's centre (octree_build.cpp)
+    p.moving[a] = std::isfinite(inv);
+    if (p.moving[a]) {
+      p.t0[a] = ((neg ? box.hi[a] : box.lo[a]) - o) * inv;
+      p.t1[a] = ((neg ? box.lo[a] : box.hi[a]) - o) * inv;
+      p.mid[a] = (m - o) * inv;
+    } else {
+      p.t0[a] = -kInfinity;
+      p.t1[a] = kInfinity;
+      p.mid[a] = (o >= m) != neg ? -kInfinity : kInfinity;
+    }
+  }
+  p.entry = p.t0[0] >= p.t0[1] && p.t0[0] >= p.t0[2] ? 0 : (p.t0[1] >= p.t0[2] ? 1 : 2);
+  p.t_in = p.t0[p.entry];
+  return p;
+}
+
+// "x at 2.1" per moving axis.
+std::string planes_text(const float* t, const bool* moving) {
+  std::string s;
+  for (int a = 0; a < 3; ++a)
+    if (moving[a]) s += std::string(s.empty() ? "" : ", ") + axis_name(a) + " at " + num(t[a]);
+  return s.empty() ? "none" : s;
+}
+
+// The index of the first node event after `from` (or -1), and whether the walk's end comes first.
+int next_node_event(const std::vector<Event>& ev, size_t from) {
+  for (size_t i = from; i < ev.size(); ++i) {
+    if (ev[i].type == EventType::node) return int(i);
+    if (ev[i].type == EventType::hit_accepted || ev[i].type == EventType::ray_end) return -1;
+  }
+  return -1;
+}
+
+// The answer's cell: the node, its octant, the text.
+void set_octree_cell(Answer& a, const Trace& trace, int32_t id) {
+  const TraceNode* parent = nullptr;
+  a.node = id;
+  a.first_child = id;
+  a.octant = octant_of(trace, id, &parent);
+  a.stops = false;
+  a.text = a.octant >= 0 ? octant_name(a.octant) + " (node " + std::to_string(id) + ", a child of cell " +
+                               std::to_string(parent->id) + ")"
+                         : "node " + std::to_string(id);
+}
+
+// The current event at an inner cell: its node event or the push right after it.
+Answer octree_first_child(QuestionKind kind, const QuestionContext& c, int node_event) {
+  const TracedRay& r = c.trace->rays[size_t(c.ray)];
+  const std::vector<Event>& ev = r.events;
+  const Event& e = ev[size_t(node_event)];
+  const TraceNode* n = find_node(*c.trace, e.node);
+  if (!n || n->leaf || n->children.size() != 8)
+    fail(std::string(question_kind_name(kind)) + ": the trace has not the children of cell " +
+         std::to_string(e.node));
+  const int first = next_node_event(ev, size_t(node_event) + 1);
+  if (first < 0)
+    fail(std::string(question_kind_name(kind)) + ": the walk does not go on from cell " +
+         std::to_string(e.node));
+  Answer a;
+  a.kind = kind;
+  a.walk = "octree";
+  set_octree_cell(a, *c.trace, ev[size_t(first)].node);
+
+  // Revelles' rule in the frame where every direction component is positive (octree.h's reflection): the
+  // first child is upper on each other axis whose centre plane the ray crossed before it entered the cell.
+  const CellPlanes p = cell_planes(n->box, r.ray);
+  int mask = 0;
+  for (int k = 0; k < 3; ++k) mask |= int(std::signbit(r.ray.direction[k])) << k;
+  const bool inside = p.t_in < e.t_min_node;  // the ray starts inside the cell (t_min is the ray's start)
+  std::string w = "Cell " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") ";
+  if (inside)
+    w += "holds the ray's start, t = " + num(e.t_min_node) + ". ";
+  else
+    w += "is entered at t_in = " + num(p.t_in) + " through its face normal to " + axis_name(p.entry) +
+         " (the largest entry t: " + planes_text(p.t0, p.moving) + "). ";
+  w += "Its centre planes are crossed at " + planes_text(p.mid, p.moving) + ". ";
+  int reflected = Octree::first_child(p.mid, p.t_in, p.entry);
+  std::string halves;
+  for (int b = 0; b < 3; ++b) {
+    if (b == p.entry || !p.moving[b]) continue;
+    const bool far = (reflected >> b) & 1;
+    const bool upper = far != bool((mask >> b) & 1);
+    halves += std::string(halves.empty() ? "" : "; ") + axis_name(b) + " at " + num(p.mid[b]) +
+              (far ? " < t_in: the ray is already in the far half, " : " > t_in: still the near half, ") +
+              axis_name(b) + (upper ? "+" : "-");
+  }
+  if (!inside && p.moving[p.entry])
+    halves += std::string(halves.empty() ? "" : "; ") + axis_name(p.entry) +
+              ", the entry plane's axis: the near half, " + axis_name(p.entry) +
+              (std::signbit(r.ray.direction[p.entry]) ? "+" : "-");
+  if (!halves.empty()) w += "Revelles' first child: " + halves + ". ";
+  // The order by the exit planes (the paper's table), as far as the planes go.
+  std::string order;
+  int count = 0;
+  for (int rc = reflected; rc < 8 && count < 8; ++count) {
+    float ct1[3];
+    for (int k = 0; k < 3; ++k) ct1[k] = (rc >> k) & 1 ? p.t1[k] : p.mid[k];
+    const int exit = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
+    const int octant = rc ^ mask;
+    order += std::string(order.empty() ? "" : ", then ") + octant_name(octant) + " (node " +
+             std::to_string(n->children[size_t(octant)]) + ")";
+    rc = Octree::kNextChild[rc][exit];
+    order += rc == 8 ? std::string(" which leaves the cell across ") + axis_name(exit) +
+                           " at t = " + num(ct1[exit])
+                     : std::string(", across ") + axis_name(exit) + " at t = " + num(ct1[exit]);
+  }
+  w += "Order by the exit planes: " + order + ".";
+  const int planes_first = reflected ^ mask;
+  if (n->children[size_t(planes_first)] != a.node)
+    w += inside ? " The ray starts inside the cell, so the children it has already left are passed over: the "
+                  "walk begins in " +
+                      octant_name(a.octant) + "."
+                : " The walk enters " + octant_name(a.octant) +
+                      " first: a child the ray grazes within rounding is walked too, in entry order.";
+  a.why = w;
+  return a;
+}
+
+Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
+  const TracedRay& r = current_ray(kind, c);
+  const std::string name = question_kind_name(kind);
+  const std::vector<Event>& ev = r.events;
+  // The cell the walk is at: the last node event up to the current event.
+  int at = -1;
+  for (int i = 0; i <= c.step; ++i)
+    if (ev[size_t(i)].type == EventType::node) at = i;
+  const bool inner = at >= 0 && size_t(at) + 1 < ev.size() && ev[size_t(at) + 1].type == EventType::push &&
+                     ev[size_t(at) + 1].node == ev[size_t(at)].node;
+  if (kind == QuestionKind::first_child) {
+    const bool here = at >= 0 && (c.step == at || (inner && c.step == at + 1));
+    if (!here || !inner)
+      fail("first-child: the walk is not at an inner cell at event " + std::to_string(c.step) + " (a " +
+           event_type_name(ev[size_t(c.step)].type) + " event; step-to: node:K at a cell with children)");
+    return octree_first_child(kind, c, at);
+  }
+  // next-cell: the cell the walk enters next.
+  if (at >= 0 && inner && c.step <= at + 1) return octree_first_child(kind, c, at);
+  Answer a;
+  a.kind = kind;
+  a.walk = "octree";
+  const size_t after = size_t(std::max(at, c.step)) + 1;
+  const int next = next_node_event(ev, after);
+  const Event* accepted = nullptr;
+  for (size_t i = after; i < ev.size() && !accepted; ++i)
+    if (ev[i].type == EventType::hit_accepted) accepted = &ev[i];
+  if (next >= 0) {
+    set_octree_cell(a, *c.trace, ev[size_t(next)].node);
+  } else {
+    a.stops = true;
+    a.text = "the walk stops: there is no next cell";
+  }
+  if (at < 0) {  // before the walk: the root cube, or a miss
+    a.why = a.stops ? "Slab test: the ray misses the octree's root cube: no cell to visit."
+                    : "Slab test: the ray meets the root cube at t = " + num(ev[size_t(next)].t_min_node) +
+                          ": the walk starts at the root, cell " + std::to_string(a.node) + ".";
+    if (!a.stops) a.text = "node " + std::to_string(a.node) + " (the root)";
+    return a;
+  }
+  const Event& e = ev[size_t(at)];
+  const TraceNode* n = find_node(*c.trace, e.node);
+  if (!n) fail(name + ": the trace has not cell " + std::to_string(e.node));
+  // The cell's exit plane: the smallest exit t (ties to the lower axis, as the kernel).
+  const CellPlanes p = cell_planes(n->box, r.ray);
+  const int exit = p.t1[0] <= p.t1[1] && p.t1[0] <= p.t1[2] ? 0 : (p.t1[1] <= p.t1[2] ? 1 : 2);
+  const bool grazed = e.t_max_node <= e.t_min_node;  // a point: walked for rounding's sake (octree.h)
+  std::string w =
+      grazed ? "The ray only grazes cell " + std::to_string(e.node) + " (its interval [" + num(e.t_min_node) +
+                   ", " + num(e.t_max_node) +
+                   "] is a point; the walk visits it so that rounding never skips a cell the exact ray "
+                   "touches). "
+             : "Cell " + std::to_string(e.node) + " is left at t_exit = " + num(e.t_max_node) +
+                   " through its face normal to " + axis_name(exit) +
+                   " (exit t: " + planes_text(p.t1, p.moving) + "; the smallest). ";
+  if (accepted && accepted->reason == AcceptReason::any_hit) {
+    a.why = "A shadow ray stops at its first hit, t = " + num(accepted->t) + ": the walk ends in cell " +
+            std::to_string(e.node) + ".";
+    return a;
+  }
+  if (a.stops && accepted && accepted->reason == AcceptReason::inside_cell) {
+    a.why = w + "The hit at t = " + num(accepted->t) + " (primitive " + std::to_string(accepted->prim) +
+            ") lies inside this cell: every later cell starts at t >= " + num(e.t_max_node) +
+            " > tmax(ray) = " + num(accepted->t) +
+            ", so the walk stops (traverse until tmin(cell) > tmax(ray)).";
+    return a;
+  }
+  if (a.stops && accepted && accepted->reason == AcceptReason::next_node_beyond) {
+    a.why = w + "The next cell would start at t = " + num(e.t_max_node) +
+            ", beyond the nearest hit, t = " + num(accepted->t) +
+            ": tmin(cell) > tmax(ray), the walk stops with that hit.";
+    return a;
+  }
+  if (a.stops) {
+    a.why =
+        w + "That face is the root cube's own: the ray leaves the octree" +
+        (accepted ? " with its nearest hit, t = " + num(accepted->t) + "." : std::string(" without a hit."));
+    return a;
+  }
+  // Across the exit plane: the sibling, or (the face is the parent's too) the parent is done.
+  const TraceNode* parent = nullptr;
+  const int octant = octant_of(*c.trace, e.node, &parent);
+  const bool forward = !std::signbit(r.ray.direction[exit]);
+  int pops = 0;
+  for (size_t i = after; i < size_t(next); ++i) pops += ev[i].type == EventType::pop;
+  const Event& to = ev[size_t(next)];
+  if (grazed) {
+    w += "The walk goes on with the next cell in entry order, " + cell_name(*c.trace, a.node) + ".";
+  } else if (octant >= 0 && pops == 0 && parent->children[size_t(octant ^ (1 << exit))] == a.node) {
+    w += "Across it lies its sibling " + octant_name(a.octant) + ", node " + std::to_string(a.node) +
+         ": Revelles' table sends the walk from one child to the next by the plane it leaves by.";
+  } else if (octant >= 0 && bool((octant >> exit) & 1) == forward && pops > 0) {
+    w += "That face is also the face of cell " + std::to_string(parent->id) +
+         std::string(pops > 1 ? " and of its parent" : "") + ": its children are done (" +
+         std::to_string(pops) + (pops == 1 ? " pop" : " pops") + "), and the walk goes on in " +
+         cell_name(*c.trace, a.node) + ", the next child across that plane.";
+  } else {
+    w += "The walk goes on in " + cell_name(*c.trace, a.node) + ".";
+  }
+  if (to.t_max_node <= to.t_min_node)
+    w += " The ray only grazes that cell (its interval [" + num(to.t_min_node) + ", " + num(to.t_max_node) +
+         "] is a point): the walk visits such a cell too, so that rounding never skips a cell the exact ray "
+         "touches.";
+  else if (!grazed)
+    w += " It begins where this cell ends, at t = " + num(to.t_min_node) + ".";
+  else
+    w += " It begins at t = " + num(to.t_min_node) + ".";
+  const Event* deferred = nullptr;
+  for (size_t i = size_t(at); i < size_t(next) && !deferred; ++i)
+    if (ev[i].type == EventType::hit_deferred) deferred = &ev[i];
+  if (deferred)
+    w += " The hit found here, t = " + num(deferred->t) +
+         ", lies beyond this cell's exit: kept, not accepted, "
+         "as a later cell may hold a nearer one.";
+  a.why = w;
+  return a;
+}
+
+// ---- The general BSP tree: first-child and next-pop, the kd-tree's questions with a plane of any
+// orientation (bsp.h): t* = (d - n.o) / (n.dir), near and far by the signed distance along the normal.
+
+bool walks_bsp(const QuestionContext& c) {
+  return c.trace && c.trace->structure.kind == "bsp";
+}
+
+std::string bsp_plane_text(const TraceNode& n) {
+  return "n = " + triple(n.normal) + ", d = " + num(n.offset);
+}
+
+// The Why of a BSP node's first child, with the kernel's own crossing (bsp_crossing).
+std::string bsp_first_child_why(const TracedRay& r, const Event& e, const TraceNode& n) {
+  const BspPlane plane{n.normal, n.offset};
+  const glm::vec3 o = r.ray.origin, d = r.ray.direction;
+  const BspCrossing x = bsp_crossing(plane, o, d, std::max(std::fabs(e.t_min_node), std::fabs(e.t_max_node)));
+  const double dist =
+      double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z - double(n.offset);
+  const double ndir = double(n.normal.x) * d.x + double(n.normal.y) * d.y + double(n.normal.z) * d.z;
+  const float margin = tree_margin(r);
+  const std::string near = side(x.below_first), far = side(!x.below_first);
+  const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
+  std::string w = "Node " + std::to_string(e.node) + "'s plane n.p = d: " + bsp_plane_text(n) +
+                  ". The origin's signed distance n.o - d = " + num(dist) + " (" +
+                  (dist < 0   ? "below"
+                   : dist > 0 ? "above"
+                              : "on") +
+                  " the plane); n.dir = " + num(ndir) + ". ";
+  if (x.kind != BspCrossing::crosses) {
+    w += "The ray runs parallel to the plane (within rounding)";
+    if (x.kind == BspCrossing::stays)
+      return w + " and stays " + near + " it over " + interval + ": only the " + near + " child is visited.";
+    return w + " and may lie in it: Intersect(" + near + ") first, the " + far +
+           " child is pushed with the whole " + interval + ".";
+  }
+  const double t_star =
+      (double(n.offset) - (double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z)) /
+      ndir;
+  w += std::string("n.dir ") +
+       (ndir > 0 ? "> 0: the ray moves up the normal, from below to above"
+                 : "< 0: the ray moves down the normal, from above to below") +
+       ", so the near child is the one " + near + ". t* = (d - n.o) / (n.dir) = " + num(t_star) + ". ";
+  if (x.t_lo > e.t_max_node + margin)
+    return w + "t* > t_max = " + num(e.t_max_node) +
+           ": the ray leaves the node before the plane. Only the near "
+           "child (" +
+           near + ") is visited; nothing is pushed.";
+  if (x.t_hi < e.t_min_node - margin)
+    return w + "t* < t_min = " + num(e.t_min_node) +
+           ": the node's part of the ray lies beyond the plane. Only "
+           "the far child (" +
+           far + ") is visited; nothing is pushed.";
+  return w + "t* within " + interval + ": Intersect(near = " + near + ", t_min, t*) first, the far child (" +
+         far + ") is pushed with (t*, t_max) = (" +
+         num(std::clamp(float(t_star), e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ").";
+}
+
 Answer first_child_answer(const QuestionContext& c) {
   const TracedRay& r = current_ray(QuestionKind::first_child, c);
   const std::vector<Event>& ev = r.events;
@@ -211,6 +551,14 @@ Answer first_child_answer(const QuestionContext& c) {
     fail("first-child: the walk does not go on from node " + std::to_string(e.node));
   a.first_child = ev[first].node;
   a.first_is_below = a.first_child == e.node + 1;  // depth-first order: the child below follows its parent
+  if (n->has_plane) {                              // a BSP tree's node: a plane of any orientation
+    a.walk = "bsp";
+    a.why = bsp_first_child_why(r, e, *n);
+    a.text = side(a.first_is_below) + " (node " + std::to_string(a.first_child) + ")" +
+             (a.far_pushed ? ", the far child, node " + std::to_string(a.far_child) + ", is pushed"
+                           : ", nothing is pushed");
+    return a;
+  }
 
   // The kernel's numbers: t* by the direction's reciprocal, the near side by the sign bit, the margin.
   const int axis = n->axis;
@@ -248,6 +596,10 @@ Answer next_pop_answer(const QuestionContext& c) {
   const TracedRay& r = current_ray(QuestionKind::next_pop, c);
   const std::vector<Event>& ev = r.events;
   if (!walks_tree(r)) fail("next-pop: the ray walks a grid, not a tree (accel: kd, kd-median or a BVH)");
+  if (walks_octree(c))
+    fail(
+        "next-pop: the octree keeps no stack of far children; its next cell follows from the exit plane "
+        "(ask: next-cell)");
   // The leaf the walk is in: the current event is a leaf's node event, the leaf event or one of its tests.
   int leaf = -1;
   if (ev[size_t(c.step)].type == EventType::node && size_t(c.step) + 1 < ev.size() &&
@@ -314,6 +666,29 @@ Answer next_pop_answer(const QuestionContext& c) {
   const std::string leaf_name = "Leaf " + std::to_string(ev[size_t(leaf)].node);
   if (any_hit) {
     a.why = leaf_name + ": a shadow ray stops at its first hit, t = " + num(hit_t) + ".";
+  } else if (walks_bsp(c) && !stack.empty()) {
+    // A BSP tree's stack is not ordered by t_min either (t* is an interval): an entry that starts beyond the
+    // hit is popped and dropped on its own, and the popping goes on.
+    const float margin = tree_margin(r);
+    std::string w = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
+                    (stack.size() == 1 ? " node" : " nodes") + ". ";
+    for (size_t i = after; i < ev.size() && ev[i].type == EventType::pop; ++i) {
+      const Event& k = ev[i];
+      if (!a.stops && k.node == a.node) break;
+      w += "Pop node " + std::to_string(k.node) + ": it starts at t_min = " + num(k.t_min_node) +
+           " > t(hit) = " + num(hit_t) + " (beyond the margin " + num(margin) +
+           "), so nothing in it can be nearer: drop it. ";
+    }
+    if (a.stops)
+      w += "The stack is empty: the walk stops with " + hit + ".";
+    else
+      w += "Pop node " + std::to_string(a.node) + " with [t_min, t_max] = [" + num(stack.back()->t_min_node) +
+           ", " + num(stack.back()->t_max_node) + "]" +
+           (hit_prim < 0 ? ": no hit yet, visit it."
+                         : ": t(hit) = " + num(hit_t) +
+                               " is not before its t_min, "
+                               "so a nearer hit may lie in it: visit it.");
+    a.why = w;
   } else if (walks_bvh(r) && !stack.empty()) {
     // A BVH's stack is not ordered by distance (sibling boxes overlap), so the walk does not stop at the first
     // entry beyond the hit: it skips that one and pops the next.
@@ -500,9 +875,16 @@ int axis_of(const std::string& s) {
 Answer answer_question(QuestionKind kind, const QuestionContext& context) {
   switch (kind) {
     case QuestionKind::next_cell:
+      if (walks_octree(context)) return octree_answer(kind, context);
+      return grid_answer(kind, context);
     case QuestionKind::dda_axis:
+      if (walks_octree(context))
+        fail(
+            "dda-axis: the octree's walk has no 3D-DDA; its next cell follows from the exit plane (ask: "
+            "next-cell)");
       return grid_answer(kind, context);
     case QuestionKind::first_child:
+      if (walks_octree(context)) return octree_answer(kind, context);
       return first_child_answer(context);
     case QuestionKind::next_pop:
       return next_pop_answer(context);
@@ -521,6 +903,25 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
     fail(name + " '" + prediction + "': expected " + expected);
   };
   long long v = 0;
+  if (answer.walk == "octree" &&
+      (answer.kind == QuestionKind::next_cell || answer.kind == QuestionKind::first_child)) {
+    // A cell: its node id or its octant within its parent ("x+y-z+"); next-cell also "stop".
+    const std::string forms = answer.kind == QuestionKind::next_cell
+                                  ? "a node id, an octant such as x+y-z+, or stop"
+                                  : "a node id or an octant such as x+y-z+";
+    if (p == "stop" && answer.kind == QuestionKind::next_cell) return answer.stops;
+    if (parse_whole(p, &v)) return !answer.stops && v == answer.node;
+    if (p.size() == 6 && p[0] == 'x' && p[2] == 'y' && p[4] == 'z') {
+      int octant = 0;
+      for (int k = 0; k < 3; ++k) {
+        const char sign = p[size_t(2 * k + 1)];
+        if (sign != '+' && sign != '-') return bad(forms);
+        octant |= int(sign == '+') << k;
+      }
+      return !answer.stops && octant == answer.octant;
+    }
+    return bad(forms);
+  }
   switch (answer.kind) {
     case QuestionKind::next_cell: {
       if (p == "stop") return answer.stops;
@@ -598,6 +999,21 @@ bool parse_question_kind(const std::string& name, QuestionKind* kind) {
       return true;
     }
   return false;
+}
+
+std::string question_walk(const QuestionContext& context) {
+  return context.trace ? context.trace->structure.kind : std::string();
+}
+
+const char* question_prompt(QuestionKind kind, const std::string& walk) {
+  if (walk == "octree" && kind == QuestionKind::first_child)
+    return "Which child cell does the walk enter first (its octant, e.g. x+ y- z+, or its node id)?";
+  if (walk == "octree" && kind == QuestionKind::next_cell)
+    return "Which cell does the walk enter next (its octant or node id), or does it stop?";
+  if (walk == "bsp" && kind == QuestionKind::first_child)
+    return "Which child does the walk visit first (below or above the slanted plane), and is the far child "
+           "pushed?";
+  return question_prompt(kind);
 }
 
 const char* question_prompt(QuestionKind kind) {

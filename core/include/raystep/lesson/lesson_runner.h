@@ -23,16 +23,16 @@ struct StepWorld {
   std::string aa;                      // the picture's anti-aliasing spec ("": the scene's)
   std::optional<std::array<int, 2>> pixel;  // the traced pixel
   int ray = 0, step = 0;               // the current ray and event (0 without a trace)
-  int node = -1;                       // the selected kd-tree node, -1: none
+  int node = -1;                       // the selected tree node (tree_nodes.h), -1: none
   std::optional<Answer> answer;        // the step's question answered
   QuestionContext context() const;
 };
 
 class LessonRunner {
  public:
-  // Throws InputError("", 0, "what") when the state cannot be reached: the scene does not load, the pixel lies
-  // outside the picture, the ray or event does not exist, a node option without a kd-tree, the question does
-  // not apply.
+  // Throws InputError("", 0, "what") when the state cannot be reached: the scene does not load, the pixel
+  // lies outside the picture, the ray or event does not exist, a node option without a tree, the question
+  // does not apply.
   StepWorld enter(const LessonState& state, std::optional<QuestionKind> ask = std::nullopt);
 
  private:

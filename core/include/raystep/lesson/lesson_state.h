@@ -22,7 +22,7 @@ struct EventSpec {
   std::string text;  // as written ("12", "cell:3"), for messages and the command line
 };
 
-// The selected kd-tree node: none, by id, or by its L/R path from the root.
+// The selected tree node: none, by id, or by its path from the root (L/R, or octant digits: tree_nodes.h).
 struct NodeSpec {
   enum class By { none, id, path } by = By::none;
   int id = -1;
@@ -44,7 +44,11 @@ struct LessonState {
   NodeSpec node;
   bool follow = false, translucent = false;
   std::optional<double> zoom;   // none: the window's default; 0: fit
-  std::string show = "window";  // the handout's figure: window | 3d | chart | picture
+  std::string show = "window";  // the handout's figure: window | 3d | chart | picture | report
+  // The report windows the step opens and runs on the scene: "aa", "grid-sweep", "bvol" (the kinds of
+  // bounding volumes), comma-separated; "": none. Not carried over: the next step closes them unless it names
+  // them.
+  std::string report;
   // The pixel inspector (an anti-aliased pixel's samples): open or not, the sample whose ray is replayed
   // (none: the ray named by `ray`), the adaptive square stepped to (none: the whole pixel), and the image
   // view's sample pattern over each pixel at 8x zoom and more.

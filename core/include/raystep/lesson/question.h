@@ -21,6 +21,12 @@ const char* question_kind_name(QuestionKind kind);  // "next-cell", ...
 bool parse_question_kind(const std::string& name, QuestionKind* kind);
 // The question as the presenter asks it: "Which cell does the ray enter next?"
 const char* question_prompt(QuestionKind kind);
+// The same in the words of the structure walked (a trace's structure kind: "octree" asks for a child cell by
+// its octant, "bsp" names the slanted plane); other kinds: question_prompt(kind).
+const char* question_prompt(QuestionKind kind, const std::string& walk);
+// The structure a context's walk goes through (its trace's kind, "" without a trace).
+struct QuestionContext;
+std::string question_walk(const QuestionContext& context);
 
 // What a question needs: the step's world. Pointers may be null where a kind does not need them.
 struct QuestionContext {
@@ -52,6 +58,10 @@ struct Answer {
   // subdivide
   bool subdivided = false;
   uint32_t samples = 0;  // the pixel's samples under the settings
+  // The octree (walk "octree"): next-cell and first-child name a cell, node and first_child its id, octant
+  // its place in its parent (bit 0: upper x, bit 1: upper y, bit 2: upper z; -1: unknown).
+  std::string walk;  // "octree", "bsp" where the answer is in that structure's terms; else ""
+  int octant = -1;
   std::string text;  // the answer in a sentence: "cell (3, 4, 2): the ray steps along y."
   std::string why;   // the reason with its numbers (tMax per axis, t* against [t_min, t_max], costs, contrast)
 };
@@ -63,7 +73,8 @@ Answer answer_question(QuestionKind kind, const QuestionContext& context);
 // Whether a typed prediction matches the answer. Accepted forms, case and spaces aside:
 //   next-cell: "i,j,k" or "stop"; dda-axis: "x", "y", "z" or "none"; first-child: "below" or "above" (or the
 //   node id), optionally followed by ",push" / ",no push"; next-pop: a node id or "stop"; sah-plane: "x", "y"
-//   or "z" then optionally ",POSITION" (within 1e-4 of the node's extent) or "leaf"; subdivide: "yes" or "no".
+//   or "z" then optionally ",POSITION" (within 1e-4 of the node's extent) or "leaf"; subdivide: "yes" or
+//   "no". An octree's next-cell and first-child: a node id or an octant "x+y-z+" (next-cell also "stop").
 // Throws InputError("", 0, "what") for a form the kind does not accept.
 bool prediction_matches(const Answer& answer, const std::string& prediction);
 
