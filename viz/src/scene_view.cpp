@@ -234,6 +234,8 @@ struct SceneView::Impl {
   int pickCount = 0, missCount = 0;  // clicks that hit or missed the scene
   bool havePicked = false;
   glm::vec3 picked{0.f};
+  int pickedPrim = -1;              // the primitive under the click (-1: unknown)
+  std::vector<int32_t> cellPrim;  // the scene mesh's cells' primitive ids (a sphere is many cells)
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
@@ -496,7 +498,10 @@ void SceneView::rebuildGeometry() {
                                          : static_cast<const void*>(session_->trace());
   const bool sameMesh = source && source == d.meshSource;
   Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
-  if (!sameMesh) d.prims.clear();
+  if (!sameMesh) {
+    d.prims.clear();
+    d.cellPrim.clear();
+  }
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
     unsigned char rgb[3];
     for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
@@ -518,6 +523,7 @@ void SceneView::rebuildGeometry() {
       }
       vtkIdType before = tris->GetNumberOfCells();
       addPrim(pts, tris, p);
+      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), int32_t(id));
       glm::vec3 diffuse = sd->scene.materials[g.material(id)].diffuse;
       if (sd->scene.materials[g.material(id)].mirror > 0.f) diffuse = glm::vec3(0.55f, 0.6f, 0.7f);  // a mirror reads as metal
       addColor(tris->GetNumberOfCells() - before, glm::max(diffuse, glm::vec3(0.12f)));
@@ -532,6 +538,7 @@ void SceneView::rebuildGeometry() {
       p.radius = tp.radius;
       vtkIdType before = tris->GetNumberOfCells();
       addPrim(pts, tris, p);
+      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), tp.id);
       addColor(tris->GetNumberOfCells() - before, glm::vec3(0.6f));
       d.prims[tp.id] = p;
     }
@@ -711,6 +718,10 @@ bool SceneView::eventFilter(QObject* watched, QEvent* event) {
   return QWidget::eventFilter(watched, event);  // the camera still gets the mouse
 }
 
+int SceneView::pickedPrimitive() const {
+  return d_->havePicked ? d_->pickedPrim : -1;
+}
+
 bool SceneView::pickAt(const QPoint& at) {
   // A click as the mouse makes it: through Qt and VTK's interactor to the click observer.
   QPoint local = d_->widget->mapFrom(window(), at);
@@ -742,6 +753,8 @@ bool SceneView::pickDisplay(int x, int y) {
   d.picker->GetPickPosition(p);
   d.havePicked = true;
   d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
+  const vtkIdType cell = d.picker->GetCellId();
+  d.pickedPrim = size_t(cell) < d.cellPrim.size() ? d.cellPrim[size_t(cell)] : -1;
   Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
   return true;
 }
@@ -1233,6 +1246,7 @@ QJsonObject SceneView::dumpState() const {
                                      {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
                                      {"projected_corners", projectBox(d.selectedLo, d.selectedHi)}};
   if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
+  if (d.havePicked) o["picked_primitive"] = d.pickedPrim;
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
     QJsonObject cn{{"node", n->id},
                    {"depth", n->depth},

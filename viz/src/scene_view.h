@@ -45,6 +45,8 @@ class SceneView : public QWidget {
   // A click on the scene at window position `at` (as a user makes it, without dragging): the point picked on
   // the geometry is reported by pointPicked; false when nothing was hit.
   bool pickAt(const QPoint& at);
+  // The primitive under the last click that hit the scene (-1: none yet, or unknown).
+  int pickedPrimitive() const;
 
  Q_SIGNALS:
   // A click (without dragging) hit the scene at this world point.
