@@ -224,6 +224,8 @@ TEST(TreeInspect, ClickIn3DViewSelectsTheLeafInEveryTree) {
       EXPECT_TRUE(t.nodes[size_t(node)].is_leaf());
       EXPECT_TRUE(
           lists(t.prim_index, t.nodes[size_t(node)].first_prim(), t.nodes[size_t(node)].prim_count()));
+      // Drawn as its convex cell, not its box.
+      EXPECT_GE(st["view"]["selected_node"]["cell_faces"].get<int>(), 4);
       // The point is on the leaf's side of every ancestor's plane (within the pick's rounding).
       for (int32_t k = node; t.info[size_t(k)].parent >= 0; k = t.info[size_t(k)].parent) {
         const int32_t parent = t.info[size_t(k)].parent;

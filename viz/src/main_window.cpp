@@ -501,10 +501,18 @@ void MainWindow::showSahCurve() {
   const KdTree* kd = structure ? structure->kdTree() : nullptr;
   int node = session_->selectedNode();
   if (!kd || node < 0) {
+    // The trees without a curve of their own say why, so that the empty chart does not read as a fault.
+    const bool octree = structure && structure->octree(), wide = structure && structure->wideBvh();
     sahChart_->showMessage(
-        kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
-                "cost curve.")
-           : tr("The SAH inspector shows kd-tree, binary BVH and BSP tree nodes: build one of them."));
+        kd       ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
+                            "cost curve.")
+        : octree ? tr("An octree splits every cell at its centre into eight: there is no plane to choose, so "
+                      "no SAH curve. The tree lists each cell's octants and primitives.")
+        : wide   ? tr("A wide BVH is the binary BVH's tree collapsed into nodes of up to %1 children: its "
+                        "choices are the binary BVH's (open the scene with --accel bvh to see their SAH "
+                        "curves). The tree lists each node's children and primitives.")
+                     .arg(structure->wideBvh()->width())
+               : tr("The SAH inspector shows kd-tree, binary BVH and BSP tree nodes: build one of them."));
     return;
   }
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));

@@ -229,6 +229,7 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkActor> selectedActor;
   int selectedDrawn = -1;
   glm::vec3 selectedLo{0.f}, selectedHi{0.f};
+  int selectedCellFaces = 0;  // a BSP node: its convex cell's faces as drawn (0: its box)
   vtkNew<vtkCellPicker> picker;
   QPoint pressAt;
   int pickCount = 0, missCount = 0;  // clicks that hit or missed the scene
@@ -697,7 +698,29 @@ void SceneView::updateSelected() {
     d.selectedDrawn = n;
     d.selectedLo = b.lo - pad;
     d.selectedHi = b.hi + pad;
-    addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+    d.selectedCellFaces = 0;
+    if (const BspTree* bsp = session_->structure()->bsp()) {
+      // A BSP node is a convex cell, not its bounding box: the root box cut by its ancestors' planes, drawn a
+      // little outside as the box is.
+      const BspTreeData& t = bsp->data();
+      std::vector<uint32_t> path{uint32_t(n)};
+      while (t.info[path.back()].parent >= 0) path.push_back(uint32_t(t.info[path.back()].parent));
+      ConvexCell cell = ConvexCell::box(t.bounds);
+      for (size_t k = path.size() - 1; k > 0 && !cell.empty(); --k) {
+        const BspPlane& plane = t.nodes[path[k]].plane;
+        ConvexCell below, above;
+        cell.split(glm::dvec3(plane.normal), double(plane.offset), &below, &above);
+        cell = path[k - 1] == path[k] + 1 ? below : above;
+      }
+      if (!cell.empty()) {
+        d.selectedCellFaces = int(cell.face_count());
+        addCellEdges(pts, lines, cell, -0.006f);
+      } else {
+        addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+      }
+    } else {
+      addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+    }
   }
   d.selectedData->SetPoints(pts);
   d.selectedData->SetLines(lines);
@@ -1244,7 +1267,8 @@ QJsonObject SceneView::dumpState() const {
     o["selected_node"] = QJsonObject{{"node", d.selectedDrawn},
                                      {"min", QJsonArray{d.selectedLo.x, d.selectedLo.y, d.selectedLo.z}},
                                      {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
-                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)}};
+                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)},
+                                     {"cell_faces", d.selectedCellFaces}};
   if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
   if (d.havePicked) o["picked_primitive"] = d.pickedPrim;
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
