@@ -122,6 +122,10 @@ TEST(TreeInspect, BspSahInspectorShowsTheCandidatesByOrientation) {
   EXPECT_EQ(slurp(csv), slurp(cli));
 #endif
   EXPECT_FALSE(slurp(csv).empty());
+  // The same node by its path (L: below the root's plane).
+  Snap byPath = snap("'" + kTilted + "' --accel bsp --node-path L", "bsp_sah_path", "--screenshot-sah");
+  EXPECT_EQ(byPath.state["sah"]["node"], 1);
+  EXPECT_EQ(byPath.state["tree"]["selected_path"], "L");
 }
 
 // The picker: one group (its directions in shades of the group's colour, each in the legend), one direction

@@ -7,6 +7,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "main_window.h"
+#include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/util/error.h"
@@ -157,14 +158,16 @@ void enterState(MainWindow& w, const LessonState& st) {
     const char* what = st.node.by == NodeSpec::By::id     ? "--node"
                        : st.node.by == NodeSpec::By::path ? "--node-path"
                                                           : "--panel";
-    // The octree and the BSP tree: their tree view and a node by id (no SAH inspector, no path).
+    // The octree, the wide BVH and the BSP tree: their tree view and a node by id (a path: the BSP tree's,
+    // L below its plane and R above).
     const std::unique_ptr<TreeShape> other =
         !kd && !bvh && s->structure() ? treeShapeOf(*s->structure()) : nullptr;
-    if (!kd && !bvh && (!other || st.node.by == NodeSpec::By::path))
+    const BspTree* bsp = s->structure() ? s->structure()->bsp() : nullptr;
+    if (!kd && !bvh && (!other || (st.node.by == NodeSpec::By::path && !bsp)))
       fail(std::string(what) +
            ": no kd-tree or binary BVH (open a scene with --accel kd, kd-median, bvh, "
            "bvh-sweep or bvh-median" +
-           (other ? "; an octree or BSP tree takes --node ID" : "") + ")");
+           (other ? "; an octree or a wide BVH takes --node ID" : "") + ")");
     const size_t count = kd ? kd->data().nodes.size() : bvh ? bvh->data().nodes.size() : other->size();
     const std::string name = kd ? "kd-tree" : bvh ? "BVH" : other->name();
     if (st.node.by == NodeSpec::By::id) {
@@ -175,8 +178,9 @@ void enterState(MainWindow& w, const LessonState& st) {
     }
     if (st.node.by == NodeSpec::By::path) {
       try {
-        node =
-            int(kd ? kd_node_by_path(kd->data(), st.node.path) : bvh_node_by_path(bvh->data(), st.node.path));
+        node = int(kd    ? kd_node_by_path(kd->data(), st.node.path)
+                   : bvh ? bvh_node_by_path(bvh->data(), st.node.path)
+                         : bsp_node_by_path(bsp->data(), st.node.path));
       } catch (const InputError& e) {
         std::string why = e.detail();  // core names the command line's option: "--path 'LRL': ..."
         if (size_t colon = why.find("': "); why.rfind("--path", 0) == 0 && colon != std::string::npos)

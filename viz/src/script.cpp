@@ -242,8 +242,10 @@ void defineOptions(QCommandLineParser& p) {
       "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node), or kd (the "
       "same with no node selected).",
       "NAME");
-  opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
-  opt("node-path", "kd-tree: select the node at this path from the root (L below, R above), e.g. LRL.",
+  opt("node", "Select a tree's node ID (kd-tree, BVH, octree, BSP tree): tree view, 3D view, SAH inspector.",
+      "ID");
+  opt("node-path",
+      "kd-tree, binary BVH, BSP tree: select the node at this path from the root (L below, R above), e.g. LRL.",
       "PATH");
   opt("pick-3d",
       "Click the 3D view at window pixel X,Y (selects the tree's leaf holding the picked point: kd-tree, "
