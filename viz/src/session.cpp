@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "kd_tree_model.h"
 #include "raystep/io/image_io.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/pixel_samples.h"
@@ -11,7 +12,6 @@
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
-#include "kd_tree_model.h"
 
 namespace raystep::viz {
 namespace {
