@@ -90,8 +90,9 @@ QColor bspColor(int direction, bool shades) {
                        : group == 2 ? palette::sahBodyDiagonal
                                     : palette::sahOwnPlane;
   if (!shades || group == 3) return base;
-  const int k = group == 1 ? direction - 3 : direction - 9;
-  return base.darker(100 + 30 * k);
+  // From lighter to darker than the group's colour, never near the chosen plane's black.
+  const int k = group == 1 ? direction - 3 : direction - 9, n = group == 1 ? 6 : 4;
+  return base.lighter(150 - 85 * k / (n - 1));
 }
 
 QString vec(const glm::vec3& v) {
