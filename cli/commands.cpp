@@ -469,6 +469,7 @@ int run_trace(const TraceArgs& a) {
 
 int run_sah(const SahArgs& a) {
   if (a.structure.accel.rfind("bvh", 0) == 0) return run_bvh_sah(a);
+  if (a.structure.accel == "bsp") return run_bsp_sah(a);
   std::string ext = extension(a.output);
   if (ext != ".csv" && ext != ".json") throw InputError(a.output, 0, "the curve is written as .csv or .json");
   check_output_folder(a.output);

@@ -201,6 +201,8 @@ int run_sah(const SahArgs& args);
 // bvh_commands.cpp: `raystep bvh-stats` and `raystep sah --accel bvh...`.
 int run_bvh_stats(const KdStatsArgs& args);
 int run_bvh_sah(const SahArgs& args);
+// bsp_commands.cpp: `raystep sah --accel bsp` (one BSP node's candidates by orientation).
+int run_bsp_sah(const SahArgs& args);
 int run_kdtree_stats(const KdStatsArgs& args);
 int run_compare(const CompareArgs& args);
 int run_grid_sweep_command(const GridSweepArgs& args);

@@ -154,17 +154,23 @@ int main(int argc, char** argv) {
 
   SahArgs sah;
   CLI::App* sah_cmd =
-      app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z)");
+      app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z), or of one "
+                                "BSP node by orientation (13 k-DOP directions and the primitives' own planes)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   sah.structure.accel = "kd";
-  sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median")
+  sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median | bsp")
       ->capture_default_str()
-      ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median"}));
+      ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median", "bsp"}));
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
   auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
   add_bvh_options(sah_cmd, sah.structure);
+  sah_cmd->add_option("--bsp-directions", sah.structure.bsp_directions, "bsp: both | kdop | autopartition")
+      ->capture_default_str();
+  sah_cmd->add_option("--bsp-candidates", sah.structure.bsp_candidates,
+                      "bsp: candidate positions per direction per node (a quarter as many own planes), 1..4096")
+      ->capture_default_str();
   sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
 
   KdStatsArgs kd_stats;

@@ -1,11 +1,15 @@
 // The general BSP tree on the command line: `--accel bsp` in cast (the same hits as brute force under its
 // options), trace (a version 4 trace with planes that trace-info reads back) and compare (nodes and depth
 // side by side with the kd-tree, no disagreement on the slanted scenes); bad BSP options exit 2 with one
-// line.
+// line. `raystep sah --accel bsp` writes a node's candidates by orientation, the chosen row the cheapest, the
+// plane the one a trace of the same tree names; bad ids exit 2 with one line.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_test_util.h"
 
@@ -82,6 +86,89 @@ TEST_F(BspCli, BadOptionsExitTwoWithOneLine) {
   expect_error(run("render " + kTilted + " --accel bsp --ti -1" + png), "bsp: t_i");
   expect_error(run("render " + kTilted + " --accel bsp --leaf-size 0" + png), "bsp: leaf_size");
   EXPECT_FALSE(fs::exists(path("a.png")));
+}
+
+TEST_F(BspCli, SahWritesTheCandidatesByOrientation) {
+  Outcome r = run("sah " + kRotated + " --accel bsp --node 0 -o " + path("c.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = slurp(path("c.csv"));
+  EXPECT_EQ(
+      text.rfind("direction,name,source,prim,normal_x,normal_y,normal_z,offset,cell_min,cell_max,n_below,"
+                 "n_above,area_below,area_above,area_node,cost,bounded,chosen\n",
+                 0),
+      0u);
+  std::vector<CsvRow> rows = read_csv(path("c.csv"));
+  ASSERT_GT(rows.size(), 13u);
+  std::set<int> directions;
+  int chosen = -1;
+  double min_cost = 1e300;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const int d = std::stoi(rows[i]["direction"]);
+    directions.insert(d);
+    EXPECT_EQ(rows[i]["name"] == "own plane", d == -1);
+    EXPECT_EQ(rows[i]["source"] == "primitive", d == -1);
+    EXPECT_EQ(rows[i]["prim"] == "-1", d != -1);
+    EXPECT_LT(std::stod(rows[i]["cell_min"]), std::stod(rows[i]["offset"]));
+    EXPECT_LT(std::stod(rows[i]["offset"]), std::stod(rows[i]["cell_max"]));
+    min_cost = std::min(min_cost, std::stod(rows[i]["cost"]));
+    if (rows[i]["chosen"] == "1") {
+      EXPECT_EQ(chosen, -1) << "two chosen rows";
+      chosen = int(i);
+    }
+  }
+  EXPECT_EQ(directions.size(), 14u) << "13 k-DOP directions and the own planes (--bsp-directions both)";
+  ASSERT_GE(chosen, 0);
+  EXPECT_EQ(std::stod(rows[size_t(chosen)]["cost"]), min_cost) << "the chosen row is the cheapest";
+  EXPECT_NE(r.out.find("decision: split by the plane"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("<- chosen"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x+y+z"), std::string::npos) << r.out;
+  // The options reach the build: k-DOP directions alone give no own plane, autopartition only own planes.
+  ASSERT_EQ(run("sah " + kRotated + " --accel bsp --bsp-directions kdop -o " + path("k.csv")).code, 0);
+  for (CsvRow& row : read_csv(path("k.csv"))) EXPECT_NE(row["direction"], "-1");
+  ASSERT_EQ(run("sah " + kRotated + " --accel bsp --bsp-directions autopartition -o " + path("a.csv")).code,
+            0);
+  for (CsvRow& row : read_csv(path("a.csv"))) EXPECT_EQ(row["direction"], "-1");
+}
+
+TEST_F(BspCli, SahNamesTheTracesPlanes) {
+  // The planes of the inner nodes a traced ray meets are the chosen planes of `sah` for those ids.
+  ASSERT_EQ(run("trace " + kTilted + " --accel bsp --pixel 160,120 -o " + path("t.json")).code, 0);
+  nlohmann::json trace = nlohmann::json::parse(slurp(path("t.json")));
+  int checked = 0;
+  for (const auto& node : trace["geometry"]["nodes"]) {
+    if (node["leaf"].get<bool>() || checked == 3) continue;
+    const std::string id = std::to_string(node["id"].get<int>());
+    Outcome r = run("sah " + kTilted + " --accel bsp --node " + id + " -o " + path("n.json"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    nlohmann::json curve = nlohmann::json::parse(slurp(path("n.json")));
+    ASSERT_EQ(curve["decision"], "split") << id;
+    EXPECT_EQ(curve["split"]["normal"], node["normal"]) << id;
+    EXPECT_EQ(curve["split"]["offset"], node["offset"]) << id;
+    EXPECT_EQ(curve["depth"], node["depth"]) << id;
+    int marked = 0;
+    for (const auto& c : curve["candidates"]) marked += c["chosen"].get<bool>();
+    EXPECT_EQ(marked, 1) << id;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
+  // --path L is node 1 (below the root's plane follows its parent).
+  ASSERT_EQ(run("sah " + kTilted + " --accel bsp --path L -o " + path("l.csv")).code, 0);
+  ASSERT_EQ(run("sah " + kTilted + " --accel bsp --node 1 -o " + path("1.csv")).code, 0);
+  EXPECT_EQ(slurp(path("l.csv")), slurp(path("1.csv")));
+}
+
+TEST_F(BspCli, SahBadIdsExitTwoWithOneLine) {
+  expect_error(run("sah " + kRotated + " --accel bsp --node 100000 -o " + path("c.csv")), "--node 100000",
+               path("c.csv"));
+  expect_error(run("sah " + kRotated + " --accel bsp --path LXR -o " + path("c.csv")), "--path",
+               path("c.csv"));
+  expect_error(
+      run("sah " + kRotated + " --accel bsp --path " + std::string(70, 'R') + " -o " + path("c.csv")),
+      "--path", path("c.csv"));
+  expect_error(run("sah " + kRotated + " --accel bsp --bsp-directions sideways -o " + path("c.csv")),
+               "--bsp-directions", path("c.csv"));
+  expect_error(run("sah " + kRotated + " --accel bsp --node 0 -o " + path("c.txt")), path("c.txt"),
+               path("c.txt"));
 }
 
 }  // namespace

@@ -125,6 +125,7 @@ class OctreeShape final : public TreeShape {
   }
   QString whatHeader() const override { return QObject::tr("cell"); }
   float cost(uint32_t n) const override { return float(o_.info[n].prims); }  // no SAH: the primitive count
+  QString costHeader() const override { return QObject::tr("prims"); }
   Bounds3 box(uint32_t n) const override { return o_.info[n].box; }
   std::string path(uint32_t n) const override {
     std::string p;
@@ -173,6 +174,55 @@ class BspShape final : public TreeShape {
   const BspTreeData& b_;
 };
 
+// The wide BVH (bvh4, bvh8) as traces name its nodes (WideBvh::describe): up to 4 or 8 children each, with
+// their own tight boxes (which may overlap); no SAH per node (collapsed from the binary tree), so the last
+// column counts the primitives below.
+class WideBvhShape final : public TreeShape {
+ public:
+  WideBvhShape(const WideBvhView& v, const std::vector<uint32_t>& prims, int width)
+      : v_(v), prims_(prims), width_(width) {}
+  const char* name() const override { return width_ == 4 ? "4-wide BVH" : "8-wide BVH"; }
+  size_t size() const override { return v_.nodes.size(); }
+  int32_t parent(uint32_t n) const override { return v_.nodes[n].parent; }
+  int32_t depth(uint32_t n) const override { return v_.nodes[n].depth; }
+  bool leaf(uint32_t n) const override { return v_.nodes[n].leaf; }
+  uint32_t child(uint32_t n, int row) const override { return uint32_t(v_.nodes[n].children[size_t(row)]); }
+  int children(uint32_t n) const override { return leaf(n) ? 0 : int(v_.nodes[n].children.size()); }
+  int row(uint32_t n) const override {
+    int32_t p = parent(n);
+    if (p < 0) return 0;
+    const std::vector<int32_t>& c = v_.nodes[size_t(p)].children;
+    return int(std::find(c.begin(), c.end(), int32_t(n)) - c.begin());
+  }
+  QString side(uint32_t n) const override {
+    int32_t p = parent(n);
+    return p < 0 ? QObject::tr("root")
+                 : QObject::tr("child %1/%2").arg(row(n) + 1).arg(v_.nodes[size_t(p)].children.size());
+  }
+  QString what(uint32_t id) const override {
+    const WideBvhView::Node& n = v_.nodes[id];
+    if (n.leaf)
+      return n.prims.empty() ? QObject::tr("leaf, empty")
+                             : QObject::tr("leaf, %n primitive(s)", "", int(n.prims.size()));
+    return QObject::tr("%1 children, %2 prims").arg(n.children.size()).arg(prims_[id]);
+  }
+  QString whatHeader() const override { return QObject::tr("children or leaf"); }
+  float cost(uint32_t n) const override { return float(prims_[n]); }
+  QString costHeader() const override { return QObject::tr("prims"); }
+  Bounds3 box(uint32_t n) const override { return v_.nodes[n].box; }
+  std::string path(uint32_t n) const override {  // child numbers from the root, e.g. "3.1.7"
+    std::string p;
+    for (int32_t k = int32_t(n); parent(uint32_t(k)) >= 0; k = parent(uint32_t(k)))
+      p.insert(0, std::to_string(row(uint32_t(k)) + 1) + (p.empty() ? "" : "."));
+    return p;
+  }
+
+ private:
+  const WideBvhView& v_;
+  const std::vector<uint32_t>& prims_;
+  int width_;
+};
+
 }  // namespace
 
 std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
@@ -183,6 +233,8 @@ std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s) {
   if (const Octree* o = s.octree(); o && !o->data().nodes.empty())
     return std::make_unique<OctreeShape>(o->data());
   if (const BspTree* b = s.bsp(); b && !b->data().nodes.empty()) return std::make_unique<BspShape>(b->data());
+  if (const WideBvh* w = s.wideBvh(); w && s.wideView && !s.wideView->nodes.empty())
+    return std::make_unique<WideBvhShape>(*s.wideView, s.wideViewPrims, w->width());
   return nullptr;
 }
 
@@ -277,7 +329,7 @@ QVariant KdTreeModel::headerData(int section, Qt::Orientation orientation, int r
     case WhatColumn:
       return tree_ ? tree_->whatHeader() : tr("split or leaf");
     case CostColumn:
-      return tr("cost");
+      return tree_ ? tree_->costHeader() : tr("cost");
   }
   return {};
 }

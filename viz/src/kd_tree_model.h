@@ -54,11 +54,12 @@ class TreeShape {
   virtual QString what(uint32_t node) const = 0;             // "split x = 0.5", "leaf, 3 primitives"
   virtual QString whatHeader() const = 0;
   virtual float cost(uint32_t node) const = 0;
+  virtual QString costHeader() const { return QObject::tr("cost"); }  // the octree, a wide BVH: "prims"
   virtual Bounds3 box(uint32_t node) const = 0;
   virtual std::string path(uint32_t node) const = 0;
 };
-// The adapter for a structure's tree: a kd-tree, a binary BVH, an octree, a general BSP tree, or null (a
-// grid, a wide BVH).
+// The adapter for a structure's tree: a kd-tree, a binary BVH, a wide BVH (up to 4 or 8 children a node), an
+// octree, a general BSP tree, or null (a grid).
 std::unique_ptr<TreeShape> treeShapeOf(const StructureData& s);
 
 class KdTreeModel : public QAbstractItemModel {

@@ -10,6 +10,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "main_window.h"
+#include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/tree_nodes.h"
@@ -190,7 +191,8 @@ void enterState(MainWindow& w, const LessonState& st) {
     const char* what = st.node.by == NodeSpec::By::id     ? "--node"
                        : st.node.by == NodeSpec::By::path ? "--node-path"
                                                           : "--panel";
-    // The octree and the BSP tree: their tree view and a node by id (no SAH inspector, no path).
+    // The octree, the wide BVH and the BSP tree: their tree view and a node by id (a path: the BSP tree's,
+    // L below its plane and R above).
     const std::unique_ptr<TreeShape> other =
         !kd && !bvh && s->structure() ? treeShapeOf(*s->structure()) : nullptr;
     if (!kd && !bvh && !other)

@@ -34,6 +34,7 @@
 #include "lesson_pane.h"
 #include "pixel_inspector.h"
 #include "presenter.h"
+#include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
@@ -47,6 +48,7 @@
 #include "state_panel.h"
 #include "structure_panel.h"
 #include "timeline.h"
+#include "tree_pick.h"
 #include "tree_view.h"
 
 namespace raystep::viz {
@@ -151,33 +153,44 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   });
   connect(treeView_, &TreeView::nodeChosen, session_, &Session::setSelectedNode);
   connect(sceneView_, &SceneView::pointPicked, this, [this](float x, float y, float z) {
-    const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
-    if (!kd) return;
-    int leaf = kdLeafContaining(kd->data(), glm::vec3(x, y, z));
+    // Any tree (kd-tree, binary BVH, octree, BSP tree): the leaf holding the picked point of the picked
+    // primitive, in the tree view, the 3D view and the SAH inspector.
+    const StructureData* structure = session_->structure();
+    if (!structure) return;
+    int leaf = leafAtPick(*structure, glm::vec3(x, y, z), sceneView_->pickedPrimitive());
     if (leaf < 0) return;
     showKdPanel();
     session_->setSelectedNode(leaf);
   });
   connect(session_, &Session::selectedNodeChanged, this, &MainWindow::showSahCurve);
   connect(session_, &Session::structureChanged, this, [this] {
-    // A tree (kd-tree or binary BVH) has the tree view and the SAH inspector.
+    // A tree (kd-tree, BVH, octree, BSP tree) has the tree view; most have the SAH inspector too.
     const bool kd = session_->structure() && treeShapeOf(*session_->structure());
     const bool isBvh = session_->structure() && session_->structure()->bvh();
     const bool isOctree = session_->structure() && session_->structure()->octree();
     const bool isBsp = session_->structure() && session_->structure()->bsp();
-    // The octree and the BSP tree: their nodes are browsable; the SAH inspector is the kd-tree's and BVH's.
-    kdDock_->setWindowTitle(isBvh      ? tr("BVH: nodes and SAH inspector")
-                            : isOctree ? tr("octree: cells (no SAH inspector: centre splits)")
-                            : isBsp    ? tr("BSP tree: nodes (no SAH inspector for its planes yet)")
-                                       : tr("kd-tree: nodes and SAH inspector"));
+    const bool isWide = session_->structure() && session_->structure()->wideBvh();
+    // The octree and the wide BVH: their nodes are browsable; the SAH inspector is the kd-tree's, the binary
+    // BVH's and the BSP tree's (its candidate planes by orientation).
+    kdDock_->setWindowTitle(
+        isBvh    ? tr("BVH: nodes and SAH inspector")
+        : isWide ? tr("wide BVH: nodes, up to %1 children each (collapsed from the binary "
+                      "BVH: no SAH inspector)")
+                       .arg(session_->structure()->wideBvh()->width())
+        : isOctree ? tr("octree: cells (no SAH inspector: centre splits)")
+        : isBsp    ? tr("BSP tree: nodes and SAH inspector (candidate planes by orientation)")
+                   : tr("kd-tree: nodes and SAH inspector"));
     // The dock takes a third of the height: opened by itself only where the walk's views keep their room.
     if (kd && height() >= 900)
       showKdPanel();
     else if (kd && !kdDock_->isVisible())
       statusBar()->showMessage(
           isBvh ? tr("BVH built: View > tree and SAH inspector shows its nodes and binned SAH curves")
-          : isOctree || isBsp
-              ? tr("Built: View > tree shows its nodes")
+          : isBsp
+              ? tr("BSP tree built: View > tree and SAH inspector, or a click on the scene in the 3D view, "
+                   "shows its nodes and their candidate planes by orientation")
+          : isOctree || isWide
+              ? tr("Built: View > tree, or a click on the scene in the 3D view, shows its nodes")
               : tr("kd-tree built: View > kd-tree and SAH inspector, or a click on the scene in the "
                    "3D view, shows its nodes and SAH curves"));
     else if (!kd)
@@ -227,13 +240,15 @@ void MainWindow::buildMenus() {
       showError(tr("Cannot write %1").arg(path));
   });
   file->addAction(tr("Export &SAH curve (CSV)..."), this, [this] {
-    if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
-    QString name = QString("sah-node%1.csv").arg(sahChart_->curve()->node);
+    if (!sahChart_->curve() && !sahChart_->bspCurve())
+      return showError(tr("No SAH curve: select a kd-tree, BVH or BSP node first."));
+    QString name = QString("sah-node%1.csv").arg(session_->selectedNode());
     QString path = QFileDialog::getSaveFileName(this, tr("Export SAH curve"), name, tr("CSV (*.csv)"));
     if (!path.isEmpty()) exportSahCsv(path);
   });
   file->addAction(tr("Screenshot of the SAH &chart..."), this, [this] {
-    if (!sahChart_->curve()) return showError(tr("No SAH curve: select a kd-tree node first."));
+    if (!sahChart_->curve() && !sahChart_->bspCurve())
+      return showError(tr("No SAH curve: select a kd-tree, BVH or BSP node first."));
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-sah.png", tr("PNG (*.png)"));
     if (!path.isEmpty() && !sahChart_->saveChart(path)) showError(tr("Cannot write %1").arg(path));
   });
@@ -469,16 +484,58 @@ void MainWindow::showBvhSahCurve() {
       });
 }
 
+void MainWindow::showBspSahCurve() {
+  auto structure = session_->structureShared();
+  const BspTree* bsp = structure->bsp();
+  int node = session_->selectedNode();
+  if (node < 0) {
+    sahChart_->showMessage(
+        tr("Select a node in the tree (or click the scene in the 3D view) to see its "
+           "candidate planes by orientation."));
+    return;
+  }
+  sahChart_->showMessage(tr("Recording the SAH candidates of node %1...").arg(node));
+  BspOptions options = bsp->options();
+  std::unique_ptr<TreeShape> shape = treeShapeOf(*structure);
+  QString path = QString::fromStdString(shape->path(uint32_t(node)));
+  // The builder runs again up to this node with a listener (the same code that built the tree).
+  runTask("sah", tr("Recording the SAH candidates of node %1...").arg(node),
+          [this, structure, options, node, path] {
+            auto t0 = std::chrono::steady_clock::now();
+            auto curve = std::make_shared<const BspSahCurve>(
+                record_bsp_sah_curve(structure->scene->scene.geometry, options, uint32_t(node)));
+            double ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            return std::function<void()>([this, structure, options, node, path, curve, ms] {
+              if (structure != session_->structureShared() || node != session_->selectedNode())
+                return;  // stale
+              sahChart_->setBspCurve(curve, path, options.t_i, options.t_t);
+              statusBar()->showMessage(
+                  tr("SAH candidates of BSP node %1: %2 planes").arg(node).arg(curve->candidates.size()) +
+                  took(tr(", recorded"), ms));
+            });
+          });
+}
+
 void MainWindow::showSahCurve() {
   auto structure = session_->structureShared();
   if (structure && structure->bvh()) return showBvhSahCurve();
+  if (structure && structure->bsp()) return showBspSahCurve();
   const KdTree* kd = structure ? structure->kdTree() : nullptr;
   int node = session_->selectedNode();
   if (!kd || node < 0) {
+    // The trees without a curve of their own say why, so that the empty chart does not read as a fault.
+    const bool octree = structure && structure->octree(), wide = structure && structure->wideBvh();
     sahChart_->showMessage(
-        kd ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
-                "cost curve.")
-           : tr("The SAH inspector shows kd-tree and binary BVH nodes: build a kd-tree or a BVH."));
+        kd       ? tr("Select a node in the tree (or click the scene in the 3D view) to see its SAH "
+                            "cost curve.")
+        : octree ? tr("An octree splits every cell at its centre into eight: there is no plane to choose, so "
+                      "no SAH curve. The tree lists each cell's octants and primitives.")
+        : wide   ? tr("A wide BVH is the binary BVH's tree collapsed into nodes of up to %1 children: its "
+                        "choices are the binary BVH's (open the scene with --accel bvh to see their SAH "
+                        "curves). The tree lists each node's children and primitives.")
+                     .arg(structure->wideBvh()->width())
+               : tr("The SAH inspector shows kd-tree, binary BVH and BSP tree nodes: build one of them."));
     return;
   }
   sahChart_->showMessage(tr("Recording the SAH curve of node %1...").arg(node));
@@ -503,8 +560,12 @@ void MainWindow::showSahCurve() {
 
 void MainWindow::exportSahCsv(const QString& path) {
   try {
-    if (!sahChart_->curve()) throw InputError("", 0, "no SAH curve: select a kd-tree or BVH node first");
-    if (sahChart_->bvhCurve())
+    if (!sahChart_->curve() && !sahChart_->bspCurve())
+      throw InputError("", 0, "no SAH curve: select a kd-tree, BVH or BSP node first");
+    if (sahChart_->bspCurve())
+      write_bsp_sah_csv(path.toStdString(),
+                        *sahChart_->bspCurve());  // the columns of raystep sah --accel bsp
+    else if (sahChart_->bvhCurve())
       write_bvh_sah_csv(path.toStdString(),
                         *sahChart_->bvhCurve());  // the columns of raystep sah --accel bvh
     else

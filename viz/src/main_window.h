@@ -159,6 +159,7 @@ class MainWindow : public QMainWindow {
   void buildMenus();
   void showSahCurve();  // records the selected node's curve off the GUI thread
   void showBvhSahCurve();    // the same for a BVH node (its binned curve)
+  void showBspSahCurve();    // the same for a BSP node (its candidate planes by orientation)
   void drawPixelBackdrop();  // the scene inside the traced pixel, for the inspector (when not drawn yet)
 
   Session* session_;

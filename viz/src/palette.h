@@ -40,5 +40,9 @@ inline const QColor sahY{30, 160, 50};           // candidates on y: green
 inline const QColor sahZ{40, 80, 230};           // candidates on z: blue
 inline const QColor sahLeafCost{110, 110, 110};  // N * t_i, the cost of not splitting: grey
 inline const QColor sahChosen{0, 0, 0};          // the chosen split plane: black
+// A general BSP node's candidates by orientation (the axes keep sahX, sahY, sahZ: the kd-tree's planes).
+inline const QColor sahFaceDiagonal{235, 140, 0};  // the 6 face diagonals (x+y, x-y, ...): orange
+inline const QColor sahBodyDiagonal{150, 60, 210};  // the 4 body diagonals (x+y+z, ...): violet
+inline const QColor sahOwnPlane{0, 150, 150};       // the primitives' own planes (autopartition): teal
 
 }  // namespace raystep::viz::palette

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include <QComboBox>
 #include <QHBoxLayout>
 #include <QJsonArray>
 #include <QLabel>
 #include <QMouseEvent>
 #include <QSaveFile>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QVBoxLayout>
 
 #include <QVTKOpenGLNativeWidget.h>
@@ -29,6 +32,7 @@
 
 #include "chart_util.h"
 #include "palette.h"
+#include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "replay.h"
@@ -61,6 +65,58 @@ QString fmt(double v) {
   return QString::number(std::abs(v) < 1e-30 ? 0.0 : v, 'g', 5);
 }
 
+// The x axis: across the node's box (kd-tree, BVH), or across the cell along each plane's normal (BSP).
+void bottomTitle(vtkChartXY* chart, bool bsp) {
+  chart->GetAxis(vtkAxis::BOTTOM)
+      ->SetTitle(
+          bsp ? "plane position across the cell along its normal (0 = the cell's lowest point, 1 = its "
+                "highest)"
+              : "split position across the node (0 = box min, 1 = box max)");
+}
+
+// A BSP candidate's orientation group: 0 the axes, 1 the face diagonals, 2 the body diagonals, 3 own planes.
+int bspGroup(int direction) {
+  return direction < 0 ? 3 : direction < 3 ? 0 : direction < 9 ? 1 : 2;
+}
+const char* const kBspGroupNames[4] = {"axes", "face diagonals", "body diagonals", "own planes"};
+const char* const kBspGroupOne[4] = {"axis", "face diagonal", "body diagonal", "own plane"};
+
+// The series' colour: the axes as the kd-tree's x, y, z; the other groups one hue, each direction of a group
+// a shade of it when the group is shown alone.
+QColor bspColor(int direction, bool shades) {
+  const int group = bspGroup(direction);
+  if (group == 0) return axisColor(direction);
+  const QColor& base = group == 1   ? palette::sahFaceDiagonal
+                       : group == 2 ? palette::sahBodyDiagonal
+                                    : palette::sahOwnPlane;
+  if (!shades || group == 3) return base;
+  // From lighter to darker than the group's colour, never near the chosen plane's black.
+  const int k = group == 1 ? direction - 3 : direction - 9, n = group == 1 ? 6 : 4;
+  return base.lighter(150 - 85 * k / (n - 1));
+}
+
+QString vec(const glm::vec3& v) {
+  return QString("(%1, %2, %3)").arg(fmt(v.x), fmt(v.y), fmt(v.z));
+}
+
+QString bspLeafReasonText(BspLeafReason r) {
+  switch (r) {
+    case BspLeafReason::few_primitives:
+      return QObject::tr("N <= leaf size: no search");
+    case BspLeafReason::max_depth:
+      return QObject::tr("the depth limit: no search");
+    case BspLeafReason::no_area:
+      return QObject::tr("the cell has no area");
+    case BspLeafReason::no_cheaper_split:
+      return QObject::tr("no plane costs less than N t_i");
+    case BspLeafReason::separates_nothing:
+      return QObject::tr("the cheapest plane would leave every primitive on both sides");
+    case BspLeafReason::budget:
+      return QObject::tr("the reference budget is spent: the cheapest plane may cost less than N t_i");
+  }
+  return {};
+}
+
 QString leafReasonText(LeafReason r) {
   switch (r) {
     case LeafReason::few_primitives:
@@ -85,6 +141,11 @@ struct SahChart::Impl {
   vtkNew<vtkContextView> view;
   vtkNew<vtkChartXY> chart;
   vtkSmartPointer<vtkTable> axisTable[3];  // the candidates per axis, as plotted
+  // BSP: the candidates per direction (0..12, 13 the own planes) as plotted (null: none, or not shown), and
+  // the series drawn (label, colour, points) for the state dump.
+  vtkSmartPointer<vtkTable> bspTable[kBspKdopDirections + 1];
+  QJsonArray bspSeries;
+  double bspChosenX = -1.0;
   QString message;
   float scale = 1.f;
 };
@@ -92,13 +153,41 @@ struct SahChart::Impl {
 SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
+  auto* column = new QVBoxLayout;
+  column->setContentsMargins(0, 0, 0, 0);
+  // A BSP node's candidates come in 14 orientations: the picker shows them all (by group) or a few.
+  orientation_ = new QComboBox;
+  orientation_->setObjectName("bspOrientation");
+  orientation_->setToolTip(tr("Which candidate planes the chart shows, by orientation"));
+  orientation_->addItem(tr("all orientations"), QStringLiteral("all"));
+  orientation_->addItem(tr("axes x, y, z (the kd-tree's)"), QStringLiteral("axes"));
+  orientation_->addItem(tr("face diagonals (6)"), QStringLiteral("face"));
+  orientation_->addItem(tr("body diagonals (4)"), QStringLiteral("body"));
+  orientation_->addItem(tr("own planes (autopartition)"), QStringLiteral("own"));
+  for (int i = 0; i < kBspKdopDirections; ++i)
+    orientation_->addItem(tr("direction %1").arg(bsp_direction_name(i)), QString(bsp_direction_name(i)));
+  orientation_->setFixedWidth(230);
+  orientation_->hide();
+  connect(orientation_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] {
+    if (bspCurve_) drawBspCurve();
+  });
+  column->addWidget(orientation_);
   text_ = new QLabel;
   text_->setObjectName("sahText");
   text_->setWordWrap(true);
   text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   text_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
   text_->setFixedWidth(230);
-  layout->addWidget(text_);
+  // Scrolled when the dock is short (a BSP node's text is longer than a kd node's).
+  auto* scroll = new QScrollArea;
+  scroll->setWidget(text_);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll->setFixedWidth(230 + scroll->verticalScrollBar()->sizeHint().width());
+  scroll_ = scroll;
+  column->addWidget(scroll, 1);
+  layout->addLayout(column);
 
   Impl& d = *d_;
   d.widget = new QVTKOpenGLNativeWidget(this);
@@ -180,6 +269,7 @@ void SahChart::setConceal(bool on, const QString& builder) {
   if (on == conceal_ && builder == concealBuilder_) return;
   conceal_ = on;
   concealBuilder_ = builder;
+  if (bspCurve_) drawBspCurve();
   if (curve_) setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
 }
 
@@ -193,7 +283,11 @@ void SahChart::setScale(double scale) {
   }
   d.chart->GetTitleProperties()->SetFontSize(int(std::lround(12 * scale)));
   text_->setFixedWidth(int(230 * scale));
-  if (curve_) {
+  scroll_->setFixedWidth(int(230 * scale) + scroll_->verticalScrollBar()->sizeHint().width());
+  orientation_->setFixedWidth(int(230 * scale));
+  if (bspCurve_) {
+    drawBspCurve();
+  } else if (curve_) {
     QString path = lastPath_;
     setCurve(curve_, path, lastTi_, lastTt_, lastBonus_);
   } else {
@@ -204,6 +298,10 @@ void SahChart::setScale(double scale) {
 void SahChart::showMessage(const QString& text) {
   curve_.reset();
   bvhCurve_.reset();
+  bspCurve_.reset();
+  orientation_->hide();
+  for (auto& t : d_->bspTable) t = nullptr;
+  d_->bspSeries = QJsonArray();
   d_->message = text;
   d_->chart->ClearPlots();
   for (auto& t : d_->axisTable) t = nullptr;
@@ -217,6 +315,11 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
   Impl& d = *d_;
   curve_ = std::move(curve);
   bvhCurve_.reset();
+  bspCurve_.reset();
+  orientation_->hide();
+  for (auto& t : d.bspTable) t = nullptr;
+  d.bspSeries = QJsonArray();
+  bottomTitle(d.chart, false);
   lastPath_ = path;
   lastTi_ = t_i;
   lastTt_ = t_t;
@@ -415,6 +518,205 @@ void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QStri
   renderNow();
 }
 
+void SahChart::setBspCurve(std::shared_ptr<const BspSahCurve> curve, const QString& path, float t_i,
+                           float t_t) {
+  curve_.reset();
+  bvhCurve_.reset();
+  bspCurve_ = std::move(curve);
+  lastPath_ = path;
+  lastTi_ = t_i;
+  lastTt_ = t_t;
+  lastBonus_ = 0.f;
+  d_->message.clear();
+  for (auto& t : d_->axisTable) t = nullptr;
+  orientation_->show();
+  drawBspCurve();
+}
+
+bool SahChart::setBspOrientation(const QString& name) {
+  const int i = orientation_->findData(name);
+  if (i < 0) return false;
+  orientation_->setCurrentIndex(i);  // redraws a BSP curve
+  return true;
+}
+
+void SahChart::drawBspCurve() {
+  Impl& d = *d_;
+  const BspSahCurve& c = *bspCurve_;
+  d.chart->ClearPlots();
+  for (auto& t : d.bspTable) t = nullptr;
+  d.bspSeries = QJsonArray();
+  d.bspChosenX = -1.0;
+  bottomTitle(d.chart, true);
+  const QString filter = orientation_->currentData().toString();
+  const bool all = filter == "all";
+  auto shown = [&](int direction) {
+    const int g = bspGroup(direction);
+    return all || (filter == "axes" && g == 0) || (filter == "face" && g == 1) ||
+           (filter == "body" && g == 2) || (filter == "own" && g == 3) ||
+           filter == bsp_direction_name(direction);
+  };
+  auto across = [](const BspCandidate& k) {
+    const double w = k.cell_max - k.cell_min;
+    return w > 0.0 ? (double(k.plane.offset) - k.cell_min) / w : 0.5;
+  };
+
+  // The candidates per direction (13: the own planes), by position across the cell.
+  std::vector<const BspCandidate*> per[kBspKdopDirections + 1];
+  for (const BspCandidate& k : c.candidates)
+    per[k.direction < 0 ? kBspKdopDirections : k.direction].push_back(&k);
+  int groupCount[4] = {0, 0, 0, 0};
+  for (int i = 0; i <= kBspKdopDirections; ++i)
+    groupCount[bspGroup(i < kBspKdopDirections ? i : -1)] += int(per[i].size());
+  // The chosen candidate: a black disc drawn first, so that its own series' marker shows inside it.
+  const bool chosenKnown = !c.leaf && c.chosen >= 0 && size_t(c.chosen) < c.candidates.size();
+  const BspCandidate* chosen = chosenKnown ? &c.candidates[size_t(c.chosen)] : nullptr;
+  if (chosen && !conceal_ && shown(chosen->direction)) {
+    auto mark = makeTable("position", "chosen cost");
+    addRow(mark, across(*chosen), chosen->cost);
+    vtkPlot* m = d.chart->AddPlot(vtkChart::POINTS);
+    m->SetInputData(mark, 0, 1);
+    m->SetColor(0, 0, 0, 255);
+    m->SetLegendVisibility(false);
+    if (auto* points = vtkPlotPoints::SafeDownCast(m)) {
+      points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+      points->SetMarkerSize(15.f * d.scale);
+    }
+  }
+  double lo = c.leaf_cost, hi = c.leaf_cost;
+  bool groupLabelled[4] = {false, false, false, false};
+  for (int i = 0; i <= kBspKdopDirections; ++i) {
+    const int direction = i < kBspKdopDirections ? i : -1;
+    if (per[i].empty() || !shown(direction)) continue;
+    std::stable_sort(per[i].begin(), per[i].end(),
+                     [&](const BspCandidate* a, const BspCandidate* b) { return across(*a) < across(*b); });
+    d.bspTable[i] = makeTable("position", "cost");
+    for (const BspCandidate* k : per[i]) {
+      addRow(d.bspTable[i], across(*k), k->cost);
+      lo = std::min(lo, k->cost);
+      hi = std::max(hi, k->cost);
+    }
+    // All orientations: one legend entry per group (the axes each their own, as in the kd-tree's chart);
+    // a group or a direction alone: one per direction.
+    const int g = bspGroup(direction);
+    const QColor color = bspColor(direction, !all);
+    std::string label = bsp_direction_name(direction);
+    if (all && g != 0) label = std::string(kBspGroupNames[g]);
+    label += " (" + std::to_string(all && g != 0 ? groupCount[g] : int(per[i].size())) + ")";
+    const bool legend = !(all && g != 0 && groupLabelled[g]);
+    groupLabelled[g] = true;
+    vtkPlot* p;
+    if (direction < 0) {  // each own plane has its own normal: points, not a curve
+      p = d.chart->AddPlot(vtkChart::POINTS);
+      p->SetInputData(d.bspTable[i], 0, 1);
+      p->SetColor((unsigned char)color.red(), (unsigned char)color.green(), (unsigned char)color.blue(), 255);
+      p->SetWidth(2.f * d.scale);
+      p->SetLabel(label);
+      if (auto* points = vtkPlotPoints::SafeDownCast(p)) {
+        points->SetMarkerStyle(vtkPlotPoints::DIAMOND);
+        points->SetMarkerSize(9.f * d.scale);
+      }
+    } else {
+      p = addLine(d.chart, d.bspTable[i], color, (g == 0 ? 2.f : 1.5f) * d.scale, label);
+      if (auto* points = vtkPlotPoints::SafeDownCast(p)) {
+        points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
+        points->SetMarkerSize((per[i].size() == 1 ? 8.f : 4.f) * d.scale);
+      }
+    }
+    p->SetLegendVisibility(legend);
+    d.bspSeries.append(QJsonObject{{"direction", direction},
+                                   {"name", bsp_direction_name(direction)},
+                                   {"label", QString::fromStdString(label)},
+                                   {"legend", legend},
+                                   {"color", jsonColor(color)},
+                                   {"points", int(per[i].size())}});
+  }
+  auto leaf = makeTable("position", "leaf cost");
+  addRow(leaf, 0.0, c.leaf_cost);
+  addRow(leaf, 1.0, c.leaf_cost);
+  vtkPlot* leafPlot = addLine(d.chart, leaf, palette::sahLeafCost, 2.f * d.scale, "leaf cost N t_i");
+  leafPlot->GetPen()->SetLineType(vtkPen::DASH_LINE);
+  if (chosen && !conceal_ && shown(chosen->direction)) {
+    // The chosen plane: a vertical line at its position (its marker was drawn first).
+    d.bspChosenX = across(*chosen);
+    auto line = makeTable("position", "chosen");
+    addRow(line, d.bspChosenX, lo - 0.02 * (hi - lo));
+    addRow(line, d.bspChosenX, hi);
+    addLine(d.chart, line, palette::sahChosen, 1.5f * d.scale,
+            std::string("chosen: ") + bsp_direction_name(chosen->direction));
+  }
+  vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
+  const double pad = hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));
+  left->SetBehavior(vtkAxis::FIXED);
+  left->SetRange(lo - pad, hi + pad);
+  d.chart->RecalculateBounds();
+
+  // The text, short enough for the dock's height: the node, its cell, the candidates by orientation, the
+  // decision in the BSP's terms and, first after it, what the best axis plane (a kd-tree's only choice) would
+  // have cost. The cell's bounding box is in the tree view's tooltip.
+  // (The candidates per group are in the legend.)
+  QString t = tr("<b>node %1</b> (path \"%2\"), depth %3, N = %4; its cell, a convex polytope, has area S = "
+                 "%5<br>")
+                  .arg(c.node)
+                  .arg(lastPath_)
+                  .arg(c.info.depth)
+                  .arg(c.n_prims)
+                  .arg(fmt(c.info.area));
+  t += tr("leaf cost N t_i = %1 &times; %2 = %3<br>")
+           .arg(c.n_prims)
+           .arg(double(lastTi_))
+           .arg(fmt(c.leaf_cost));
+  const QString header = t;
+  const BspCandidate* bestAxis = nullptr;
+  for (const BspCandidate& k : c.candidates)
+    if (k.direction >= 0 && k.direction < 3 && (!bestAxis || k.cost < bestAxis->cost)) bestAxis = &k;
+  if (c.leaf) {
+    t += tr("<b>leaf</b>: %1 (%2)")
+             .arg(bsp_leaf_reason_name(c.leaf_reason))
+             .arg(bspLeafReasonText(c.leaf_reason));
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": leaf (" + bsp_leaf_reason_name(c.leaf_reason) +
+                      ")");
+  } else if (chosen) {
+    const QString which = chosen->direction >= 0 ? tr("the %1 plane (%2)")
+                                                       .arg(bsp_direction_name(chosen->direction))
+                                                       .arg(tr(kBspGroupOne[bspGroup(chosen->direction)]))
+                                                 : tr("the own plane of triangle %1").arg(chosen->prim);
+    t += tr("<b>split by %1</b>, cost %4: n&middot;p = d, n = %2, d = %3<br>")
+             .arg(which)
+             .arg(vec(chosen->plane.normal))
+             .arg(fmt(chosen->plane.offset))
+             .arg(fmt(chosen->cost));
+    if (chosen->direction >= 3 || chosen->direction < 0) {
+      if (bestAxis)
+        t += tr("<b>the best axis plane</b> (the kd-tree's choice), %1 = %2, costs %3: %4% more<br>")
+                 .arg(bsp_direction_name(bestAxis->direction))
+                 .arg(fmt(bestAxis->plane.offset))
+                 .arg(fmt(bestAxis->cost))
+                 .arg(100.0 * (bestAxis->cost / chosen->cost - 1.0), 0, 'f', 0);
+    } else {
+      t += tr("an axis plane: a kd-tree could have chosen it too<br>");
+    }
+    t += tr("C = t_t + t_i (S_b N_b + S_a N_a) / S; N below %1, above %2 (a primitive the plane cuts is on "
+            "both sides)")
+             .arg(c.n_below)
+             .arg(c.n_above);
+    if (!shown(chosen->direction))
+      t += tr("<br><i>(the chosen plane's orientation is not shown: pick it above)</i>");
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": split by " +
+                      (chosen->direction >= 0
+                           ? std::string("the ") + bsp_direction_name(chosen->direction) + " plane"
+                           : "triangle " + std::to_string(chosen->prim) + "'s own plane") +
+                      ", d = " + fmt(chosen->plane.offset).toStdString());
+  }
+  if (conceal_) {
+    t = header + tr("<i>The %1's choice stays hidden until the answer is revealed.</i>").arg(concealBuilder_);
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": which plane does the " +
+                      concealBuilder_.toStdString() + " choose?");
+  }
+  text_->setText(t);
+  renderNow();
+}
+
 void SahChart::renderNow() {
   d_->window->Render();
 }
@@ -442,6 +744,51 @@ QJsonObject SahChart::dumpState() const {
                             {"chosen", jsonColor(palette::sahChosen)}};
   o["message"] = d.message;
   o["concealed"] = conceal_;
+  if (bspCurve_) {
+    const BspSahCurve& c = *bspCurve_;
+    o["structure"] = "bsp";
+    o["node"] = int(c.node);
+    o["depth"] = c.info.depth;
+    o["n_prims"] = int(c.n_prims);
+    o["leaf_cost"] = c.leaf_cost;
+    o["leaf"] = c.leaf;
+    o["candidates"] = int(c.candidates.size());
+    o["orientation"] = orientation_->currentData().toString();
+    o["orientation_picker_visible"] = orientation_->isVisible();
+    o["text"] = text_->text();
+    o["title"] = QString::fromStdString(d.chart->GetTitle());
+    o["colors"] = QJsonObject{{"x", jsonColor(palette::sahX)},
+                              {"y", jsonColor(palette::sahY)},
+                              {"z", jsonColor(palette::sahZ)},
+                              {"face_diagonals", jsonColor(palette::sahFaceDiagonal)},
+                              {"body_diagonals", jsonColor(palette::sahBodyDiagonal)},
+                              {"own_planes", jsonColor(palette::sahOwnPlane)},
+                              {"leaf_cost", jsonColor(palette::sahLeafCost)},
+                              {"chosen", jsonColor(palette::sahChosen)}};
+    QJsonObject points;  // as plotted, per direction name ("own plane" for the own planes)
+    for (int i = 0; i <= kBspKdopDirections; ++i)
+      points[bsp_direction_name(i < kBspKdopDirections ? i : -1)] =
+          d.bspTable[i] ? int(d.bspTable[i]->GetNumberOfRows()) : 0;
+    o["points"] = points;
+    o["series"] = d.bspSeries;
+    o["plots"] = int(d.chart->GetNumberOfPlots());
+    if (c.leaf) {
+      o["leaf_reason"] = bsp_leaf_reason_name(c.leaf_reason);
+    } else if (c.chosen >= 0 && size_t(c.chosen) < c.candidates.size()) {
+      const BspCandidate& k = c.candidates[size_t(c.chosen)];
+      o["chosen"] = QJsonObject{{"index", c.chosen},
+                                {"direction", k.direction},
+                                {"name", bsp_direction_name(k.direction)},
+                                {"source", bsp_plane_source_name(k.source)},
+                                {"normal", QJsonArray{k.plane.normal.x, k.plane.normal.y, k.plane.normal.z}},
+                                {"offset", k.plane.offset},
+                                {"cost", k.cost},
+                                {"x", d.bspChosenX},  // -1: not drawn (hidden by the picker or concealed)
+                                {"n_below", int(c.n_below)},
+                                {"n_above", int(c.n_above)}};
+    }
+    return o;
+  }
   if (!curve_) return o;
   const SahCurve& c = *curve_;
   o["node"] = int(c.node);

@@ -4,7 +4,8 @@
 // cost N t_i as a dashed line (a split must come below it); the chosen split as a vertical line, or the
 // reason the node became a leaf. Beside it the node's id, path, depth, N, box and decision. The curve itself
 // is recorded by the main window off the GUI thread (core's record_sah_curve); VTK stays inside
-// sah_chart.cpp. A BVH node's binned curve is drawn the same way (setBvhCurve).
+// sah_chart.cpp. A BVH node's binned curve is drawn the same way (setBvhCurve), a general BSP node's
+// candidates by orientation (setBspCurve).
 #pragma once
 
 #include <memory>
@@ -14,12 +15,15 @@
 #include <QString>
 #include <QWidget>
 
+class QComboBox;
+class QScrollArea;
 class QLabel;
 
 namespace raystep {
 struct SahCurve;
 struct BvhSahCurve;
-}
+struct BspSahCurve;
+}  // namespace raystep
 
 namespace raystep::viz {
 
@@ -37,6 +41,16 @@ class SahChart : public QWidget {
   // terms (N left and right, bin k).
   void setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i, float t_t);
   std::shared_ptr<const BvhSahCurve> bvhCurve() const { return bvhCurve_; }
+  // A general BSP node's candidates by orientation (core's record_bsp_sah_curve): one series per k-DOP
+  // direction (cost against the plane's position across the cell along that direction: 0 = the cell's
+  // lowest point, 1 = its highest) and the own planes as points, coloured by group (axes as x, y, z; face
+  // diagonals orange, body diagonals violet, own planes teal), the chosen plane marked; a picker above the
+  // text shows all orientations, one group, or one direction.
+  void setBspCurve(std::shared_ptr<const BspSahCurve> curve, const QString& path, float t_i, float t_t);
+  std::shared_ptr<const BspSahCurve> bspCurve() const { return bspCurve_; }
+  // The picker's choice by name: all, axes, face, body, own, or a direction ("x", "x+y", "-x+y+z"); false
+  // for an unknown name.
+  bool setBspOrientation(const QString& name);
   // No curve: a message instead ("Select a node ...", "Recording node 5 ...").
   void showMessage(const QString& text);
   std::shared_ptr<const SahCurve> curve() const { return curve_; }
@@ -70,6 +84,10 @@ class SahChart : public QWidget {
   std::unique_ptr<Impl> d_;
   std::shared_ptr<const SahCurve> curve_;
   std::shared_ptr<const BvhSahCurve> bvhCurve_;  // set with curve_ (its kd-shaped copy) for a BVH node
+  std::shared_ptr<const BspSahCurve> bspCurve_;  // a BSP node (curve_ stays empty: no axis-shaped copy)
+  void drawBspCurve();
+  QComboBox* orientation_;  // the BSP picker (hidden for the kd-tree and the BVH)
+  QScrollArea* scroll_;     // around text_
   QLabel* text_;
   QString lastPath_;  // setCurve's arguments, to draw again at another scale
   float lastTi_ = 0.f, lastTt_ = 0.f, lastBonus_ = 0.f;

@@ -232,11 +232,14 @@ struct SceneView::Impl {
   vtkSmartPointer<vtkActor> selectedActor;
   int selectedDrawn = -1;
   glm::vec3 selectedLo{0.f}, selectedHi{0.f};
+  int selectedCellFaces = 0;  // a BSP node: its convex cell's faces as drawn (0: its box)
   vtkNew<vtkCellPicker> picker;
   QPoint pressAt;
   int pickCount = 0, missCount = 0;  // clicks that hit or missed the scene
   bool havePicked = false;
   glm::vec3 picked{0.f};
+  int pickedPrim = -1;              // the primitive under the click (-1: unknown)
+  std::vector<int32_t> cellPrim;  // the scene mesh's cells' primitive ids (a sphere is many cells)
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
@@ -509,7 +512,10 @@ void SceneView::rebuildGeometry() {
                                          : static_cast<const void*>(session_->trace());
   const bool sameMesh = source && source == d.meshSource;
   Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
-  if (!sameMesh) d.prims.clear();
+  if (!sameMesh) {
+    d.prims.clear();
+    d.cellPrim.clear();
+  }
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
     unsigned char rgb[3];
     for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
@@ -531,6 +537,7 @@ void SceneView::rebuildGeometry() {
       }
       vtkIdType before = tris->GetNumberOfCells();
       addPrim(pts, tris, p);
+      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), int32_t(id));
       glm::vec3 diffuse = sd->scene.materials[g.material(id)].diffuse;
       if (sd->scene.materials[g.material(id)].mirror > 0.f) diffuse = glm::vec3(0.55f, 0.6f, 0.7f);  // a mirror reads as metal
       addColor(tris->GetNumberOfCells() - before, glm::max(diffuse, glm::vec3(0.12f)));
@@ -545,6 +552,7 @@ void SceneView::rebuildGeometry() {
       p.radius = tp.radius;
       vtkIdType before = tris->GetNumberOfCells();
       addPrim(pts, tris, p);
+      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), tp.id);
       addColor(tris->GetNumberOfCells() - before, glm::vec3(0.6f));
       d.prims[tp.id] = p;
     }
@@ -703,7 +711,29 @@ void SceneView::updateSelected() {
     d.selectedDrawn = n;
     d.selectedLo = b.lo - pad;
     d.selectedHi = b.hi + pad;
-    addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+    d.selectedCellFaces = 0;
+    if (const BspTree* bsp = session_->structure()->bsp()) {
+      // A BSP node is a convex cell, not its bounding box: the root box cut by its ancestors' planes, drawn a
+      // little outside as the box is.
+      const BspTreeData& t = bsp->data();
+      std::vector<uint32_t> path{uint32_t(n)};
+      while (t.info[path.back()].parent >= 0) path.push_back(uint32_t(t.info[path.back()].parent));
+      ConvexCell cell = ConvexCell::box(t.bounds);
+      for (size_t k = path.size() - 1; k > 0 && !cell.empty(); --k) {
+        const BspPlane& plane = t.nodes[path[k]].plane;
+        ConvexCell below, above;
+        cell.split(glm::dvec3(plane.normal), double(plane.offset), &below, &above);
+        cell = path[k - 1] == path[k] + 1 ? below : above;
+      }
+      if (!cell.empty()) {
+        d.selectedCellFaces = int(cell.face_count());
+        addCellEdges(pts, lines, cell, -0.006f);
+      } else {
+        addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+      }
+    } else {
+      addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
+    }
   }
   d.selectedData->SetPoints(pts);
   d.selectedData->SetLines(lines);
@@ -722,6 +752,10 @@ bool SceneView::eventFilter(QObject* watched, QEvent* event) {
     }
   }
   return QWidget::eventFilter(watched, event);  // the camera still gets the mouse
+}
+
+int SceneView::pickedPrimitive() const {
+  return d_->havePicked ? d_->pickedPrim : -1;
 }
 
 bool SceneView::pickAt(const QPoint& at) {
@@ -755,6 +789,8 @@ bool SceneView::pickDisplay(int x, int y) {
   d.picker->GetPickPosition(p);
   d.havePicked = true;
   d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
+  const vtkIdType cell = d.picker->GetCellId();
+  d.pickedPrim = size_t(cell) < d.cellPrim.size() ? d.cellPrim[size_t(cell)] : -1;
   Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
   return true;
 }
@@ -1252,8 +1288,10 @@ QJsonObject SceneView::dumpState() const {
     o["selected_node"] = QJsonObject{{"node", d.selectedDrawn},
                                      {"min", QJsonArray{d.selectedLo.x, d.selectedLo.y, d.selectedLo.z}},
                                      {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
-                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)}};
+                                     {"projected_corners", projectBox(d.selectedLo, d.selectedHi)},
+                                     {"cell_faces", d.selectedCellFaces}};
   if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
+  if (d.havePicked) o["picked_primitive"] = d.pickedPrim;
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {
     QJsonObject cn{{"node", n->id},
                    {"depth", n->depth},

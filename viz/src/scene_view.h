@@ -54,6 +54,8 @@ class SceneView : public QWidget {
   void setCompact(bool on);
   void shareCamera(SceneView* leader);
   void setRayMark(float t);
+  // The primitive under the last click that hit the scene (-1: none yet, or unknown).
+  int pickedPrimitive() const;
 
  Q_SIGNALS:
   // The user turned, moved or zoomed the camera (a drag or the wheel in this view).

@@ -122,6 +122,20 @@ QJsonObject dumpState(MainWindow& w) {
       tree["selected_what"] = shape->what(uint32_t(s->selectedNode()));
     }
     tree["root_what"] = w.treeView()->view()->model()->index(0, KdTreeModel::WhatColumn).data().toString();
+    // The current row's children as the tree view lists them (a wide BVH node: up to 8), and the headers.
+    const QAbstractItemModel* model = w.treeView()->view()->model();
+    QJsonArray children;
+    for (int r = 0; cur.isValid() && r < model->rowCount(cur.siblingAtColumn(0)); ++r) {
+      QModelIndex c = model->index(r, 0, cur.siblingAtColumn(0));
+      children.append(QJsonObject{{"node", KdTreeModel::nodeOf(c)},
+                                  {"side", c.data().toString()},
+                                  {"what", c.siblingAtColumn(KdTreeModel::WhatColumn).data().toString()},
+                                  {"last", c.siblingAtColumn(KdTreeModel::CostColumn).data().toString()},
+                                  {"tooltip", c.data(Qt::ToolTipRole).toString()}});
+    }
+    tree["current_children"] = children;
+    tree["headers"] = QJsonArray{model->headerData(KdTreeModel::WhatColumn, Qt::Horizontal).toString(),
+                                 model->headerData(KdTreeModel::CostColumn, Qt::Horizontal).toString()};
     o["tree"] = tree;
   }
   o["window"] = QJsonArray{w.width(), w.height()};
@@ -234,13 +248,20 @@ void defineOptions(QCommandLineParser& p) {
       "Show a panel: sah (the kd-tree's nodes and the SAH inspector; the root unless --node), or kd (the "
       "same with no node selected).",
       "NAME");
-  opt("node", "kd-tree: select node ID (tree view, 3D view, SAH inspector).", "ID");
+  opt("node", "Select a tree's node ID (kd-tree, BVH, octree, BSP tree): tree view, 3D view, SAH inspector.",
+      "ID");
   opt("node-path",
       "A tree: select the node at this path from the root: kd-tree and BSP tree L below, R above (e.g. LRL); "
       "binary BVH L first child, R second; octree one octant digit 0..7 per level (e.g. 03).",
       "PATH");
-  opt("pick-3d", "Click the 3D view at window pixel X,Y (selects the kd-tree leaf holding the picked point).",
+  opt("pick-3d",
+      "Click the 3D view at window pixel X,Y (selects the tree's leaf holding the picked point: kd-tree, "
+      "BVH, octree or BSP tree).",
       "X,Y");
+  opt("sah-orientation",
+      "BSP tree: the SAH inspector's candidate planes by orientation: all, axes, face, body, own, or one "
+      "direction (x, y, z, x+y, x-y, x+z, x-z, y+z, y-z, x+y+z, x+y-z, x-y+z, -x+y+z).",
+      "NAME");
   opt("edit-ti", "Then type t_i into the structure panel, as a user would (the kd-tree is rebuilt).", "T");
   opt("export-sah", "Write the selected node's SAH curve as CSV (the columns of `raystep sah`).", "FILE");
   opt("screenshot-sah", "Write a PNG of the SAH chart.", "FILE");
@@ -394,7 +415,7 @@ void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
   if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
     fail("cannot write " + p.value("screenshot-sah").toStdString());
   if (p.isSet("export-sah")) {
-    if (!window.sahChart()->curve())
+    if (!window.sahChart()->curve() && !window.sahChart()->bspCurve())
       fail("--export-sah: no SAH curve (give --node, --node-path or --panel sah)");
     window.exportSahCsv(p.value("export-sah"));
   }
@@ -444,15 +465,18 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
     QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->widgetPosOf(at[0], at[1]));
     QApplication::processEvents();
   }
-  if (p.isSet("pick-3d")) {  // a click in the 3D view selects the kd-tree leaf holding the picked point
-    const KdTree* kd = s->structure() ? s->structure()->kdTree() : nullptr;
-    if (!kd) fail("--pick-3d: no kd-tree (open a scene with --accel kd or kd-median)");
+  if (p.isSet("pick-3d")) {  // a click in the 3D view selects the tree's leaf holding the picked point
+    if (!s->structure() || !treeShapeOf(*s->structure()))
+      fail("--pick-3d: no tree (open a scene with --accel kd, kd-median, bvh, octree or bsp)");
     window.showKdPanel();
     settle(window);
     std::vector<int> at = parseInts("pick-3d", p.value("pick-3d"), 2, 0);
     if (!window.sceneView()->pickAt(QPoint(at[0], at[1])))
       fail("--pick-3d " + p.value("pick-3d").toStdString() + ": no geometry under that pixel of the 3D view");
   }
+  if (p.isSet("sah-orientation") && !window.sahChart()->setBspOrientation(p.value("sah-orientation")))
+    fail("--sah-orientation '" + p.value("sah-orientation").toStdString() +
+         "': all, axes, face, body, own, or a direction (x, y, z, x+y, ..., -x+y+z)");
   if (p.isSet("edit-ti")) {  // through the spin box: the rebuild starts once the value has rested
     bool ok = false;
     double ti = p.value("edit-ti").toDouble(&ok);
@@ -693,7 +717,8 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "screenshot-3d", "dump-state",     "export-trace",    "open-bad",       "panel",        "node",
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
-      "sample",        "square",         "sample-overlay",  "click-sample",   "compare-pick", "click-pixel"};
+      "sample",        "square",         "sample-overlay",  "click-sample",   "compare-pick", "click-pixel",
+      "sah-orientation"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);

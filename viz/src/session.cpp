@@ -40,6 +40,17 @@ std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const Sc
   auto t0 = std::chrono::steady_clock::now();
   data->accel->build(data->scene->scene.geometry);
   data->buildMs = msSince(t0);
+  if (const WideBvh* wide = data->wideBvh()) {
+    auto view = std::make_shared<WideBvhView>(wide->describe());
+    // Ids are in preorder (children after their parent): summed from the last node up.
+    data->wideViewPrims.assign(view->nodes.size(), 0);
+    for (size_t i = view->nodes.size(); i-- > 0;) {
+      const WideBvhView::Node& n = view->nodes[i];
+      if (n.leaf) data->wideViewPrims[i] += uint32_t(n.prims.size());
+      if (n.parent >= 0) data->wideViewPrims[size_t(n.parent)] += data->wideViewPrims[i];
+    }
+    data->wideView = std::move(view);
+  }
   return data;
 }
 
@@ -294,8 +305,7 @@ void Session::setSquare(int index) {
 }
 
 void Session::setSelectedNode(int node) {
-  // A node of any tree the tree view shows (kd-tree, binary BVH, octree, BSP tree), by the ids trace events
-  // use.
+  // Any tree (kd-tree, binary or wide BVH, octree, BSP tree): ids as its tree view and traces name them.
   const std::unique_ptr<TreeShape> tree = structure_ ? treeShapeOf(*structure_) : nullptr;
   const size_t nodes = tree ? tree->size() : 0;
   if (node < -1 || (node >= 0 && size_t(node) >= nodes)) return;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <QImage>
 #include <QObject>
@@ -17,6 +18,7 @@
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/scene.h"
 #include "raystep/trace/heatmap.h"
@@ -42,6 +44,11 @@ struct StructureData {
   const Bvh* bvh() const { return dynamic_cast<const Bvh*>(accel.get()); }  // the binary BVH
   const Octree* octree() const { return dynamic_cast<const Octree*>(accel.get()); }
   const BspTree* bsp() const { return dynamic_cast<const BspTree*>(accel.get()); }
+  const WideBvh* wideBvh() const { return dynamic_cast<const WideBvh*>(accel.get()); }  // bvh4, bvh8
+  // The wide BVH's nodes as traces name them (WideBvh::describe), and each node's primitive count (its
+  // subtree's): made with the build, for the tree view.
+  std::shared_ptr<const WideBvhView> wideView;
+  std::vector<uint32_t> wideViewPrims;
 };
 
 // Each throws InputError on bad input; safe on any thread.

@@ -70,6 +70,43 @@ bool parse_bsp_directions(const std::string& text, BspDirections* d) {
   return false;
 }
 
+const char* bsp_leaf_reason_name(BspLeafReason reason) {
+  switch (reason) {
+    case BspLeafReason::few_primitives:
+      return "few_primitives";
+    case BspLeafReason::max_depth:
+      return "max_depth";
+    case BspLeafReason::no_area:
+      return "no_area";
+    case BspLeafReason::no_cheaper_split:
+      return "no_cheaper_split";
+    case BspLeafReason::separates_nothing:
+      return "separates_nothing";
+    case BspLeafReason::budget:
+      return "budget";
+  }
+  return "unknown";
+}
+
+namespace {
+// The 13 k-DOP directions before normalisation, in the tie order: axes, face diagonals, body diagonals.
+const float kKdop[kBspKdopDirections][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 0},  {1, -1, 0},
+                                            {1, 0, 1},  {1, 0, -1}, {0, 1, 1}, {0, 1, -1}, {1, 1, 1},
+                                            {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+const char* const kKdopNames[kBspKdopDirections] = {"x",   "y",   "z",     "x+y",   "x-y",   "x+z",   "x-z",
+                                                    "y+z", "y-z", "x+y+z", "x+y-z", "x-y+z", "-x+y+z"};
+}  // namespace
+
+glm::vec3 bsp_kdop_direction(int direction) {
+  if (direction < 0 || direction >= kBspKdopDirections) return glm::vec3(0.f);
+  const float* v = kKdop[direction];
+  return glm::normalize(glm::vec3(v[0], v[1], v[2]));
+}
+
+const char* bsp_direction_name(int direction) {
+  return direction >= 0 && direction < kBspKdopDirections ? kKdopNames[direction] : "own plane";
+}
+
 int bsp_max_depth(const BspOptions& options, size_t prim_count) {
   if (options.max_depth > 0) return std::min(options.max_depth, kBspMaxDepth);
   double n = double(std::max<size_t>(prim_count, 1));
@@ -107,28 +144,46 @@ struct Direction {
   BspPlaneSource source;
 };
 std::vector<Direction> kdop_directions() {
-  const float v[13][3] = {{1, 0, 0}, {0, 1, 0},  {0, 0, 1}, {1, 1, 0},  {1, -1, 0}, {1, 0, 1}, {1, 0, -1},
-                          {0, 1, 1}, {0, 1, -1}, {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
   std::vector<Direction> out;
-  for (int i = 0; i < 13; ++i) {
-    glm::vec3 n = glm::normalize(glm::vec3(v[i][0], v[i][1], v[i][2]));
-    out.push_back({n, i < 3   ? BspPlaneSource::axis
-                      : i < 9 ? BspPlaneSource::face_diagonal
-                              : BspPlaneSource::body_diagonal});
-  }
+  for (int i = 0; i < kBspKdopDirections; ++i)
+    out.push_back({bsp_kdop_direction(i), i < 3   ? BspPlaneSource::axis
+                                          : i < 9 ? BspPlaneSource::face_diagonal
+                                                  : BspPlaneSource::body_diagonal});
   return out;
 }
 
+// The floats a double vector rounds to, out of line: GCC 12.2's SLP vectorizer (-O2 and -O3, x86-64) drops
+// the rounding of a pair of double(float(x)) round trips made in one function, so an own plane's normal,
+// widened again for its extent and counts, was not the float normal the node stores (by up to 2e-8: the SAH
+// inspector's test found it; /work/notes/gcc12-slp-float-roundtrip.cpp reproduces it in 6 lines).
+[[gnu::noinline]] glm::vec3 round_to_float(const glm::dvec3& v) {
+  return glm::vec3(v);
+}
+
+// The best candidate so far (what the builder needs; the rest is for the listener).
 struct Candidate {
   BspPlane plane;
   BspPlaneSource source = BspPlaneSource::axis;
   uint32_t n_below = 0, n_above = 0;
   double cost = kInfinity;
+  int direction = -1;
+  uint32_t prim = UINT32_MAX;
+  double cell_min = 0.0, cell_max = 0.0, area_below = 0.0, area_above = 0.0;
 };
 
+// The builder's recorders, as the kd-tree's (kdtree_build.h): the null one compiles every listener call away.
+struct NullBspRecorder {
+  static constexpr bool enabled = false;
+};
+struct ListenerBspRecorder {
+  static constexpr bool enabled = true;
+  BspBuildListener* listener;
+};
+
+template <class Recorder>
 class Builder {
  public:
-  Builder(const Geometry& g, const BspOptions& o) : geometry_(g), options_(o) {
+  Builder(const Geometry& g, const BspOptions& o, Recorder rec = {}) : geometry_(g), options_(o), rec_(rec) {
     max_depth_ = bsp_max_depth(o, g.size());
     double budget = std::ceil(double(o.reference_budget) * double(g.size()));
     budget_ = std::max(g.size(), size_t(std::min(budget, double(BspNode::kInner - 1))));
@@ -177,21 +232,50 @@ class Builder {
            double(options_.t_i) * (area_below / area * double(nb) + area_above / area * double(na));
   }
 
-  // Weigh one candidate plane (with its counts) and keep it if strictly cheaper than the best.
-  void offer(const ConvexCell& cell, double area, const BspPlane& plane, BspPlaneSource source, uint32_t nb,
-             uint32_t na, Candidate* best) const {
+  // Weigh one candidate plane (with its counts) and keep it if strictly cheaper than the best. direction,
+  // prim, clo and chi only describe it (the listener's).
+  void offer(const ConvexCell& cell, double area, const BspPlane& plane, BspPlaneSource source, int direction,
+             uint32_t prim, double clo, double chi, uint32_t nb, uint32_t na, Candidate* best) {
     // The two areas add up to at least the node's (the cap counts twice), so the cost is at least
     // t_t + t_i min(nb, na): skip the clipping when even that is no better.
-    if (cost(area, area, 2.0 * area, std::min(nb, na), std::min(nb, na)) >= best->cost) return;
+    const bool bounded = cost(area, area, 2.0 * area, std::min(nb, na), std::min(nb, na)) >= best->cost;
+    if constexpr (Recorder::enabled) {
+      if (bounded && !recording_) return;  // a recorded node's curve has every candidate's cost
+    } else {
+      if (bounded) return;
+    }
     double ab, aa;
     cell.split_areas(glm::dvec3(plane.normal), double(plane.offset), &ab, &aa);
     if (!(ab > 0.0 && aa > 0.0)) return;  // the plane does not cut the cell
     double c = cost(ab, aa, area, nb, na);
-    if (c < best->cost) *best = Candidate{plane, source, nb, na, c};
+    if constexpr (Recorder::enabled) {
+      if (recording_) {
+        BspCandidate r;
+        r.plane = plane;
+        r.source = source;
+        r.direction = direction;
+        r.prim = prim;
+        r.cell_min = clo;
+        r.cell_max = chi;
+        r.n_below = nb;
+        r.n_above = na;
+        r.area_below = ab;
+        r.area_above = aa;
+        r.area_node = area;
+        r.cost = c;
+        r.bounded = bounded;
+        recorded_.push_back(r);
+      }
+    }
+    if (!bounded && c < best->cost) {
+      *best = Candidate{plane, source, nb, na, c, direction, prim, clo, chi, ab, aa};
+      if constexpr (Recorder::enabled)
+        if (recording_) best_index_ = int(recorded_.size()) - 1;
+    }
   }
 
   // The candidates along a fixed direction: positions at the primitives' extents (all, or an even sample).
-  void direction_candidates(const ConvexCell& cell, double area, const Direction& dir,
+  void direction_candidates(const ConvexCell& cell, double area, int direction, const Direction& dir,
                             const std::vector<uint32_t>& prims, Candidate* best) {
     const glm::dvec3 n(dir.normal);
     const size_t N = prims.size();
@@ -239,7 +323,8 @@ class Builder {
     for (size_t k = 0; k < P; ++k) {
       below += hist_below_[k];
       above -= hist_above_[k];
-      offer(cell, area, BspPlane{dir.normal, float(pos_[k])}, dir.source, below + planar_[k], above, best);
+      offer(cell, area, BspPlane{dir.normal, float(pos_[k])}, dir.source, direction, UINT32_MAX, clo, chi,
+            below + planar_[k], above, best);
     }
   }
 
@@ -261,7 +346,7 @@ class Builder {
       double len = glm::length(nd);
       if (!(len > 0.0) || !std::isfinite(len)) continue;  // a degenerate triangle has no plane
       BspPlane plane;
-      plane.normal = glm::vec3(nd / len);
+      plane.normal = round_to_float(nd / len);
       plane.offset = float(glm::dot(glm::dvec3(plane.normal), (p0 + p1 + p2) / 3.0));
       const glm::dvec3 n(plane.normal);
       double clo, chi;
@@ -275,7 +360,7 @@ class Builder {
         nb += lo < 0.0 || !above;
         na += above;
       }
-      offer(cell, area, plane, BspPlaneSource::primitive, nb, na, best);
+      offer(cell, area, plane, BspPlaneSource::primitive, -1, src, clo, chi, nb, na, best);
     }
   }
 
@@ -300,20 +385,48 @@ class Builder {
     tree_.info[node].cost = options_.t_i * float(prims.size());
   }
 
+  // A leaf, told to the listener with its reason (after the node's candidates, if it searched).
+  void leaf(uint32_t node, std::vector<uint32_t>& prims, BspLeafReason reason) {
+    const uint32_t n = uint32_t(prims.size());
+    if constexpr (Recorder::enabled) report_candidates(node, -1);
+    make_leaf(node, prims);
+    if constexpr (Recorder::enabled)
+      rec_.listener->leaf_made(node, tree_.info[node], n, tree_.info[node].cost, reason);
+  }
+
+  // The recorded node's candidates, in the builder's order, `chosen` marked (-1: none).
+  void report_candidates(uint32_t node, int chosen) {
+    if (!recording_) return;
+    for (size_t i = 0; i < recorded_.size(); ++i) {
+      recorded_[i].chosen = int(i) == chosen;
+      rec_.listener->candidate(node, recorded_[i]);
+    }
+    recorded_.clear();
+    recording_ = false;
+  }
+
   void build_node(const ConvexCell& cell, int32_t parent, int32_t depth, size_t budget,
                   std::vector<uint32_t> prims) {
     const double area = cell.area();
     const uint32_t node = add_node(cell, area, parent, depth);
     const uint32_t N = uint32_t(prims.size());
     const double leaf_cost = double(options_.t_i) * N;
-    if (N <= uint32_t(options_.leaf_size) || depth >= max_depth_ || !(area > 0.0))
-      return make_leaf(node, prims);
+    if constexpr (Recorder::enabled) {
+      if (rec_.listener->done()) return make_leaf(node, prims);  // the rest is not wanted
+      recording_ = rec_.listener->wants_candidates(node);
+      recorded_.clear();
+      best_index_ = -1;
+    }
+    if (N <= uint32_t(options_.leaf_size)) return leaf(node, prims, BspLeafReason::few_primitives);
+    if (depth >= max_depth_) return leaf(node, prims, BspLeafReason::max_depth);
+    if (!(area > 0.0)) return leaf(node, prims, BspLeafReason::no_area);
 
     Candidate best;
     best.cost = leaf_cost;  // a split must be strictly cheaper than the leaf
-    for (const Direction& dir : directions_) direction_candidates(cell, area, dir, prims, &best);
+    for (size_t i = 0; i < directions_.size(); ++i)
+      direction_candidates(cell, area, int(i), directions_[i], prims, &best);
     if (options_.directions != BspDirections::kdop) primitive_candidates(cell, area, prims, &best);
-    if (!(best.cost < leaf_cost)) return make_leaf(node, prims);
+    if (!(best.cost < leaf_cost)) return leaf(node, prims, BspLeafReason::no_cheaper_split);
 
     // The chosen plane classifies every primitive exactly (bsp_build.h): no point of one may be lost.
     std::vector<uint32_t> below, above;
@@ -327,12 +440,31 @@ class Builder {
       if (b || !a) below.push_back(prim);
       if (a) above.push_back(prim);
     }
-    if ((below.size() == N && above.size() == N) || below.size() + above.size() > budget)
-      return make_leaf(node, prims);
+    if (below.size() == N && above.size() == N) return leaf(node, prims, BspLeafReason::separates_nothing);
+    if (below.size() + above.size() > budget) return leaf(node, prims, BspLeafReason::budget);
 
     tree_.info[node].cost = float(best.cost);
     tree_.info[node].source = best.source;
     tree_.nodes[node].plane = best.plane;
+    if constexpr (Recorder::enabled) {
+      BspCandidate chosen;
+      chosen.plane = best.plane;
+      chosen.source = best.source;
+      chosen.direction = best.direction;
+      chosen.prim = best.prim;
+      chosen.cell_min = best.cell_min;
+      chosen.cell_max = best.cell_max;
+      chosen.n_below = best.n_below;
+      chosen.n_above = best.n_above;
+      chosen.area_below = best.area_below;
+      chosen.area_above = best.area_above;
+      chosen.area_node = area;
+      chosen.cost = best.cost;
+      chosen.chosen = true;
+      report_candidates(node, best_index_);
+      rec_.listener->split(node, tree_.info[node], N, chosen, uint32_t(below.size()), uint32_t(above.size()),
+                           float(leaf_cost));
+    }
     ConvexCell cell_below, cell_above;
     cell.split(glm::dvec3(best.plane.normal), double(best.plane.offset), &cell_below, &cell_above);
     prims.clear();
@@ -349,6 +481,11 @@ class Builder {
 
   const Geometry& geometry_;
   BspOptions options_;
+  Recorder rec_;
+  // The node being recorded (the listener wants its candidates): every candidate, and the best one's index.
+  bool recording_ = false;
+  std::vector<BspCandidate> recorded_;
+  int best_index_ = -1;
   int max_depth_ = 0;
   size_t budget_ = 0;
   std::vector<Direction> directions_;
@@ -364,7 +501,12 @@ class Builder {
 
 BspTreeData build_bsp(const Geometry& geometry, const BspOptions& options) {
   validate(geometry, options);
-  return Builder(geometry, options).build();
+  return Builder<NullBspRecorder>(geometry, options).build();
+}
+
+BspTreeData build_bsp(const Geometry& geometry, const BspOptions& options, BspBuildListener& listener) {
+  validate(geometry, options);
+  return Builder<ListenerBspRecorder>(geometry, options, ListenerBspRecorder{&listener}).build();
 }
 
 BspTreeStats bsp_tree_stats(const BspTreeData& tree, const BspOptions& options) {

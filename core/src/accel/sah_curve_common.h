@@ -1,6 +1,6 @@
-// What the kd-tree's and the BVH's SAH curves share (kdtree_sah_curve.cpp, bvh_sah_curve.cpp): finding a node
-// by its path from the root (L the first child, which follows its parent; R the second), and the CSVs'
-// numbers. Internal to raystep_core.
+// What the kd-tree's, the BVH's and the BSP tree's SAH curves share (kdtree_, bvh_, bsp_sah_curve.cpp):
+// finding a node by its path from the root (L the first child, which follows its parent; R the second), and
+// the CSVs' numbers. Internal to raystep_core.
 #pragma once
 
 #include <cctype>

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <string>
 
+#include <glm/vec3.hpp>
+
 #include "raystep/accel/bsp_node.h"
 #include "raystep/scene/geometry.h"
 
@@ -41,6 +43,61 @@ constexpr int kBspMaxDepth = 64;
 
 int bsp_max_depth(const BspOptions& options, size_t prim_count);
 
+// The 13 k-DOP directions in the builder's order (the tie order): 0..2 the axes, 3..8 the face diagonals,
+// 9..12 the body diagonals; unit length in float, as the planes store them. Names like "x", "x+y", "-x+y+z".
+constexpr int kBspKdopDirections = 13;
+glm::vec3 bsp_kdop_direction(int direction);
+const char* bsp_direction_name(int direction);
+
+// One candidate plane as the builder weighed it (for the SAH inspector, accel/bsp_sah_curve.h): the plane,
+// its counts and the exact polytope areas of both sides, C = t_t + t_i (S_b N_b + S_a N_a) / S.
+struct BspCandidate {
+  BspPlane plane;
+  BspPlaneSource source = BspPlaneSource::axis;
+  int direction = -1;          // 0..12: its k-DOP direction; -1: a primitive's own plane
+  uint32_t prim = UINT32_MAX;  // a primitive's own plane: that triangle
+  // The cell's extent along the normal: the offset lies strictly between (0..1 across the cell, for charts).
+  double cell_min = 0.0, cell_max = 0.0;
+  // As the builder counts them from the primitives' extents along the normal (planar ones below); the
+  // chosen plane's children then get the exact classification (BspSahCurve::n_below, n_above).
+  uint32_t n_below = 0, n_above = 0;
+  double area_below = 0.0, area_above = 0.0, area_node = 0.0;
+  double cost = 0.0;
+  // The builder skipped this candidate's areas: t_t + t_i min(N_b, N_a), a lower bound of its cost, was
+  // already no cheaper than the best so far. Its areas and cost are computed for the curve only.
+  bool bounded = false;
+  bool chosen = false;  // the plane the node was split by
+};
+
+// Why a BSP node became a leaf (bsp_build.h's leaf rules, in that order).
+enum class BspLeafReason : uint8_t {
+  few_primitives,     // N <= leaf_size
+  max_depth,          // the depth limit
+  no_area,            // the cell has no area (degenerate)
+  no_cheaper_split,   // no candidate cuts the cell for less than N t_i (or none cuts it)
+  separates_nothing,  // the cheapest plane would put all N primitives on both sides
+  budget,             // the children would exceed the node's share of the reference budget
+};
+const char* bsp_leaf_reason_name(BspLeafReason reason);
+
+// What the builder tells about its work, as the kd-tree's and the BVH's (a recorder template inside the
+// builder: the plain build_bsp has no listener calls at all). Candidates are reported only for the nodes the
+// listener wants, after the node's search, in the builder's order; then the node's decision.
+class BspBuildListener {
+ public:
+  virtual ~BspBuildListener() = default;
+  virtual bool wants_candidates(uint32_t node) const = 0;
+  virtual void candidate(uint32_t node, const BspCandidate& c) = 0;
+  // n_below, n_above: the children's primitive counts by the exact classification.
+  virtual void split(uint32_t node, const BspNodeInfo& info, uint32_t n_prims, const BspCandidate& chosen,
+                     uint32_t n_below, uint32_t n_above, float leaf_cost) = 0;
+  virtual void leaf_made(uint32_t node, const BspNodeInfo& info, uint32_t n_prims, float leaf_cost,
+                         BspLeafReason reason) = 0;
+  // True once the listener has all it wants: the builder then makes every node still to come a leaf
+  // without a search, so the tree returned is unfinished (recording only).
+  virtual bool done() const { return false; }
+};
+
 // Build. Throws InputError("", 0, "bsp: ...") for options out of range and for non-finite primitives.
 //
 // Classification (what the traversal relies on): a primitive is in every child that holds a point of it,
@@ -55,6 +112,8 @@ int bsp_max_depth(const BspOptions& options, size_t prim_count);
 // Planar primitives go below, unlike the kd-tree which tries both sides. Ties: the first candidate in the
 // order axes, face diagonals, body diagonals, primitive planes, increasing position.
 BspTreeData build_bsp(const Geometry& geometry, const BspOptions& options);
+// The same build, telling `listener` (the same decisions: the listener only watches).
+BspTreeData build_bsp(const Geometry& geometry, const BspOptions& options, BspBuildListener& listener);
 
 struct BspTreeStats {
   size_t nodes = 0, leaves = 0, empty_leaves = 0;
