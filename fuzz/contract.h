@@ -43,9 +43,13 @@ void expect_contract(const char* reader, const std::string& name, size_t lines, 
   }
 }
 
-// The number of lines a text has (a last line without '\n' counts).
+// The most lines a text can have: '\n' and a lone '\r' (old Mac files, which the OBJ reader counts as editors
+// do) both end a line, and a last line without either counts.
 inline size_t line_count(const std::string& text) {
-  return size_t(std::count(text.begin(), text.end(), '\n')) + 1;
+  size_t n = 1;
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) ++n;
+  return n;
 }
 
 // A private folder for the run (in /dev/shm when it exists, so that writing an input per run costs no disk),
