@@ -62,22 +62,6 @@ void check_output_folder(const std::string& path) {
     throw InputError(path, 0, "cannot write: folder '" + parent.string() + "' does not exist");
 }
 
-// "a,b,c,..." as exactly n finite numbers.
-std::vector<float> parse_numbers(const std::string& option, const std::string& spec, size_t n) {
-  std::vector<float> out;
-  std::stringstream ss(spec);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    float v = std::strtof(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v)) break;
-    out.push_back(v);
-  }
-  if (out.size() != n || std::count(spec.begin(), spec.end(), ',') != long(n - 1))
-    throw InputError("", 0, option + " '" + spec + "': expected " + std::to_string(n) + " comma-separated finite numbers");
-  return out;
-}
-
 KdOptions kd_options(const StructureArgs& s) {
   KdOptions kd;
   kd.t_i = s.kd_ti;
@@ -167,21 +151,6 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
 // 0 (all cores) or an explicit count up to 256: TBB aborts the process on absurd counts (70,000 did).
 void check_threads(int threads) {
   if (threads < 0 || threads > 256) throw InputError("", 0, "--threads must be 0..256 (0: all cores)");
-}
-
-// "WxH" with 1 <= W, H <= 16384.
-void parse_size(const std::string& spec, int* w, int* h) {
-  static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");
-  std::smatch m;
-  if (std::regex_match(spec, m, re)) {
-    int ww = std::stoi(m[1]), hh = std::stoi(m[2]);
-    if (ww >= 1 && hh >= 1 && ww <= 16384 && hh <= 16384) {
-      *w = ww;
-      *h = hh;
-      return;
-    }
-  }
-  throw InputError("", 0, "--size '" + spec + "': expected WxH with 1 <= W, H <= 16384");
 }
 
 int run_render(const RenderArgs& a) {

@@ -10,15 +10,13 @@
 
 #include "raystep/accel/structure_options.h"
 #include "raystep/trace/multi_trace.h"
+#include "value_parsers.h"
 
 namespace raystep {
 struct KdNodeEntry;
 }
 
 namespace raystep::cli {
-
-// "WxH" (--size) into *w and *h, with 1 <= W, H <= 16384; anything else throws InputError.
-void parse_size(const std::string& spec, int* w, int* h);
 
 // The acceleration structure and its build options (render, cast, trace).
 struct StructureArgs {
@@ -166,8 +164,6 @@ struct CostArgs {
 
 // Shared by the commands (commands.cpp).
 void check_output_folder(const std::string& path);
-// "a,b,c,..." as exactly n finite numbers; InputError naming the option otherwise.
-std::vector<float> parse_numbers(const std::string& option, const std::string& spec, size_t n);
 
 // One node of a binary tree (the first child follows its parent) as the entry-probability report shows it.
 struct EntryNode {

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "output_folder.h"
 #include "plot.h"
+#include "value_parsers.h"
 #include "raystep/accel/accelerator.h"
 #include "raystep/report/cost_report.h"
 #include "raystep/report/grid_sweep.h"
@@ -28,31 +29,6 @@ namespace raystep::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// "a,b,c": non-empty names.
-std::vector<std::string> parse_names(const std::string& option, const std::string& spec) {
-  std::vector<std::string> out;
-  std::stringstream ss(spec);
-  for (std::string item; std::getline(ss, item, ',');) {
-    if (item.empty()) throw InputError("", 0, option + " '" + spec + "': an empty name in the list");
-    out.push_back(item);
-  }
-  if (out.empty() || spec.back() == ',') throw InputError("", 0, option + " '" + spec + "': an empty list");
-  return out;
-}
-
-// The grid densities: finite numbers in (0, 64].
-std::vector<float> parse_densities(const std::string& spec) {
-  std::vector<float> out;
-  for (const std::string& item : parse_names("--densities", spec)) {
-    char* end = nullptr;
-    float v = std::strtof(item.c_str(), &end);
-    if (*end != '\0' || !(v > 0.f && v <= 64.f))
-      throw InputError("", 0, "--densities '" + spec + "': '" + item + "' is not a number in (0, 64]");
-    out.push_back(v);
-  }
-  return out;
-}
 
 // A progress bar on stderr, only when it is a terminal; redrawn at most ten times a second, erased at the
 // end.

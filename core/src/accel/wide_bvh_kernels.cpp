@@ -238,6 +238,9 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
 // ---- AVX2: 8 lanes (4-wide nodes use the SSE box test) ----
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#if defined(__clang__)  // clang ignores `#pragma GCC target`; this is its spelling (the fuzz build uses clang)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#endif
 namespace wide_avx2 {
 namespace {
 
@@ -311,6 +314,9 @@ inline uint32_t box_test(const WideNode<W>& n, const BoxRay& r, float tmin, floa
 
 }  // namespace
 }  // namespace wide_avx2
+#if defined(__clang__)
+#pragma clang attribute pop
+#endif
 #pragma GCC pop_options
 
 #endif  // __x86_64__
