@@ -11,6 +11,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bsp_build.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/nearest_hit.h"
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/trace/recorder.h"
 
@@ -113,10 +114,9 @@ bool BspTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) co
   int stack_size = 0;
 
   MailboxStamp mailbox = use_mailboxes_ ? mailboxes_.begin_ray() : MailboxStamp(0, nullptr);
+  MailboxStamp* const seen = use_mailboxes_ ? &mailbox : nullptr;
   WatertightRay wray(ray);
-  Hit nearest;
-  float t_nearest = ray.tmax;
-  float t_limit = ray.tmax;
+  NearestHit nearest(ray.tmax);
   uint32_t node_id = 0;
   int32_t depth = 0;
   const BspNode* nodes = tree_.nodes.data();
@@ -156,25 +156,10 @@ bool BspTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) co
     const uint32_t* prims = prim_ids + node.first_prim();
     const uint32_t n = node.prim_count();
     for (uint32_t i = 0; i < n; ++i) geometry_->prefetch(prims[i]);
-    for (uint32_t i = 0; i < n; ++i) {
-      uint32_t prim = prims[i];
-      if (use_mailboxes_ && !mailbox.first_visit(prim)) {
-        rec.mailbox_hit(prim);
-        continue;
-      }
-      Hit candidate;
-      bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
-      rec.prim_test(prim, found, candidate.t);
-      if (!found) continue;
-      // Ties go to the lower primitive id, as in brute force.
-      if (candidate.t == t_nearest && int32_t(prim) > nearest.prim) continue;
-      nearest = candidate;
-      t_nearest = candidate.t;
-      t_limit = next_float_up(t_nearest);
-      if (any_hit) break;
-    }
+    for (uint32_t i = 0; i < n; ++i)
+      if (nearest.test(*geometry_, prims[i], ray, wray, seen, rec) && any_hit) break;
     if (any_hit && nearest.found()) {
-      rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::any_hit);
+      rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::any_hit);
       break;
     }
 
@@ -186,7 +171,7 @@ bool BspTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) co
     while (stack_size > 0) {
       const Entry& e = stack[--stack_size];
       rec.pop(TreeStep{int32_t(e.node), e.depth, e.t_min, e.t_max});
-      if (nearest.found() && t_nearest < e.t_min - margin) {
+      if (nearest.found() && nearest.t < e.t_min - margin) {
         reason = AcceptReason::next_node_beyond;
         continue;
       }
@@ -198,11 +183,11 @@ bool BspTree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) co
       break;
     }
     if (!more) {
-      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.prim), t_nearest, reason);
+      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, reason);
       break;
     }
   }
-  *hit = nearest;
+  *hit = nearest.hit;
   rec.ray_end(*hit);
   return hit->found();
 }

@@ -17,6 +17,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/nearest_hit.h"
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/bounds.h"
 #include "raystep/geometry/component.h"
@@ -72,8 +73,12 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   Bounds3 cell_bounds(int i, int j, int k) const;
   size_t reference_count() const { return prim_index_.size(); }
   // Primitive ids stored in cell (i, j, k).
-  const uint32_t* cell_begin(int i, int j, int k) const { return &prim_index_[cell_start_[cell_id(i, j, k)]]; }
-  const uint32_t* cell_end(int i, int j, int k) const { return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1]; }
+  const uint32_t* cell_begin(int i, int j, int k) const {
+    return &prim_index_[cell_start_[cell_id(i, j, k)]];
+  }
+  const uint32_t* cell_end(int i, int j, int k) const {
+    return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1];
+  }
   const Mailboxes& mailboxes() const { return mailboxes_; }
   // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
   int cell_of(float p, int axis) const {
@@ -105,7 +110,7 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
   std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
   std::vector<uint32_t> prim_index_;
-  std::vector<uint64_t> occupied_;    // one bit per cell: cell_start_[id] < cell_start_[id + 1]
+  std::vector<uint64_t> occupied_;  // one bit per cell: cell_start_[id] < cell_start_[id + 1]
   Mailboxes mailboxes_;
 };
 
@@ -153,8 +158,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
 
   MailboxStamp mailbox = mailboxes_.begin_ray();
   WatertightRay wray(ray);
-  float t_nearest = ray.tmax;
-  float t_limit = ray.tmax;  // the primitive tests' bound: once there is a hit, just above it, so that ties are seen
+  NearestHit nearest(ray.tmax);
   float t_cell_enter = t_enter;
   for (;;) {
     // The axis whose boundary comes first is stepped next; ties go to the lowest axis (x, then y, then z),
@@ -162,9 +166,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
     if constexpr (Recorder::enabled)
-      rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit,
-                            glm::vec3(t_max[0], t_max[1], t_max[2]), glm::vec3(t_delta[0], t_delta[1], t_delta[2]),
-                            t_max[axis] <= t_exit ? axis : -1});
+      rec.cell(GridCellStep{
+          cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit, glm::vec3(t_max[0], t_max[1], t_max[2]),
+          glm::vec3(t_delta[0], t_delta[1], t_delta[2]), t_max[axis] <= t_exit ? axis : -1});
     else
       rec.cell(GridCellStep{});
 
@@ -173,50 +177,42 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     if (occupied(id)) first = cell_start_[id], last = cell_start_[id + 1];
     for (uint32_t r = first; r < last; ++r) {
       uint32_t prim = prim_index_[r];
-      if (!mailbox.first_visit(prim)) {
-        rec.mailbox_hit(prim);
-        continue;
-      }
-      Hit candidate;
-      bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
-      rec.prim_test(prim, found, candidate.t);
-      if (!found) continue;
-      // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute force, so
-      // every structure reports the same hit.
-      if (candidate.t == t_nearest && int32_t(prim) > hit->prim) continue;
-      *hit = candidate;
-      t_nearest = candidate.t;
-      t_limit = next_float_up(t_nearest);
+      if (!nearest.test(*geometry_, prim, ray, wray, &mailbox, rec)) continue;
       if (any_hit) {
-        rec.hit_accepted(prim, t_nearest, AcceptReason::any_hit);
+        rec.hit_accepted(prim, nearest.t, AcceptReason::any_hit);
+        *hit = nearest.hit;
         rec.ray_end(*hit);
         return true;
       }
       // A hit beyond this cell's exit may yet be beaten by a primitive of a later cell: keep it, go on.
-      if (t_nearest * (1.f + 1.f / 4096.f) >= t_cell_exit) rec.hit_deferred(prim, t_nearest, t_cell_exit);
+      if (nearest.t * (1.f + 1.f / 4096.f) >= t_cell_exit) rec.hit_deferred(prim, nearest.t, t_cell_exit);
     }
 
     // Traverse until tmin(next cell) > tmax(ray): the next cell starts at this cell's exit. A computed t can
     // stray a few ulps (slivers: ~1e-5 relative) past the exact plane distance, so a hit within a relative
-    // 2^-12 of the exit is left to the next cell, where a primitive hit just beyond the boundary is tested too.
-    if (hit->found() && t_nearest * (1.f + 1.f / 4096.f) < t_cell_exit) {
-      rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::inside_cell);
+    // 2^-12 of the exit is left to the next cell, where a primitive hit just beyond the boundary is tested
+    // too.
+    if (nearest.found() && nearest.t * (1.f + 1.f / 4096.f) < t_cell_exit) {
+      rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::inside_cell);
       break;
     }
     if (t_max[axis] > t_exit) {  // the ray leaves the grid (or its interval ends) in this cell
-      if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
+      if (nearest.found())
+        rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
       break;
     }
     // Step to the neighbour along that axis: incremental arithmetic, one addition per step.
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) {
-      if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
+      if (nearest.found())
+        rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
       break;
     }
     id += size_t(id_step[axis]);
     t_cell_enter = t_max[axis];
     t_max[axis] += t_delta[axis];
   }
+  *hit = nearest.hit;
   rec.ray_end(*hit);
   return hit->found();
 }

@@ -12,6 +12,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/mailbox.h"
+#include "raystep/accel/nearest_hit.h"
 #include "raystep/accel/octree_build.h"
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/trace/recorder.h"
@@ -107,10 +108,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
 
   MailboxStamp mailbox = mailboxes_.begin_ray();
   WatertightRay wray(ray);
-  Hit nearest;
-  float t_nearest = ray.tmax;
-  // The primitive tests' bound: once there is a hit, just above it, so that ties are seen.
-  float t_limit = ray.tmax;
+  NearestHit nearest(ray.tmax);
   AcceptReason reason = AcceptReason::structure_done;
   const OctreeNode* nodes = tree_.nodes.data();
   const uint32_t* prim_ids = tree_.prim_index.data();
@@ -194,32 +192,19 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       const uint32_t n = node.prim_count();
       for (uint32_t i = 0; i < n; ++i) {
         uint32_t prim = prims[i];
-        if (!mailbox.first_visit(prim)) {
-          rec.mailbox_hit(prim);
-          continue;
-        }
-        Hit candidate;
-        bool found = geometry_->intersect(prim, ray, wray, t_limit, &candidate);
-        rec.prim_test(prim, found, candidate.t);
-        if (!found) continue;
-        // A tie (the same t: coincident faces, a shared edge) goes to the lower primitive id, as in brute
-        // force.
-        if (candidate.t == t_nearest && int32_t(prim) > nearest.prim) continue;
-        nearest = candidate;
-        t_nearest = candidate.t;
-        t_limit = next_float_up(t_nearest);
+        if (!nearest.test(*geometry_, prim, ray, wray, &mailbox, rec)) continue;
         if (any_hit) {
-          rec.hit_accepted(prim, t_nearest, AcceptReason::any_hit);
-          *hit = nearest;
+          rec.hit_accepted(prim, nearest.t, AcceptReason::any_hit);
+          *hit = nearest.hit;
           rec.ray_end(*hit);
           return true;
         }
         // A hit beyond this cell's exit may yet be beaten by a primitive of a later cell: keep it, go on.
-        if (t_nearest + hit_margin >= t_max) rec.hit_deferred(prim, t_nearest, t_max);
+        if (nearest.t + hit_margin >= t_max) rec.hit_deferred(prim, nearest.t, t_max);
       }
       // Traverse until tmin(next cell) > tmax(ray): every later cell starts at this one's exit.
-      if (nearest.found() && t_nearest + hit_margin < t_max) {
-        rec.hit_accepted(uint32_t(nearest.prim), t_nearest, AcceptReason::inside_cell);
+      if (nearest.found() && nearest.t + hit_margin < t_max) {
+        rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::inside_cell);
         break;
       }
     }
@@ -252,7 +237,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         f.next = f.count;
         continue;
       }
-      if (nearest.found() && t_nearest + hit_margin < c_in) {  // tmin(cell) > tmax(ray), and the rest too
+      if (nearest.found() && nearest.t + hit_margin < c_in) {  // tmin(cell) > tmax(ray), and the rest too
         reason = AcceptReason::next_node_beyond;
         f.next = f.count;
         continue;
@@ -265,11 +250,11 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       break;
     }
     if (!more) {
-      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.prim), t_nearest, reason);
+      if (nearest.found()) rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, reason);
       break;
     }
   }
-  *hit = nearest;
+  *hit = nearest.hit;
   rec.ray_end(*hit);
   return hit->found();
 }
