@@ -151,24 +151,16 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   Impl& d = *d_;
   d.widget = new QVTKOpenGLNativeWidget;
   d.widget->setMinimumSize(400, 260);
-  d.window->SetMultiSamples(0);
-  d.widget->setRenderWindow(d.window);
-  d.view->SetRenderWindow(d.window);
-  d.view->SetInteractor(d.widget->interactor());
-  d.view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+  chartutil::showContextView(d.widget, d.window, d.view);
   d.view->GetScene()->AddItem(d.chart);
-  vtkChartXY* chart = d.chart;
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetInline(false);  // beside the plot, not over the points
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-  chart->GetLegend()->GetLabelProperties()->SetFontSize(12);
-  chart->GetTitleProperties()->SetFontSize(14);
-  chart->GetTitleProperties()->SetBold(true);
-  for (int a : {vtkAxis::BOTTOM, vtkAxis::LEFT}) {
-    chart->GetAxis(a)->GetTitleProperties()->SetFontSize(12);
-    chart->GetAxis(a)->GetLabelProperties()->SetFontSize(11);
-  }
+  chartutil::ChartStyle style;
+  style.titleSize = 14;
+  style.axisTitleSize = 12;
+  style.labelSize = 11;
+  style.legendSize = 12;
+  style.legendAlignment = vtkChartLegend::RIGHT;
+  chartutil::styleChart(d.chart, nullptr, nullptr, nullptr, style);
+  d.chart->GetLegend()->SetInline(false);  // beside the plot, not over the points
   split->addWidget(d.widget);
 
   table_ = new QTableWidget(0, 9);

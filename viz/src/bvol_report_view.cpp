@@ -86,10 +86,6 @@ const std::vector<Panel>& panels() {
   return p;
 }
 
-vtkVector2i cellOf(int i) {
-  return vtkVector2i(i % 2, 1 - i / 2);
-}
-
 }  // namespace
 
 struct BvolReportView::Impl {
@@ -119,33 +115,16 @@ BvolReportView::BvolReportView(Session* session, QWidget* parent)
   auto* split = new QSplitter(Qt::Vertical);
   d.widget = new QVTKOpenGLNativeWidget;
   d.widget->setMinimumSize(500, 360);
-  d.window->SetMultiSamples(0);
-  d.widget->setRenderWindow(d.window);
-  d.view->SetRenderWindow(d.window);
-  d.view->SetInteractor(d.widget->interactor());
-  d.view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  d.view->GetScene()->AddItem(d.matrix);
-  d.matrix->SetSize(vtkVector2i(2, 2));
-  d.matrix->SetGutter(vtkVector2f(70.f, 70.f));
-  d.matrix->SetBorders(60, 50, 20, 30);
+  chartutil::showContextView(d.widget, d.window, d.view);
+  chartutil::addChartMatrix2x2(d.view, d.matrix, d.charts);
   for (int i = 0; i < 4; ++i) {
-    d.charts[i] = vtkChartXY::SafeDownCast(d.matrix->GetChart(cellOf(i)));
-    vtkChartXY* c = d.charts[i];
     const Panel& p = panels()[size_t(i)];
-    c->SetTitle(p.title);
-    c->GetTitleProperties()->SetFontSize(13);
-    c->GetTitleProperties()->SetBold(true);
-    c->SetShowLegend(p.quantities.size() > 1);
-    c->GetLegend()->GetLabelProperties()->SetFontSize(11);
-    c->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-    c->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-    c->GetAxis(vtkAxis::BOTTOM)->SetTitle("kind of bounding volume");
-    c->GetAxis(vtkAxis::LEFT)->SetTitle(p.yTitle);
-    for (int a : {vtkAxis::BOTTOM, vtkAxis::LEFT}) {
-      c->GetAxis(a)->GetTitleProperties()->SetFontSize(11);
-      c->GetAxis(a)->GetLabelProperties()->SetFontSize(11);
-    }
-    c->SetBarWidthFraction(0.7f);
+    chartutil::ChartStyle style;
+    style.labelSize = 11;
+    style.legend = p.quantities.size() > 1;
+    style.legendAlignment = vtkChartLegend::RIGHT;
+    chartutil::styleChart(d.charts[i], p.title, "kind of bounding volume", p.yTitle, style);
+    d.charts[i]->SetBarWidthFraction(0.7f);
   }
   split->addWidget(d.widget);
 

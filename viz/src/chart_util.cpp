@@ -5,13 +5,23 @@
 #include <sstream>
 #include <vector>
 
+#include <QVTKOpenGLNativeWidget.h>
 #include <vtkAxis.h>
+#include <vtkChartLegend.h>
+#include <vtkChartMatrix.h>
+#include <vtkChartXY.h>
+#include <vtkContextScene.h>
+#include <vtkContextView.h>
 #include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
+#include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
+#include <vtkTextProperty.h>
+#include <vtkVector.h>
 
 namespace raystep::viz::chartutil {
 
@@ -80,6 +90,42 @@ void setLinearRange(vtkAxis* axis, double lo, double hi) {
   axis->SetBehavior(vtkAxis::FIXED);
   axis->SetCustomTickPositions(nullptr, nullptr);
   axis->SetRange(lo - pad, hi + pad);
+}
+
+void showContextView(QVTKOpenGLNativeWidget* widget, vtkGenericOpenGLRenderWindow* window,
+                     vtkContextView* view) {
+  window->SetMultiSamples(0);
+  widget->setRenderWindow(window);
+  view->SetRenderWindow(window);
+  view->SetInteractor(widget->interactor());
+  view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
+}
+
+void addChartMatrix2x2(vtkContextView* view, vtkChartMatrix* matrix, vtkChartXY* charts[4]) {
+  view->GetScene()->AddItem(matrix);
+  matrix->SetSize(vtkVector2i(2, 2));
+  matrix->SetGutter(vtkVector2f(70.f, 70.f));
+  matrix->SetBorders(60, 50, 20, 30);
+  // The matrix counts cells from the bottom left.
+  for (int i = 0; i < 4; ++i)
+    charts[i] = vtkChartXY::SafeDownCast(matrix->GetChart(vtkVector2i(i % 2, 1 - i / 2)));
+}
+
+void styleChart(vtkChartXY* chart, const char* title, const char* xTitle, const char* yTitle,
+                const ChartStyle& style) {
+  if (title) chart->SetTitle(title);
+  chart->GetTitleProperties()->SetFontSize(style.titleSize);
+  chart->GetTitleProperties()->SetBold(true);
+  chart->SetShowLegend(style.legend);
+  chart->GetLegend()->GetLabelProperties()->SetFontSize(style.legendSize);
+  chart->GetLegend()->SetHorizontalAlignment(style.legendAlignment);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  if (xTitle) chart->GetAxis(vtkAxis::BOTTOM)->SetTitle(xTitle);
+  if (yTitle) chart->GetAxis(vtkAxis::LEFT)->SetTitle(yTitle);
+  for (int a : {vtkAxis::BOTTOM, vtkAxis::LEFT}) {
+    chart->GetAxis(a)->GetTitleProperties()->SetFontSize(style.axisTitleSize);
+    chart->GetAxis(a)->GetLabelProperties()->SetFontSize(style.labelSize);
+  }
 }
 
 }  // namespace raystep::viz::chartutil

@@ -1,4 +1,4 @@
-// What the debugger's charts share (aa_report_view.cpp, grid_sweep_view.cpp; sah_chart.cpp its tables):
+// What the debugger's charts share (the report views; sah_chart.cpp its tables): the set-up of a chart view,
 // their colours (Okabe and Ito's set, apart for colour-blind readers), tables of (x, y) points, and log axes
 // with ticks a student can read (1, 2, 5 x 10^k). Included only by the charts' .cpp files, so the views' own
 // headers name no VTK type.
@@ -7,7 +7,12 @@
 #include <QColor>
 #include <string>
 
+class QVTKOpenGLNativeWidget;
 class vtkAxis;
+class vtkChartMatrix;
+class vtkChartXY;
+class vtkContextView;
+class vtkGenericOpenGLRenderWindow;
 class vtkTable;
 template <class T>
 class vtkSmartPointer;
@@ -37,6 +42,26 @@ void setLogRange(vtkAxis* axis, double lo, double hi);
 void setLinearRange(vtkAxis* axis, double lo, double hi);
 // A plain number for a tick label: 0.001, 0.02, 5, 200, 1e+05.
 std::string tickLabel(double v);
+
+// A chart view drawn in the widget: the window (no multisampling, which llvmpipe renders slowly) shown by the
+// widget, the view drawing into it on white, driven by the widget's interactor.
+void showContextView(QVTKOpenGLNativeWidget* widget, vtkGenericOpenGLRenderWindow* window,
+                     vtkContextView* view);
+// A 2 x 2 matrix of charts in the view, with room between them for the axis titles; charts[i] in reading
+// order (top left, top right, bottom left, bottom right).
+void addChartMatrix2x2(vtkContextView* view, vtkChartMatrix* matrix, vtkChartXY* charts[4]);
+// The reports' chart look: a bold title, axis titles and tick labels in these font sizes, the legend shown
+// (when asked) at the top, right or centred (horizontal: a vtkChartLegend alignment).
+struct ChartStyle {
+  int titleSize = 13;
+  int axisTitleSize = 11;
+  int labelSize = 10;
+  bool legend = true;
+  int legendSize = 11;
+  int legendAlignment = 0;  // vtkChartLegend::CENTER etc.; 0 = LEFT
+};
+void styleChart(vtkChartXY* chart, const char* title, const char* xTitle, const char* yTitle,
+                const ChartStyle& style);
 
 }  // namespace chartutil
 }  // namespace raystep::viz

@@ -93,10 +93,6 @@ const std::vector<Panel>& panels() {
 
 // Chart i of the 2 x 2 matrix: 0 top left, 1 top right, 2 bottom left, 3 bottom right (the matrix counts
 // rows from the bottom).
-vtkVector2i cellOf(int i) {
-  return vtkVector2i(i % 2, 1 - i / 2);
-}
-
 QString resolutionText(const std::array<int, 3>& r) {
   return QString("%1 x %2 x %3").arg(r[0]).arg(r[1]).arg(r[2]);
 }
@@ -137,34 +133,16 @@ GridSweepView::GridSweepView(Session* session, QWidget* parent)
   auto* split = new QSplitter(Qt::Vertical);
   d.widget = new QVTKOpenGLNativeWidget;
   d.widget->setMinimumSize(500, 360);
-  d.window->SetMultiSamples(0);
-  d.widget->setRenderWindow(d.window);
-  d.view->SetRenderWindow(d.window);
-  d.view->SetInteractor(d.widget->interactor());
-  d.view->GetRenderer()->SetBackground(1.0, 1.0, 1.0);
-  d.view->GetScene()->AddItem(d.matrix);
-  d.matrix->SetSize(vtkVector2i(2, 2));
-  d.matrix->SetGutter(vtkVector2f(70.f, 70.f));
-  d.matrix->SetBorders(60, 50, 20, 30);
+  chartutil::showContextView(d.widget, d.window, d.view);
+  chartutil::addChartMatrix2x2(d.view, d.matrix, d.charts);
   for (int i = 0; i < 4; ++i) {
-    d.charts[i] = vtkChartXY::SafeDownCast(d.matrix->GetChart(cellOf(i)));
-    vtkChartXY* c = d.charts[i];
     const Panel& p = panels()[size_t(i)];
-    c->SetTitle(p.title);
-    c->GetTitleProperties()->SetFontSize(13);
-    c->GetTitleProperties()->SetBold(true);
     // Short labels (the title says the rest), top centre, in head room the y axis leaves for it (redraw):
     // the curves cross everywhere else.
-    c->SetShowLegend(p.quantities.size() > 1);
-    c->GetLegend()->GetLabelProperties()->SetFontSize(11);
-    c->GetLegend()->SetHorizontalAlignment(vtkChartLegend::CENTER);
-    c->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
-    c->GetAxis(vtkAxis::BOTTOM)->SetTitle("grid density d (log scale)");
-    c->GetAxis(vtkAxis::LEFT)->SetTitle(p.yTitle);
-    for (int a : {vtkAxis::BOTTOM, vtkAxis::LEFT}) {
-      c->GetAxis(a)->GetTitleProperties()->SetFontSize(11);
-      c->GetAxis(a)->GetLabelProperties()->SetFontSize(10);
-    }
+    chartutil::ChartStyle style;
+    style.legend = p.quantities.size() > 1;
+    style.legendAlignment = vtkChartLegend::CENTER;
+    chartutil::styleChart(d.charts[i], p.title, "grid density d (log scale)", p.yTitle, style);
   }
   split->addWidget(d.widget);
 
