@@ -19,7 +19,7 @@ cmake --build build-asan -j "$jobs" --target raystep_core_tests
   ctest --output-on-failure -j "$jobs" -L core)
 
 echo "== thread sanitizer pass (TSan, clang): the concurrency tests and the planted races =="
-cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYSTEP_TSAN=ON \
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTEP_TSAN=ON \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF \
   -DRAYSTEP_BUILD_GUI=OFF -DRAYSTEP_BUILD_VTK_EXPORT=OFF > /dev/null
 cmake --build build-tsan -j "$jobs" --target raystep_concurrency_tests raystep_tsan_canary

@@ -4,6 +4,8 @@
 // another thread, and the progress bar's thread. Built alone with ThreadSanitizer by scripts/test.sh (the
 // `concurrency` label, build-tsan); every test also checks its answer against the same work done alone.
 #include <gtest/gtest.h>
+#include <pty.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <condition_variable>
@@ -13,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -170,6 +173,43 @@ TEST(Concurrency, SeveralRendersOfOneStructureAtOnce) {
       EXPECT_EQ(r.rays.total(), alone.rays.total()) << kind;
     }
   }
+}
+
+// A render's progress bar is a thread of its own, drawn from a counter the render's threads advance; it runs
+// only when stderr is a terminal, so stderr becomes a pseudo-terminal for one render. What the bar draws is
+// passed on to the real stderr (a ThreadSanitizer report written meanwhile is not lost either).
+TEST(Concurrency, ProgressBarBesideTheRender) {
+  auto s = build("bvh", 2);
+  RenderOptions o = render_opts(2);
+  o.width = 96;
+  o.height = 72;
+  o.aa.k = 3;
+  const RenderResult alone = render_image(*s->scene, *s->accel, o);
+
+  int master = -1, slave = -1;
+  ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
+  const int saved = dup(STDERR_FILENO);
+  std::string drawn;
+  std::thread drain([&] {
+    char buf[512];
+    for (ssize_t n; (n = read(master, buf, sizeof buf)) > 0;) {
+      drawn.append(buf, size_t(n));
+      if (write(saved, buf, size_t(n)) < 0) break;
+    }
+  });
+  std::fflush(stderr);
+  dup2(slave, STDERR_FILENO);
+  o.progress = true;
+  const RenderResult shown = render_image(*s->scene, *s->accel, o);
+  std::fflush(stderr);
+  dup2(saved, STDERR_FILENO);
+  close(slave);  // the drain reads to the end, then gets EIO
+  drain.join();
+  close(master);
+  close(saved);
+  EXPECT_TRUE(same_image(shown.image, alone.image));
+  // A bar drawn (the render took over half a second, as under ThreadSanitizer) ends erased.
+  if (drawn.find('%') != std::string::npos) EXPECT_NE(drawn.find("\033[K"), std::string::npos);
 }
 
 // The debugger's build, render and heat map workers at once (main_window.cpp runTask): a render and a heat

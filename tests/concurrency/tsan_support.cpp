@@ -12,6 +12,7 @@
 #include <cstdlib>
 
 #include <oneapi/tbb/detail/_small_object_pool.h>
+#include <oneapi/tbb/detail/_task.h>
 
 namespace {
 
@@ -42,6 +43,37 @@ Fn next_definition(const char* mangled) {
   return reinterpret_cast<Fn>(f);
 }
 }  // namespace
+
+// A wait returns when the last task has dropped the wait_context's reference count to zero: each task's
+// fetch_sub releases the count, and the library's wait loop (inside libtbb, uninstrumented) acquires it. The
+// header's ITT notice after the wait names the object, not the count, and the tasks' notices come before
+// their fetch_sub; so the acquire the library did is done again here, on the count itself (the second word of
+// wait_context: m_version_and_traits, then the atomic m_ref_count). Without it a task's last decrement looks
+// like a race with whatever later reuses that memory (the waiting frame's stack).
+namespace {
+constexpr std::size_t kRefCountOffset = sizeof(std::uint64_t);
+static_assert(sizeof(d1::wait_context) == 2 * sizeof(std::uint64_t), "not libtbb 2021's wait_context");
+void acquire_ref_count(d1::wait_context& w) {
+  __tsan_acquire(reinterpret_cast<char*>(&w) + kRefCountOffset);
+}
+}  // namespace
+
+void wait(d1::wait_context& w, d1::task_group_context& ctx) {
+  using Fn = void (*)(d1::wait_context&, d1::task_group_context&);
+  static const Fn real =
+      next_definition<Fn>("_ZN3tbb6detail2r14waitERNS0_2d112wait_contextERNS2_18task_group_contextE");
+  real(w, ctx);
+  acquire_ref_count(w);
+}
+
+void execute_and_wait(d1::task& t, d1::task_group_context& t_ctx, d1::wait_context& w,
+                      d1::task_group_context& w_ctx) {
+  using Fn = void (*)(d1::task&, d1::task_group_context&, d1::wait_context&, d1::task_group_context&);
+  static const Fn real = next_definition<Fn>(
+      "_ZN3tbb6detail2r116execute_and_waitERNS0_2d14taskERNS2_18task_group_contextERNS2_12wait_contextES6_");
+  real(t, t_ctx, w, w_ctx);
+  acquire_ref_count(w);
+}
 
 void* allocate(d1::small_object_pool*& pool, std::size_t bytes, const d1::execution_data& ed) {
   using Fn = void* (*)(d1::small_object_pool*&, std::size_t, const d1::execution_data&);
