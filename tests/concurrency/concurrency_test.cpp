@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/bvh_sah_curve.h"
@@ -35,6 +37,22 @@
 
 namespace raystep {
 namespace {
+
+// TBB gives the whole process at most (cores - 1) worker threads: on a 2-core machine one worker, which
+// several arenas at once would share, leaving most heat maps and builds on their calling thread alone. Four
+// workers let every arena here run its tasks on two threads, as on the students' machines.
+class EnoughWorkers : public ::testing::Environment {
+ public:
+  void SetUp() override {
+    allow_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, 5);
+  }
+  void TearDown() override { allow_.reset(); }
+
+ private:
+  std::unique_ptr<tbb::global_control> allow_;
+};
+[[maybe_unused]] ::testing::Environment* const enough_workers =
+    ::testing::AddGlobalTestEnvironment(new EnoughWorkers);
 
 // The debugger's document, as viz/src/session.h holds it: the scene, and a structure built over it that
 // keeps the scene alive. Workers receive both by shared pointer.
