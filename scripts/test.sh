@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The one test command: install dependencies, build everything (Release), run every test, then build the core
-# tests with AddressSanitizer + UndefinedBehaviorSanitizer and run them again, then run every fuzz harness for a
-# few seconds on its saved corpus (scripts/fuzz.sh --smoke; skipped without clang).
+# tests with AddressSanitizer + UndefinedBehaviorSanitizer and run them again, then build the concurrency tests
+# with ThreadSanitizer (clang) and run them, then run every fuzz harness for a few seconds on its saved corpus
+# (scripts/fuzz.sh --smoke; skipped without clang).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -16,6 +17,17 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYSTEP_SA
 cmake --build build-asan -j "$jobs" --target raystep_core_tests
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --output-on-failure -j "$jobs" -L core)
+
+echo "== thread sanitizer pass (TSan, clang): the concurrency tests and the planted races =="
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTEP_TSAN=ON \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF \
+  -DRAYSTEP_BUILD_GUI=OFF -DRAYSTEP_BUILD_VTK_EXPORT=OFF > /dev/null
+cmake --build build-tsan -j "$jobs" --target raystep_concurrency_tests raystep_tsan_canary
+# clang 14's TSan cannot place its shadow memory on kernels with more than 28 bits of mmap randomisation
+# (vm.mmap_rnd_bits); the tests run without address randomisation where the system allows it.
+norandom=()
+if setarch "$(uname -m)" -R true 2> /dev/null; then norandom=(setarch "$(uname -m)" -R); fi
+(cd build-tsan && "${norandom[@]}" ctest --output-on-failure -j "$jobs" -L concurrency)
 
 echo "== fuzz smoke pass (libFuzzer + ASan + UBSan): every reader, 5 s each =="
 bash scripts/fuzz.sh --smoke
