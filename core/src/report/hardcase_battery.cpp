@@ -323,7 +323,8 @@ HardCaseSet overlap_set(const std::string& name, Place place) {
   for (const auto& [l, must] : local)
     for (const vec3& off : offsets) {
       const vec3 target = place(l), origin = place(l + off);
-      add_ray(set, origin, target - origin, must, target);
+      add_ray(set, origin, target - origin, must,
+              must ? vec3(std::nanf("")) : target);  // the centre: no edge
     }
   return set;
 }
