@@ -35,7 +35,7 @@ const HardCaseRow* find_row(const HardCaseReport& r, const std::string& structur
 // Every structure, the variants too, in child processes: the built-in battery is clean.
 TEST(HardCases, BuiltInBatteryIsCleanForEveryStructure) {
   HardCaseOptions options;
-  options.mesh_rays = 512;
+  options.mesh_rays = 256;
   std::string note;
   std::vector<HardCaseSet> battery = hardcase_battery(nullptr, options, &note);
   EXPECT_EQ(note, "");
@@ -258,7 +258,9 @@ class Planted : public Accelerator {
 HardCaseReport run_planted(Planted::Bug bug, double time_limit = 60.0) {
   HardCaseOptions options;
   options.mesh_rays = 128;
-  std::vector<HardCaseSet> battery = hardcase_battery(nullptr, options, nullptr);
+  std::vector<HardCaseSet> all = hardcase_battery(nullptr, options, nullptr), battery;
+  for (HardCaseSet& set : all)  // the first geometry of each family is enough to catch these bugs
+    if (battery.empty() || battery.back().family != set.family) battery.push_back(std::move(set));
   HardCaseRunOptions run;
   run.structures = {"bvh", "planted"};
   run.time_limit_seconds = time_limit;

@@ -206,7 +206,7 @@ HardCaseSet axis_set(float s) {
   set.name = name;
   const TriangleMesh cube = subdivided_cube(2, -s, s);
   set.geometry = to_geometry(cube, set.name);
-  const float offsets[] = {-s, -0.5f * s, -0.f, 0.f, 0.5f * s, s, next_float_up(s), next_float_down(s)};
+  const float offsets[] = {-s, -0.f, 0.f, 0.5f * s, s, next_float_up(s), next_float_down(s)};
   for (int a = 0; a < 3; ++a)
     for (float sign : {1.f, -1.f})
       for (float u : offsets)
