@@ -392,6 +392,7 @@ void append_mesh_nonfinite(std::vector<HardCaseSet>& battery, bool open_mesh) {
   set.family = HardCaseFamily::nonfinite;
   set.name = "mesh";
   set.geometry = source.geometry;
+  set.same_geometry_as = open_mesh ? 0 : 1;
   std::vector<Ray> aimed(source.rays.begin(), source.rays.begin() + std::min<size_t>(32, source.rays.size()));
   add_nonfinite_rays(set, aimed, !open_mesh);
   battery.push_back(std::move(set));

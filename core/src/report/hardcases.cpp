@@ -10,6 +10,7 @@
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -42,8 +43,11 @@ struct Battery {
   std::vector<HardCaseFamily> families;               // present, in enum order
 };
 
+// Structures built in this process, by set index, for the sets that share a geometry (same_geometry_as).
+using BuiltStructures = std::map<size_t, std::unique_ptr<Accelerator>>;
+
 Record run_family(const std::string& structure, const StructureFactory& factory, const Battery& b,
-                  HardCaseFamily family) {
+                  HardCaseFamily family, BuiltStructures& built) {
   Record rec;
   rec.kind = 1;
   rec.family = int32_t(family);
@@ -51,8 +55,15 @@ Record run_family(const std::string& structure, const StructureFactory& factory,
   for (size_t s = 0; s < b.sets.size(); ++s) {
     const HardCaseSet& set = b.sets[s];
     if (set.family != family) continue;
-    std::unique_ptr<Accelerator> acc = factory(structure);
-    acc->build(set.geometry);
+    std::unique_ptr<Accelerator> own;
+    const Accelerator* acc;
+    if (set.same_geometry_as >= 0 && built.count(size_t(set.same_geometry_as))) {
+      acc = built[size_t(set.same_geometry_as)].get();
+    } else {
+      own = factory(structure);
+      own->build(set.geometry);
+      acc = own.get();
+    }
     for (size_t i = 0; i < set.rays.size(); ++i) {
       const ReferenceHit& ref = b.references[s][i];
       Hit hit;
@@ -69,6 +80,11 @@ Record run_family(const std::string& structure, const StructureFactory& factory,
         rec.issue_kind = issue, rec.issue_set = int32_t(s), rec.issue_ray = int64_t(i);
     }
     rec.rays += set.rays.size();
+    if (own) {
+      bool shared = false;
+      for (const HardCaseSet& other : b.sets) shared |= other.same_geometry_as == int(s);
+      if (shared) built[s] = std::move(own);
+    }
   }
   rec.ms = 1e3 * seconds_since(t0);
   return rec;
@@ -165,12 +181,13 @@ std::vector<HardCaseRow> run_isolated(const std::string& structure, const Struct
       ::signal(SIGALRM, SIG_DFL);
       ::alarm(unsigned(std::max(1.0, time_limit)));
       int code = 0;
+      BuiltStructures built;
       try {
         for (size_t f = start; f < b.families.size(); ++f) {
           Record begin;
           begin.family = int32_t(b.families[f]);
           if (!write_all(fds[1], &begin, sizeof begin)) ::_exit(3);
-          Record done = run_family(structure, factory, b, b.families[f]);
+          Record done = run_family(structure, factory, b, b.families[f], built);
           if (!write_all(fds[1], &done, sizeof done)) ::_exit(3);
         }
       } catch (...) {
@@ -265,8 +282,9 @@ HardCaseReport run_hardcases(const std::vector<HardCaseSet>& battery, const Hard
       std::vector<HardCaseRow> rows = run_isolated(structure, factory, b, options.time_limit_seconds);
       report.rows.insert(report.rows.end(), rows.begin(), rows.end());
     } else {
+      BuiltStructures built;
       for (HardCaseFamily f : b.families)
-        report.rows.push_back(row_from(structure, b, run_family(structure, factory, b, f)));
+        report.rows.push_back(row_from(structure, b, run_family(structure, factory, b, f, built)));
     }
   }
   return report;

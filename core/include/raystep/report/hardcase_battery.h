@@ -40,8 +40,11 @@ struct HardCaseSet {
   // must_hit[i]: ray i must hit something (it starts inside a closed mesh, or is aimed at a point strictly
   // inside the covered part of a surface): a miss is a leak.
   std::vector<uint8_t> must_hit;
-  // The point each ray is aimed at (a vertex or a point on an edge, within rounding), or empty.
+  // The point each ray is aimed at (a vertex or a point on an edge, within rounding), or NaN.
   std::vector<glm::vec3> targets;
+  // The index in the battery of an earlier set with the same geometry, whose built structure can be reused
+  // (a large mesh is built once for its surface and nonfinite rays), or -1.
+  int same_geometry_as = -1;
 };
 
 // Is the mesh closed? Edges are keyed by their end points' positions (bit-identical coordinates weld
