@@ -231,3 +231,19 @@ struct BvolReportArgs {
 int run_bvol_report(const BvolReportArgs& args);
 
 }  // namespace raystep::cli
+
+namespace raystep::cli {
+
+// hardcases_commands.cpp: `raystep hardcases [MESH]`, the hard-case battery for every structure. Exit codes:
+// 0 no leak, disagreement or crash; 1 any of them; 2 bad input (InputError).
+struct HardCasesArgs {
+  std::string mesh;    // a .obj file; empty: the built-in meshes
+  std::string accel;   // comma-separated structures, "all", or empty: brute,grid,kd,bvh,bvh4,bvh8,octree,bsp
+  std::string output;  // optional report file, .csv or .json
+  uint64_t rays = 0;   // rays per scale on the mesh (0: automatic)
+  uint64_t seed = 1;
+  double time_limit = 300;  // seconds per structure before its run counts as a crash (a hang)
+};
+int run_hardcases(const HardCasesArgs& args);
+
+}  // namespace raystep::cli

@@ -334,6 +334,28 @@ int main(int argc, char** argv) {
       ->add_option("-o,--output", export_vtk.output, "output folder (replaced): raystep.vtm and raystep/")
       ->required();
 
+  HardCasesArgs hardcases;
+  CLI::App* hardcases_cmd = app.add_subcommand(
+      "hardcases",
+      "The hard-case battery for every structure: leaks, disagreements with a double-precision brute force, "
+      "crashes (exit 0: none; 1: any; 2: bad input)");
+  hardcases_cmd->add_option(
+      "mesh", hardcases.mesh,
+      "a .obj mesh (default: the built-in meshes); the inside rays need it closed: every "
+      "edge shared by an even number of triangles");
+  hardcases_cmd->add_option(
+      "--accel", hardcases.accel,
+      "comma-separated structures, or all (default: brute,grid,kd,bvh,bvh4,bvh8,octree,bsp)");
+  hardcases_cmd
+      ->add_option("--rays", hardcases.rays, "rays per scale on the mesh, up to 65536 (0: automatic)")
+      ->capture_default_str();
+  hardcases_cmd->add_option("--seed", hardcases.seed, "seed of the generated rays")->capture_default_str();
+  hardcases_cmd
+      ->add_option("--time-limit", hardcases.time_limit,
+                   "seconds per structure before it counts as a crash (a hang)")
+      ->capture_default_str();
+  hardcases_cmd->add_option("-o,--output", hardcases.output, "also write the report: .csv or .json");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -366,6 +388,7 @@ int main(int argc, char** argv) {
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);
     if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);
     if (*export_vtk_cmd) return run_export_vtk(export_vtk);
+    if (*hardcases_cmd) return run_hardcases(hardcases);
   } catch (const raystep::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

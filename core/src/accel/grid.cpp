@@ -108,6 +108,11 @@ void UniformGrid::build(const Geometry& geometry) {
   bounds_ = geometry.bounds();
   glm::vec3 e = bounds_.extent();
   float max_extent = std::max({e.x, e.y, e.z});
+  // Coordinates near the float range (the OBJ reader accepts up to 3.4e38) can span more than it: cells of
+  // infinite size. Refused by name (the resolution rule below would divide infinities).
+  if (!std::isfinite(max_extent))
+    throw InputError(
+        "", 0, "grid: the scene's extent overflows single precision (its coordinates span more than 3.4e38)");
   for (int a = 0; a < 3; ++a) {
     if (e[a] > max_extent * 1e-6f) continue;
     float magnitude = std::max(std::fabs(bounds_.lo[a]), std::fabs(bounds_.hi[a]));

@@ -164,6 +164,19 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // The axis whose boundary comes first is stepped next; ties go to the lowest axis (x, then y, then z),
     // so a ray through an edge or a vertex visits the cells around it one axis at a time.
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
+    // tMax is summed step by step, so after many steps it strays from the exact boundary distance by many
+    // ulps. Where the ray would leave the grid across this axis while another axis's boundary lies within a
+    // relative 2^-12 of it, the exact order may be the other one: a ray leaving the grid through a cell edge
+    // at a mesh vertex (raystep hardcases found such leaks on a box at x1e-6 and x1e6). The neighbour across
+    // that boundary is visited first; the walk ends at the next step.
+    if (cell[axis] + step[axis] == out[axis]) {
+      const int leaving = axis;
+      for (int b = 0; b < 3; ++b)
+        if (b != leaving && step[b] != 0 && cell[b] + step[b] != out[b] &&
+            t_max[b] <= t_max[leaving] + std::fabs(t_max[leaving]) * (1.f / 4096.f) &&
+            (axis == leaving || t_max[b] < t_max[axis]))
+          axis = b;  // the nearest such boundary
+    }
     float t_cell_exit = std::min(t_max[axis], t_exit);
     if constexpr (Recorder::enabled)
       rec.cell(GridCellStep{
@@ -196,7 +209,11 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
       rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::inside_cell);
       break;
     }
-    if (t_max[axis] > t_exit) {  // the ray leaves the grid (or its interval ends) in this cell
+    // The ray leaves the grid (or its interval ends) in this cell. tMax is summed step by step, so it strays
+    // from the exact boundary distance by many ulps after many steps: a boundary computed within the same
+    // relative 2^-12 beyond the exit may truly lie before it (a ray leaving the grid through a cell edge at a
+    // mesh vertex), and that cell is visited too (cells past the grid's last one are not: `out` below).
+    if (t_max[axis] > t_exit + std::fabs(t_exit) * (1.f / 4096.f)) {
       if (nearest.found())
         rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
       break;
