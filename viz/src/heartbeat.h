@@ -24,7 +24,9 @@ class Heartbeat : public QObject {
   void report(const char* why);
   QTimer* timer_ = nullptr;
   std::chrono::steady_clock::time_point start_, last_;
-  double longestMs_ = 0, longestAt_ = 0;
+  double lastCpu_ = 0;                    // the GUI thread's CPU time at the last beat, ms
+  double longestMs_ = 0, longestAt_ = 0;  // the most CPU the GUI thread spent between two beats
+  double longestGapMs_ = 0;               // the longest gap between beats (the machine's load too)
   int stalls_ = 0;
   double seconds_ = 0;
 };

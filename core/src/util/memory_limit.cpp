@@ -16,19 +16,23 @@ namespace {
 constexpr const char* kLimitVariable = "RAYSTEP_MEMORY_LIMIT";
 
 // Peak resident bytes per byte of the file, measured (bench/README.md, "Load") and rounded up. An OBJ file:
-// its text, tinyobjloader's arrays and the mesh (the 2.2-million-triangle mesh of 88 MB peaks at ... MB).
-// A trace: its text, the JSON tape and the events (the 10-million-event trace of ... MB peaks at ... MB).
-constexpr uint64_t kReadFactor[] = {4, 4};
+// its text, tinyobjloader's arrays, the mesh and the scene made of it: the 2.2-million-triangle mesh of 88 MB
+// peaks at 495 MB (5.6 bytes per byte; a file of short lines, with small indices, has more faces per byte,
+// hence 8). A trace: its text, the JSON tape and the events: the 10-million-event trace of 644 MB peaks at
+// 3.4 GiB in `raystep trace-info` (5.5 bytes per byte).
+constexpr uint64_t kReadFactor[] = {8, 6};
 
-// Peak bytes per primitive of each build, measured on the same mesh (peak RSS of `raystep cast` less that of
-// reading the mesh) and rounded up.
+// Peak bytes per primitive of a process that holds the scene and builds the structure over it (the peak RSS
+// of `raystep cast` on the 2.2-million-triangle mesh divided by its triangles, rounded up): the grid 233,
+// kd 347, the BVHs 315, the octree 329, the BSP tree 699 (kd-median taken as kd, bvh-sweep and bvh-median as
+// bvh: not measured apart).
 struct BuildCost {
   const char* name;
   uint64_t bytes_per_primitive;
 };
 constexpr BuildCost kBuildCosts[] = {
-    {"grid", 200},       {"kd", 400},   {"kd-median", 400}, {"bvh", 200},    {"bvh-sweep", 200},
-    {"bvh-median", 200}, {"bvh4", 200}, {"bvh8", 200},      {"octree", 400}, {"bsp", 1000},
+    {"grid", 240},       {"kd", 360},   {"kd-median", 360}, {"bvh", 320},    {"bvh-sweep", 320},
+    {"bvh-median", 320}, {"bvh4", 320}, {"bvh8", 320},      {"octree", 340}, {"bsp", 720},
 };
 
 uint64_t saturating_mul(uint64_t a, uint64_t b) {

@@ -27,8 +27,9 @@ uint64_t read_memory_estimate(InputKind kind, uint64_t file_bytes);
 // Throws InputError(path, 0, "too large to read: ...") when reading the file would need more than the limit.
 void check_read_memory(const std::string& path, InputKind kind, uint64_t file_bytes);
 
-// Peak bytes that building the named structure over `primitives` primitives needs (the structure and its
-// builder's temporary arrays, not the scene itself); 0 for an unknown name.
+// Peak bytes of a process that holds a scene of `primitives` primitives and builds the named structure over
+// it (the scene, the structure and its builder's temporary arrays); 0 for an unknown name (brute force,
+// bvol).
 uint64_t build_memory_estimate(const std::string& structure, uint64_t primitives);
 
 // Throws InputError(scene, 0, "too large for NAME: ...") when the build would need more than the limit.
