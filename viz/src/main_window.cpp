@@ -620,7 +620,10 @@ void MainWindow::runTask(const QString& kind, const QString& what,
       return work();
     } catch (const std::exception& e) {
       QString msg = QString::fromStdString(e.what());
-      return [this, msg] { showError(msg); };
+      return [this, msg] {
+        statusBar()->clearMessage();  // not "Loading ..." under the error any more
+        showError(msg);
+      };
     }
   }));
 }
