@@ -19,42 +19,7 @@ out=$(mktemp -d /tmp/big_mesh.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 big=$out/big.obj
 
-python3 - "$mesh" "$levels" "$copies" "$big" <<'EOF'
-import sys
-src, levels, copies, dst = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
-v, f = [], []
-for line in open(src):
-    p = line.split()
-    if not p: continue
-    if p[0] == 'v': v.append(tuple(float(x) for x in p[1:4]))
-    elif p[0] == 'f':
-        idx = [int(x.split('/')[0]) for x in p[1:]]
-        idx = [i - 1 if i > 0 else len(v) + i for i in idx]
-        for k in range(1, len(idx) - 1): f.append((idx[0], idx[k], idx[k + 1]))
-for _ in range(levels):
-    mid, nf = {}, []
-    def m(a, b):
-        key = (a, b) if a < b else (b, a)
-        if key not in mid:
-            mid[key] = len(v)
-            v.append(tuple((x + y) / 2 for x, y in zip(v[a], v[b])))
-        return mid[key]
-    for a, b, c in f:
-        ab, bc, ca = m(a, b), m(b, c), m(c, a)
-        nf += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
-    f = nf
-lo = [min(p[i] for p in v) for i in range(3)]
-hi = [max(p[i] for p in v) for i in range(3)]
-step = (hi[0] - lo[0]) * 1.1
-with open(dst, 'w') as o:
-    for c in range(copies):
-        o.writelines('v %.9g %.9g %.9g\n' % (x + c * step, y, z) for x, y, z in v)
-    for c in range(copies):
-        base = c * len(v) + 1
-        o.writelines('f %d %d %d\n' % (a + base, b + base, cc + base) for a, b, cc in f)
-print('mesh: %s subdivided %d times, %d copies: %d triangles, %d vertices' %
-      (src, levels, copies, len(f) * copies, len(v) * copies))
-EOF
+python3 "$here/scripts/make_big_mesh.py" --levels "$levels" --copies "$copies" --out "$big" "$mesh"
 
 for kind in camera random; do
   if [ $kind = camera ]; then size=(--size 256x256); else size=(--count 65536 --seed 3); fi

@@ -37,6 +37,7 @@
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "raystep/util/memory_limit.h"
 
 namespace raystep::cli {
 namespace {
@@ -173,6 +174,7 @@ int run_render(const RenderArgs& a) {
   opt.seed = a.seed ? *a.seed : scene.render.seed;
   opt.progress = true;
   auto accel = build_structure(a.structure);
+  check_build_memory(a.scene, a.structure.accel, scene.geometry.size());
 
   auto t0 = Clock::now();
   accel->build(scene.geometry);
@@ -272,6 +274,7 @@ int run_cast(const CastArgs& a) {
   Scene scene = load_scene(a.scene);
   std::vector<Ray> rays = read_rays(a.rays);
   auto accel = build_structure(a.structure);
+  check_build_memory(a.scene, a.structure.accel, scene.geometry.size());
 
   auto t0 = Clock::now();
   accel->build(scene.geometry);
@@ -407,6 +410,7 @@ int run_trace(const TraceArgs& a) {
     return record_trace(scene.geometry, *accel, requests, a.scene, file_content_hash(a.scene));
   };
 
+  check_build_memory(a.scene, a.structure.accel, scene.geometry.size());
   Trace trace;
   if (a.build_events) {
     // The build is logged while it runs, straight into the (temporary) file: memory stays bounded.

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "raystep/util/error.h"
+#include "raystep/util/memory_limit.h"
 
 #ifdef RAYSTEP_HAVE_VTK_EXPORT
 #include "output_folder.h"
@@ -117,6 +118,7 @@ int run_export_vtk(const ExportVtkArgs& a) {
       px = int(p[0]);
       py = int(p[1]);
     }
+    check_build_memory(a.scene, a.structure.accel, scene.geometry.size());
     accel->build(scene.geometry);
     if (trace)
       check_same_structure(*trace, record_trace(scene.geometry, *accel, {}, a.scene, scene_hash), *a.trace);

@@ -14,6 +14,7 @@
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "raystep/util/memory_limit.h"
 
 namespace raystep::cli {
 
@@ -57,6 +58,7 @@ int run_multi_trace(const TraceArgs& a) {
   }
   std::vector<const Accelerator*> built;
   for (auto& accel : accels) {
+    check_build_memory(a.scene, accel->name(), scene.geometry.size());
     accel->build(scene.geometry);
     built.push_back(accel.get());
   }

@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QCoreApplication>
 
+#include "heartbeat.h"
 #include "main_window.h"
 #include "raystep/util/atomic_file.h"
 #include "scene_view.h"
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setApplicationName("raystep-gui");
   raystep::viz::MainWindow window;
+  raystep::viz::Heartbeat heartbeat;  // RAYSTEP_GUI_HEARTBEAT=SECONDS: load measurements (bench/README.md)
   int code = raystep::viz::runCommandLine(window, QApplication::arguments());
   return code >= 0 ? code : app.exec();
 }

@@ -29,6 +29,7 @@
 #include "compare_window.h"
 #include "event_list.h"
 #include "grid_sweep_view.h"
+#include "heartbeat.h"
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_pane.h"
@@ -619,7 +620,10 @@ void MainWindow::runTask(const QString& kind, const QString& what,
       return work();
     } catch (const std::exception& e) {
       QString msg = QString::fromStdString(e.what());
-      return [this, msg] { showError(msg); };
+      return [this, msg] {
+        statusBar()->clearMessage();  // not "Loading ..." under the error any more
+        showError(msg);
+      };
     }
   }));
 }
@@ -947,7 +951,7 @@ void MainWindow::buildStructure() {
                 .arg(st.sah_cost, 0, 'f', 1) +
             took(tr(", built"), built->buildMs));
       }
-      if (scripted_ && !kept)
+      if ((scripted_ || Heartbeat::enabled()) && !kept)
         std::fprintf(stderr, "timing: %s build %.1f ms\n", built->kind.c_str(), built->buildMs);
       auto* grid = built.get();
       session_->setImageSize(sizeW_ > 0 ? sizeW_ : grid->scene->scene.render.width,
@@ -1001,7 +1005,7 @@ void MainWindow::renderPicture() {
       }
       // The new anti-aliasing's samples or error.
       if (imageView_->heatQuantity() == "samples" || imageView_->heatQuantity() == "error") ensureHeat();
-      if (scripted_) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
+      if (scripted_ || Heartbeat::enabled()) std::fprintf(stderr, "timing: render %dx%d %.1f ms\n", w, h, ms);
     });
   });
 }

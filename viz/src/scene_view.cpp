@@ -191,6 +191,19 @@ void addPrim(vtkPoints* pts, vtkCellArray* tris, const PrimShape& p) {
   tris->InsertNextCell(3, ids);
 }
 
+// A scene primitive's shape, read from its geometry.
+PrimShape shapeOf(const Geometry& g, uint32_t id) {
+  PrimShape p;
+  if (g.type(id) == PrimType::sphere) {
+    p.sphere = true;
+    p.v[0] = g.sphere(id).center;
+    p.radius = g.sphere(id).radius;
+  } else {
+    for (int k = 0; k < 3; ++k) p.v[k] = g.vertex(id, k);
+  }
+  return p;
+}
+
 QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.blue()}; }
 
 }  // namespace
@@ -253,7 +266,21 @@ struct SceneView::Impl {
   std::unordered_map<int32_t, const TraceNode*> nodes;
   int32_t currentNode = -1;
   std::vector<int32_t> visitedNodes;
+  // A trace opened alone: the primitives it lists, by id. A scene's are read from its geometry (primShape):
+  // a map of every triangle of a 2-million-triangle mesh cost the GUI thread seconds and 190 MB.
   std::map<int32_t, PrimShape> prims;
+  const Geometry* geometry = nullptr;
+  bool primShape(int32_t id, PrimShape* out) const {
+    if (geometry) {
+      if (id < 0 || size_t(id) >= geometry->size()) return false;
+      *out = shapeOf(*geometry, uint32_t(id));
+      return true;
+    }
+    auto it = prims.find(id);
+    if (it == prims.end()) return false;
+    *out = it->second;
+    return true;
+  }
   // The current block's primitive shapes: which ray and block they were made for, cells per primitive.
   const void* primBlockRay = nullptr;
   int primBlock = -2;
@@ -514,6 +541,7 @@ void SceneView::rebuildGeometry() {
   Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
   if (!sameMesh) {
     d.prims.clear();
+    d.geometry = nullptr;
     d.cellPrim.clear();
   }
   auto addColor = [&](vtkIdType count, const glm::vec3& c) {
@@ -526,22 +554,16 @@ void SceneView::rebuildGeometry() {
     // kept
   } else if (const SceneData* sd = session_->scene()) {
     const Geometry& g = sd->scene.geometry;
+    d.geometry = &g;
+    d.cellPrim.reserve(g.size());
     for (uint32_t id = 0; id < g.size(); ++id) {
-      PrimShape p;
-      if (g.type(id) == PrimType::sphere) {
-        p.sphere = true;
-        p.v[0] = g.sphere(id).center;
-        p.radius = g.sphere(id).radius;
-      } else {
-        for (int k = 0; k < 3; ++k) p.v[k] = g.vertex(id, k);
-      }
+      const PrimShape p = shapeOf(g, id);
       vtkIdType before = tris->GetNumberOfCells();
       addPrim(pts, tris, p);
       d.cellPrim.resize(size_t(tris->GetNumberOfCells()), int32_t(id));
       glm::vec3 diffuse = sd->scene.materials[g.material(id)].diffuse;
       if (sd->scene.materials[g.material(id)].mirror > 0.f) diffuse = glm::vec3(0.55f, 0.6f, 0.7f);  // a mirror reads as metal
       addColor(tris->GetNumberOfCells() - before, glm::max(diffuse, glm::vec3(0.12f)));
-      d.prims[int32_t(id)] = p;
     }
     bounds = g.bounds();
   } else if (const Trace* t = session_->trace()) {
@@ -981,9 +1003,9 @@ void SceneView::updateStep() {
     vtkNew<vtkCellArray> ptris;
     d.primCells.clear();
     for (const PrimMark& m : s.prims) {
-      auto it = d.prims.find(m.prim);
+      PrimShape shape;
       vtkIdType before = ptris->GetNumberOfCells();
-      if (it != d.prims.end()) addPrim(ppts, ptris, it->second);
+      if (d.primShape(m.prim, &shape)) addPrim(ppts, ptris, shape);
       d.primCells.push_back(int(ptris->GetNumberOfCells() - before));
     }
     d.primData->SetPoints(ppts);
@@ -1005,8 +1027,7 @@ void SceneView::updateStep() {
                  : m.state == PrimState::hit     ? palette::primHit
                  : m.state == PrimState::missed  ? palette::primMissed
                                                  : palette::primSkipped;
-      if (auto it = d.prims.find(m.prim); m.state == PrimState::testing && it != d.prims.end()) {
-        const PrimShape& p = it->second;
+      if (PrimShape p; m.state == PrimState::testing && d.primShape(m.prim, &p)) {
         if (p.sphere) {  // three great circles
           for (int axis = 0; axis < 3; ++axis) {
             vtkIdType first = tpts->GetNumberOfPoints();

@@ -12,6 +12,7 @@
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
+#include "raystep/util/memory_limit.h"
 
 namespace raystep::viz {
 namespace {
@@ -37,6 +38,7 @@ std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const Sc
   data->scene = std::move(scene);
   data->kind = kind;
   data->accel = make_accelerator(kind, options);
+  check_build_memory(data->scene->path, kind, data->scene->scene.geometry.size());
   auto t0 = std::chrono::steady_clock::now();
   data->accel->build(data->scene->scene.geometry);
   data->buildMs = msSince(t0);

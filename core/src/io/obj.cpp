@@ -20,10 +20,12 @@
 #include <fstream>
 #include <limits>
 #include <regex>
-#include <sstream>
+#include <istream>
+#include <streambuf>
 #include <string_view>
 
 #include "raystep/util/error.h"
+#include "raystep/util/memory_limit.h"
 
 namespace raystep {
 namespace {
@@ -233,36 +235,73 @@ glm::vec3 normal_at(const tinyobj::attrib_t& a, int i) {
   return glm::vec3(a.normals[3 * size_t(i)], a.normals[3 * size_t(i) + 1], a.normals[3 * size_t(i) + 2]);
 }
 
-}  // namespace
+// What tinyobjloader read, before it becomes a mesh: load_obj lets the file's text go in between.
+struct ObjRead {
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  size_t faces = 0;
+};
 
-TriangleMesh parse_obj(const std::string& text, const std::string& name) {
+// A read-only stream over text without a copy (std::istringstream copies it: a second 90 MB for a
+// 2-million-triangle mesh).
+class TextStreamBuf : public std::streambuf {
+ public:
+  explicit TextStreamBuf(const std::string& text) {
+    char* p = const_cast<char*>(text.data());  // get area only: never written through
+    setg(p, p, p + text.size());
+  }
+};
+
+ObjRead read_obj(const std::string& text, const std::string& name) {
   ObjScanner scanner(text, name);
   scanner.scan();
 
   // Read with tinyobjloader, without triangulation (we split the polygons), without materials
   // (no reader: mtllib is read past) and without default vertex colours.
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
+  ObjRead r;
+  r.faces = scanner.faces();
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  std::istringstream stream(text);
-  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, nullptr, /*triangulate=*/false,
-                        /*default_vcols_fallback=*/false))
+  TextStreamBuf buf(text);
+  std::istream stream(&buf);
+  if (!tinyobj::LoadObj(&r.attrib, &r.shapes, &materials, &warn, &err, &stream, nullptr,
+                        /*triangulate=*/false, /*default_vcols_fallback=*/false))
     rethrow_tinyobj(name, err);
+  return r;
+}
 
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
+TriangleMesh to_mesh(ObjRead&& r, const std::string& name) {
+  tinyobj::attrib_t& attrib = r.attrib;
   TriangleMesh mesh;
   const size_t vertex_count = attrib.vertices.size() / 3, normal_count = attrib.normals.size() / 3;
   mesh.positions.resize(vertex_count);
   for (size_t i = 0; i < vertex_count; ++i)
-    mesh.positions[i] = glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+    mesh.positions[i] =
+        glm::vec3(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+  release(attrib.vertices);
+  release(attrib.vertex_weights);
+  release(attrib.colors);
+  release(attrib.texcoords);
   mesh.normals.resize(normal_count);
   for (size_t i = 0; i < normal_count; ++i) mesh.normals[i] = normal_at(attrib, int(i));
+
+  // Sized once: growing by doubling would hold up to twice the triangles while copying.
+  size_t triangles = 0;
+  for (const tinyobj::shape_t& shape : r.shapes)
+    for (unsigned char nv : shape.mesh.num_face_vertices) triangles += size_t(nv) - 2;
+  mesh.triangles.reserve(triangles);
+  mesh.normal_triangles.reserve(normal_count ? triangles : 0);
 
   // Fan split in file order. tinyobjloader appends shapes as the file's o/g lines start them and keeps
   // faces in order inside a shape (also across usemtl), so shape order then face order is file order.
   size_t faces = 0;
   bool any_normals = false;
-  for (const tinyobj::shape_t& shape : shapes) {
+  for (tinyobj::shape_t& shape : r.shapes) {
     const tinyobj::mesh_t& m = shape.mesh;
     size_t offset = 0;
     for (unsigned char nv_byte : m.num_face_vertices) {
@@ -282,29 +321,45 @@ TriangleMesh parse_obj(const std::string& text, const std::string& name) {
       any_normals |= has_normals;
       for (size_t k = 1; k + 1 < nv; ++k) {
         mesh.triangles.emplace_back(idx[0].vertex_index, idx[k].vertex_index, idx[k + 1].vertex_index);
-        mesh.normal_triangles.push_back(has_normals ? glm::uvec3(idx[0].normal_index, idx[k].normal_index,
-                                                                 idx[k + 1].normal_index)
-                                                    : glm::uvec3(kNoNormal));
+        if (normal_count)
+          mesh.normal_triangles.push_back(
+              has_normals ? glm::uvec3(idx[0].normal_index, idx[k].normal_index, idx[k + 1].normal_index)
+                          : glm::uvec3(kNoNormal));
       }
     }
+    shape = tinyobj::shape_t();  // its indices are in the mesh now
   }
-  if (faces != scanner.faces())
-    throw InputError(name, 0, "internal: tinyobjloader read " + std::to_string(faces) + " faces, expected " +
-                                  std::to_string(scanner.faces()));
-  if (!any_normals) mesh.normal_triangles.clear();
+  if (faces != r.faces)
+    throw InputError(name, 0,
+                     "internal: tinyobjloader read " + std::to_string(faces) + " faces, expected " +
+                         std::to_string(r.faces));
+  if (!any_normals) release(mesh.normal_triangles);
   return mesh;
+}
+
+}  // namespace
+
+TriangleMesh parse_obj(const std::string& text, const std::string& name) {
+  return to_mesh(read_obj(text, name), name);
 }
 
 TriangleMesh load_obj(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, 0, "cannot open: no such file");
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, 0, "cannot open: not a regular file");
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw InputError(path, 0, "cannot read: " + ec.message());
+  // Refused before a byte is read when it would not fit (util/memory_limit.h).
+  check_read_memory(path, InputKind::obj_mesh, size);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path, 0, "cannot read");
-  return parse_obj(ss.str(), path);
+  // Read in one go into a string of the file's size (a stringstream would grow by doubling, then copy).
+  std::string text(size_t(size), '\0');
+  in.read(text.data(), std::streamsize(size));
+  if (in.bad() || size_t(in.gcount()) != size_t(size)) throw InputError(path, 0, "cannot read");
+  ObjRead r = read_obj(text, path);
+  std::string().swap(text);  // the text is not needed to make the mesh
+  return to_mesh(std::move(r), path);
 }
 
 }  // namespace raystep

@@ -23,6 +23,7 @@
 #include "raystep/scene/json_tape.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "raystep/util/memory_limit.h"
 #include "trace_file_detail.h"
 
 namespace raystep {
@@ -1324,6 +1325,8 @@ std::string read_trace_text(const std::string& path) {
   in.seekg(0, std::ios::end);
   std::streamoff size = in.tellg();
   in.seekg(0, std::ios::beg);
+  // Refused before a byte is read when it would not fit (util/memory_limit.h).
+  if (size > 0) check_read_memory(path, InputKind::trace_json, uint64_t(size));
   if (size > 0 && in) {  // read it in one go
     text.resize(size_t(size));
     in.read(text.data(), size);
