@@ -131,23 +131,25 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
   float t_max[3], t_delta[3];  // plain arrays: indexed by a run-time axis without glm's switch
+  float inv_d[3];              // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
+    inv_d[a] = 1.f / d;
     // The start point is rounded (by half an ulp of its coordinates, a good part of a cell far from the world's
     // origin): where it landed beyond a boundary that the ray crosses after t_enter, the walk starts a cell
     // earlier, so that no cell of the ray's path is skipped. (One that landed short costs an empty step.)
     if (d > 0.f) {  // +0 and -0 both fall through to "never step on this axis"
-      while (cell[a] > 0 && (boundary(a, cell[a]) - ray.origin[a]) / d > t_enter) --cell[a];
+      while (cell[a] > 0 && (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a] > t_enter) --cell[a];
       step[a] = 1;
       out[a] = n_[a];
-      t_max[a] = (boundary(a, cell[a] + 1) - ray.origin[a]) / d;
+      t_max[a] = (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a];
       t_delta[a] = cell_size_[a] / d;
     } else if (d < 0.f) {
-      while (cell[a] + 1 < n_[a] && (boundary(a, cell[a] + 1) - ray.origin[a]) / d > t_enter) ++cell[a];
+      while (cell[a] + 1 < n_[a] && (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a] > t_enter) ++cell[a];
       step[a] = -1;
       out[a] = -1;
-      t_max[a] = (boundary(a, cell[a]) - ray.origin[a]) / d;
+      t_max[a] = (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a];
       t_delta[a] = -cell_size_[a] / d;
     } else {
       step[a] = 0;
@@ -222,7 +224,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // the primitives were inserted by (each addition rounds at the magnitude of t, which is large for a far
     // origin, and a cell far from the world's origin is only a few ulps of its coordinates wide), and a ray
     // that left a cell early by that drift skipped the diagonal neighbour holding its hit. So the next
-    // boundary's t is computed from its position, as the first one was.
+    // boundary's t is computed from its position, as the first one was: tMax + tDelta up to rounding.
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) {
       if (hit->found()) rec.hit_accepted(uint32_t(hit->prim), t_nearest, AcceptReason::structure_done);
@@ -230,7 +232,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     }
     id += size_t(id_step[axis]);
     t_cell_enter = t_max[axis];
-    t_max[axis] = (boundary(axis, cell[axis] + (step[axis] > 0)) - ray.origin[axis]) / ray.direction[axis];
+    t_max[axis] = (boundary(axis, cell[axis] + (step[axis] > 0)) - ray.origin[axis]) * inv_d[axis];
   }
   rec.ray_end(*hit);
   return hit->found();
