@@ -23,10 +23,17 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/geometry/spawn.h"
+#include "raystep/geometry/triangle_clip.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
 #include "raystep/scene/scene_loader.h"
 #include "test_scenes.h"
+
+namespace raystep::kd {
+// The kd-tree builder's clip (core/src/accel/kdtree_build_common.h, private): the copy of triangle_clip.h
+// that the library was compiled with, not the one this test's translation unit compiles.
+Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& box);
+}  // namespace raystep::kd
 
 namespace raystep {
 namespace {
@@ -577,6 +584,42 @@ TEST(ScaleInvariance, ShadowRayTowardsALightInTheTangentPlaneKeepsItsSide) {
     }
   }
   EXPECT_EQ(self, 0) << cast;
+}
+
+// GCC 12.2's SLP vectorizer drops the float rounding of a pair of double(float(x)) round trips made in one
+// function (/work/notes/gcc12-slp-float-roundtrip.cpp; the BSP builder rounds out of line for it). The
+// clipped bounds round each axis's lo and hi that way (triangle_clip.h: `float l = float(lo), h = float(hi);
+// if (double(l) > lo) step down`), and nothing widens them after: a dropped rounding leaves a bound half an
+// ulp inside the exact clip. The library's copy (inlined in kdtree_build.cpp, compiled -O3) must contain the
+// exact rational clip and equal this translation unit's copy bit for bit.
+TEST(ScaleInvariance, KdClippedBoundsContainTheExactClipAsTheLibraryCompiledThem) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(-2.f, 2.f);
+  int clipped = 0, outside = 0, differ = 0;
+  for (float scale : {1e-6f, 1.f, 1e6f})
+    for (int k = 0; k < 120; ++k) {
+      Geometry g;
+      g.begin_object("t", 0);
+      glm::vec3 p[3];
+      for (glm::vec3& v : p) v = scale * glm::vec3(u(rng), u(rng), u(rng));
+      g.add_triangle(p[0], p[1], p[2]);
+      Bounds3 box(scale * glm::vec3(u(rng), u(rng), u(rng)), scale * glm::vec3(u(rng), u(rng), u(rng)));
+      Bounds3 lib = kd::clipped_bounds(g, 0, box);
+      Bounds3 here = clip_triangle_bounds(p[0], p[1], p[2], box);
+      for (int a = 0; a < 3; ++a)
+        differ += !lib.empty() && (lib.lo[a] != here.lo[a] || lib.hi[a] != here.hi[a]);
+      std::vector<test::QVec> exact = test::exact_clip(p[0], p[1], p[2], box);
+      test::QVec lo, hi;
+      if (!test::exact_bounds(exact, &lo, &hi)) continue;
+      ++clipped;
+      bool ok = !lib.empty();
+      for (int a = 0; a < 3 && ok; ++a)
+        ok = test::Q(double(lib.lo[a])) <= lo[a] && test::Q(double(lib.hi[a])) >= hi[a];
+      outside += !ok;
+    }
+  EXPECT_GT(clipped, 100);
+  EXPECT_EQ(outside, 0);
+  EXPECT_EQ(differ, 0);
 }
 
 // ---- Part 2: a tiny triangle far from the origin ----
