@@ -3,10 +3,12 @@
 // spawned from its surfaces never meet their own surface again. Geometry is float, so "the same picture" is
 // defined in two parts: on the transformed scene every structure agrees exactly with brute force (the same
 // primitive and t for every ray the tracer casts, the same colour at every pixel); against the untransformed
-// scene, a pixel may differ only where one of its rays passes within the rounding distance of an edge or a
-// sphere's silhouette (the distance the transformation's rounding can move a ray relative to the geometry),
-// and such pixels are counted and bounded. Also the far-origin tiny-triangle case: a triangle a thousandth
-// wide 1e5 and 1e6 away from the origin, which no structure's box, plane or cell arithmetic may cull.
+// scene, a pixel may show another primitive only where one of its rays passes within the rounding distance of
+// an edge or a sphere's silhouette (the distance the transformation's rounding can move a ray relative to the
+// geometry), and another colour only there or within the bound its faces' rounded normals give; such pixels
+// are counted and bounded. Also the far-origin tiny-triangle case: a triangle a thousandth wide 1e5 and 1e6
+// away from the origin, which no structure's box, plane or cell arithmetic may cull; the regression cases of
+// the faults these tests found; and the kd builder's clip as the library compiled it (GCC 12.2's SLP bug).
 #include <gtest/gtest.h>
 
 #include <algorithm>
