@@ -58,9 +58,9 @@ Bounds3 UniformGrid::cell_bounds(int i, int j, int k) const {
   int c[3] = {i, j, k};
   Bounds3 b;
   for (int a = 0; a < 3; ++a) {
-    // The same expression as the 3D-DDA's boundaries, so that cells and walk agree.
-    b.lo[a] = bounds_.lo[a] + float(c[a]) * cell_size_[a];
-    b.hi[a] = c[a] + 1 == n_[a] ? bounds_.hi[a] : bounds_.lo[a] + float(c[a] + 1) * cell_size_[a];
+    // The 3D-DDA's boundaries, so that cells and walk agree.
+    b.lo[a] = boundary(a, c[a]);
+    b.hi[a] = boundary(a, c[a] + 1);
   }
   return b;
 }

@@ -80,6 +80,12 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
     return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1];
   }
   const Mailboxes& mailboxes() const { return mailboxes_; }
+  // The position of cell boundary `index` (0..n) on an axis: the expression cell_bounds() gives the cells the
+  // primitives are inserted in, so that the 3D-DDA walks those very cells.
+  float boundary(int axis, int index) const {
+    return index == n_[axis] ? component(bounds_.hi, axis)
+                             : component(bounds_.lo, axis) + float(index) * component(cell_size_, axis);
+  }
   // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
   int cell_of(float p, int axis) const {
     float x = (p - component(bounds_.lo, axis)) * component(inv_cell_size_, axis);
@@ -130,18 +136,25 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
   float t_max[3], t_delta[3];  // plain arrays: indexed by a run-time axis without glm's switch
+  float inv_d[3];              // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
+    inv_d[a] = 1.f / d;
+    // The start point is rounded (by half an ulp of its coordinates, a good part of a cell far from the world's
+    // origin): where it landed beyond a boundary that the ray crosses after t_enter, the walk starts a cell
+    // earlier, so that no cell of the ray's path is skipped. (One that landed short costs an empty step.)
     if (d > 0.f) {  // +0 and -0 both fall through to "never step on this axis"
+      while (cell[a] > 0 && (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a] > t_enter) --cell[a];
       step[a] = 1;
       out[a] = n_[a];
-      t_max[a] = (bounds_.lo[a] + float(cell[a] + 1) * cell_size_[a] - ray.origin[a]) / d;
+      t_max[a] = (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a];
       t_delta[a] = cell_size_[a] / d;
     } else if (d < 0.f) {
+      while (cell[a] + 1 < n_[a] && (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a] > t_enter) ++cell[a];
       step[a] = -1;
       out[a] = -1;
-      t_max[a] = (bounds_.lo[a] + float(cell[a]) * cell_size_[a] - ray.origin[a]) / d;
+      t_max[a] = (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a];
       t_delta[a] = -cell_size_[a] / d;
     } else {
       step[a] = 0;
@@ -218,7 +231,11 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
         rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
       break;
     }
-    // Step to the neighbour along that axis: incremental arithmetic, one addition per step.
+    // Step to the neighbour along that axis. tMax is not advanced by tDelta: the sum drifts from the boundaries
+    // the primitives were inserted by (each addition rounds at the magnitude of t, which is large for a far
+    // origin, and a cell far from the world's origin is only a few ulps of its coordinates wide), and a ray
+    // that left a cell early by that drift skipped the diagonal neighbour holding its hit. So the next
+    // boundary's t is computed from its position, as the first one was: tMax + tDelta up to rounding.
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) {
       if (nearest.found())
@@ -227,7 +244,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     }
     id += size_t(id_step[axis]);
     t_cell_enter = t_max[axis];
-    t_max[axis] += t_delta[axis];
+    t_max[axis] = (boundary(axis, cell[axis] + (step[axis] > 0)) - ray.origin[axis]) * inv_d[axis];
   }
   *hit = nearest.hit;
   rec.ray_end(*hit);
