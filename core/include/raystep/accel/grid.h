@@ -222,10 +222,11 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
       rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::inside_cell);
       break;
     }
-    // The ray leaves the grid (or its interval ends) in this cell. tMax is summed step by step, so it strays
-    // from the exact boundary distance by many ulps after many steps: a boundary computed within the same
-    // relative 2^-12 beyond the exit may truly lie before it (a ray leaving the grid through a cell edge at a
-    // mesh vertex), and that cell is visited too (cells past the grid's last one are not: `out` below).
+    // The ray leaves the grid (or its interval ends) in this cell. A computed tMax strays from the exact
+    // boundary distance by a few ulps (the rounded reciprocal; summed step by step it strayed by many): a
+    // boundary computed within the same relative 2^-12 beyond the exit may truly lie before it (a ray leaving
+    // the grid through a cell edge at a mesh vertex), and that cell is visited too (cells past the grid's last
+    // one are not: `out` below).
     if (t_max[axis] > t_exit + std::fabs(t_exit) * (1.f / 4096.f)) {
       if (nearest.found())
         rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
