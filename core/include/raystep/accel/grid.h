@@ -137,6 +137,16 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   int cell[3], step[3], out[3];
   float t_max[3], t_delta[3];  // plain arrays: indexed by a run-time axis without glm's switch
   float inv_d[3];              // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
+  // The grid's corners, cell sizes and the ray's origin as plain arrays too, for boundary_t in the loop.
+  float lo[3], hi[3], size[3], origin[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = bounds_.lo[a], hi[a] = bounds_.hi[a], size[a] = cell_size_[a], origin[a] = ray.origin[a];
+  }
+  // The t where the ray meets boundary `index` of an axis: boundary()'s expression, on the arrays.
+  auto boundary_t = [&](int axis, int index) {
+    float position = index == n_[axis] ? hi[axis] : lo[axis] + float(index) * size[axis];
+    return (position - origin[axis]) * inv_d[axis];
+  };
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
@@ -145,16 +155,16 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // origin): where it landed beyond a boundary that the ray crosses after t_enter, the walk starts a cell
     // earlier, so that no cell of the ray's path is skipped. (One that landed short costs an empty step.)
     if (d > 0.f) {  // +0 and -0 both fall through to "never step on this axis"
-      while (cell[a] > 0 && (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a] > t_enter) --cell[a];
+      while (cell[a] > 0 && boundary_t(a, cell[a]) > t_enter) --cell[a];
       step[a] = 1;
       out[a] = n_[a];
-      t_max[a] = (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a];
+      t_max[a] = boundary_t(a, cell[a] + 1);
       t_delta[a] = cell_size_[a] / d;
     } else if (d < 0.f) {
-      while (cell[a] + 1 < n_[a] && (boundary(a, cell[a] + 1) - ray.origin[a]) * inv_d[a] > t_enter) ++cell[a];
+      while (cell[a] + 1 < n_[a] && boundary_t(a, cell[a] + 1) > t_enter) ++cell[a];
       step[a] = -1;
       out[a] = -1;
-      t_max[a] = (boundary(a, cell[a]) - ray.origin[a]) * inv_d[a];
+      t_max[a] = boundary_t(a, cell[a]);
       t_delta[a] = -cell_size_[a] / d;
     } else {
       step[a] = 0;
@@ -177,19 +187,6 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // The axis whose boundary comes first is stepped next; ties go to the lowest axis (x, then y, then z),
     // so a ray through an edge or a vertex visits the cells around it one axis at a time.
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
-    // tMax is summed step by step, so after many steps it strays from the exact boundary distance by many
-    // ulps. Where the ray would leave the grid across this axis while another axis's boundary lies within a
-    // relative 2^-12 of it, the exact order may be the other one: a ray leaving the grid through a cell edge
-    // at a mesh vertex (raystep hardcases found such leaks on a box at x1e-6 and x1e6). The neighbour across
-    // that boundary is visited first; the walk ends at the next step.
-    if (cell[axis] + step[axis] == out[axis]) {
-      const int leaving = axis;
-      for (int b = 0; b < 3; ++b)
-        if (b != leaving && step[b] != 0 && cell[b] + step[b] != out[b] &&
-            t_max[b] <= t_max[leaving] + std::fabs(t_max[leaving]) * (1.f / 4096.f) &&
-            (axis == leaving || t_max[b] < t_max[axis]))
-          axis = b;  // the nearest such boundary
-    }
     float t_cell_exit = std::min(t_max[axis], t_exit);
     if constexpr (Recorder::enabled)
       rec.cell(GridCellStep{
@@ -245,7 +242,7 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     }
     id += size_t(id_step[axis]);
     t_cell_enter = t_max[axis];
-    t_max[axis] = (boundary(axis, cell[axis] + (step[axis] > 0)) - ray.origin[axis]) * inv_d[axis];
+    t_max[axis] = boundary_t(axis, cell[axis] + (step[axis] > 0));
   }
   *hit = nearest.hit;
   rec.ray_end(*hit);
