@@ -17,25 +17,33 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
   std::array<int, 3> n = grid.resolution();
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
-  float t_max[3], t_delta[3];
+  float t_max[3], inv_d[3];
+  float lo[3], hi[3], size[3], origin[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = bounds.lo[a], hi[a] = bounds.hi[a], size[a] = cell_size[a], origin[a] = ray.origin[a];
+  }
+  auto boundary_t = [&](int axis, int index) {
+    float position = index == n[size_t(axis)] ? hi[axis] : lo[axis] + float(index) * size[axis];
+    return (position - origin[axis]) * inv_d[axis];
+  };
   for (int a = 0; a < 3; ++a) {
     cell[a] = grid.cell_of(start[a], a);
     float d = ray.direction[a];
+    inv_d[a] = 1.f / d;
     if (d > 0.f) {
+      while (cell[a] > 0 && boundary_t(a, cell[a]) > t_enter) --cell[a];
       step[a] = 1;
-      out[a] = n[a];
-      t_max[a] = (bounds.lo[a] + float(cell[a] + 1) * cell_size[a] - ray.origin[a]) / d;
-      t_delta[a] = cell_size[a] / d;
+      out[a] = n[size_t(a)];
+      t_max[a] = boundary_t(a, cell[a] + 1);
     } else if (d < 0.f) {
+      while (cell[a] + 1 < n[size_t(a)] && boundary_t(a, cell[a] + 1) > t_enter) ++cell[a];
       step[a] = -1;
       out[a] = -1;
-      t_max[a] = (bounds.lo[a] + float(cell[a]) * cell_size[a] - ray.origin[a]) / d;
-      t_delta[a] = -cell_size[a] / d;
+      t_max[a] = boundary_t(a, cell[a]);
     } else {
       step[a] = 0;
       out[a] = -2;
       t_max[a] = kInfinity;
-      t_delta[a] = kInfinity;
     }
   }
   const std::ptrdiff_t stride[3] = {1, std::ptrdiff_t(n[0]), std::ptrdiff_t(n[0]) * n[1]};
@@ -61,11 +69,11 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
       t_limit = next_float_up(t_nearest);
     }
     if (hit->found() && t_nearest * (1.f + 1.f / 4096.f) < t_cell_exit) break;
-    if (t_max[axis] > t_exit) break;
+    if (t_max[axis] > t_exit + std::fabs(t_exit) * (1.f / 4096.f)) break;
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) break;
     id += size_t(id_step[axis]);
-    t_max[axis] += t_delta[axis];
+    t_max[axis] = boundary_t(axis, cell[axis] + (step[axis] > 0));
   }
   return hit->found();
 }

@@ -151,9 +151,10 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
     inv_d[a] = 1.f / d;
-    // The start point is rounded (by half an ulp of its coordinates, a good part of a cell far from the world's
-    // origin): where it landed beyond a boundary that the ray crosses after t_enter, the walk starts a cell
-    // earlier, so that no cell of the ray's path is skipped. (One that landed short costs an empty step.)
+    // The start point is rounded (by half an ulp of its coordinates, a good part of a cell far from the
+    // world's origin): where it landed beyond a boundary that the ray crosses after t_enter, the walk starts
+    // a cell earlier, so that no cell of the ray's path is skipped. (One that landed short costs an empty
+    // step.)
     if (d > 0.f) {  // +0 and -0 both fall through to "never step on this axis"
       while (cell[a] > 0 && boundary_t(a, cell[a]) > t_enter) --cell[a];
       step[a] = 1;
@@ -222,18 +223,18 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // The ray leaves the grid (or its interval ends) in this cell. A computed tMax strays from the exact
     // boundary distance by a few ulps (the rounded reciprocal; summed step by step it strayed by many): a
     // boundary computed within the same relative 2^-12 beyond the exit may truly lie before it (a ray leaving
-    // the grid through a cell edge at a mesh vertex), and that cell is visited too (cells past the grid's last
-    // one are not: `out` below).
+    // the grid through a cell edge at a mesh vertex), and that cell is visited too (cells past the grid's
+    // last one are not: `out` below).
     if (t_max[axis] > t_exit + std::fabs(t_exit) * (1.f / 4096.f)) {
       if (nearest.found())
         rec.hit_accepted(uint32_t(nearest.hit.prim), nearest.t, AcceptReason::structure_done);
       break;
     }
-    // Step to the neighbour along that axis. tMax is not advanced by tDelta: the sum drifts from the boundaries
-    // the primitives were inserted by (each addition rounds at the magnitude of t, which is large for a far
-    // origin, and a cell far from the world's origin is only a few ulps of its coordinates wide), and a ray
-    // that left a cell early by that drift skipped the diagonal neighbour holding its hit. So the next
-    // boundary's t is computed from its position, as the first one was: tMax + tDelta up to rounding.
+    // Step to the neighbour along that axis. tMax is not advanced by tDelta: the sum drifts from the
+    // boundaries the primitives were inserted by (each addition rounds at the magnitude of t, which is large
+    // for a far origin, and a cell far from the world's origin is only a few ulps of its coordinates wide),
+    // and a ray that left a cell early by that drift skipped the diagonal neighbour holding its hit. So the
+    // next boundary's t is computed from its position, as the first one was: tMax + tDelta up to rounding.
     cell[axis] += step[axis];
     if (cell[axis] == out[axis]) {
       if (nearest.found())
