@@ -224,9 +224,14 @@ class Planted : public Accelerator {
   }
   bool intersect(const Ray& ray, Hit* hit) const override {
     const bool nan = std::isnan(ray.origin.x) || std::isnan(ray.direction.x) || std::isnan(ray.direction.y);
-    if (nan && bug_ == Bug::crash_on_nan) std::raise(SIGSEGV);
+    if (nan && bug_ == Bug::crash_on_nan) {
+      // The default action, so that the child dies of the signal under AddressSanitizer too (its handler
+      // would report the fault and exit with code 1).
+      std::signal(SIGSEGV, SIG_DFL);
+      std::raise(SIGSEGV);
+    }
     if (nan && bug_ == Bug::hang_on_nan)
-      for (volatile int spin = 0;; spin = spin + 1) {
+      for (volatile unsigned spin = 0;; spin = spin + 1u) {  // unsigned: wraps, no overflow for UBSan to stop
       }
     if (nan && bug_ == Bug::nan_hit) {
       *hit = Hit{};
