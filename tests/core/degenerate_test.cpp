@@ -20,13 +20,6 @@
 namespace raystep {
 namespace {
 
-Ray make_ray(glm::vec3 o, glm::vec3 d) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  return r;
-}
-
 // Every structure gives brute force's answer on every ray: hit or miss, the same t, and the same primitive or
 // (ties: coincident faces, a shared edge) another one at the same t that brute force also hits there.
 // With may_refuse, a structure may refuse the geometry with an InputError (never crash).
@@ -81,16 +74,16 @@ TEST(Degenerate, RaysTangentToSpheresAgreeWithBruteForce) {
             o[a] -= 5.f * s;
             d[a] = 1.f;
             o[(a + 1) % 3] += y;
-            rays.push_back(make_ray(o, d));
+            rays.push_back(Ray{o, d});
             d[(a + 2) % 3] = -0.f;
-            rays.push_back(make_ray(o, d));
+            rays.push_back(Ray{o, d});
             o[(a + 2) % 3] += y;  // through the box's edge: tangent nowhere, it misses
-            rays.push_back(make_ray(o, d));
+            rays.push_back(Ray{o, d});
           }
       }
       // Along the row of spheres, tangent to every one of them.
-      rays.push_back(make_ray(c0 + glm::vec3(-5.f * s, s, 0.f), glm::vec3(1.f, 0.f, 0.f)));
-      rays.push_back(make_ray(c0 + glm::vec3(-5.f * s, 0.f, -s), glm::vec3(1.f, -0.f, 0.f)));
+      rays.push_back(Ray{c0 + glm::vec3(-5.f * s, s, 0.f), glm::vec3(1.f, 0.f, 0.f)});
+      rays.push_back(Ray{c0 + glm::vec3(-5.f * s, 0.f, -s), glm::vec3(1.f, -0.f, 0.f)});
       expect_brute_force_answers(g, rays, "tangent rays, scale " + std::to_string(s));
     }
 }
@@ -110,10 +103,10 @@ TEST(Degenerate, RaysInThePlaneOfATriangleMissIt) {
       g.add_triangle(place({-9.f + float(k), 7, 1}), place({-8.f + float(k), 7, 1}),
                      place({-9.f + float(k), 8, 2}));
     std::vector<Ray> rays = {
-        make_ray(place({-3, 0.5f, 0}), place({1, 0, 0})),     // through the interior, in its plane
-        make_ray(place({-3, 0, 0}), place({1, 0, 0})),        // along its edge
-        make_ray(place({-3, -3, 0}), place({1, 1, 0})),       // through its vertex (0, 0, 0)
-        make_ray(place({-3, 1, 0}), place({1, -0.f, -0.f})),  // -0 components
+        Ray{place({-3, 0.5f, 0}), place({1, 0, 0})},     // through the interior, in its plane
+        Ray{place({-3, 0, 0}), place({1, 0, 0})},        // along its edge
+        Ray{place({-3, -3, 0}), place({1, 1, 0})},       // through its vertex (0, 0, 0)
+        Ray{place({-3, 1, 0}), place({1, -0.f, -0.f})},  // -0 components
     };
     for (const Ray& r : rays)
       for (const std::string& name : accelerator_names()) {
@@ -162,7 +155,7 @@ TEST(Degenerate, ZeroAreaTrianglesAreNeverHit) {
     for (const glm::vec3& p : points)
       for (glm::vec3 d :
            {glm::vec3(0, 0, 1), glm::vec3(0.3f, -0.2f, 1), glm::vec3(1, 0.5f, 0.25f), glm::vec3(-1, 2, -0.f)})
-        rays.push_back(make_ray(p - d, d));
+        rays.push_back(Ray{p - d, d});
     const uint32_t first_real = 16;
     for (const std::string& name : accelerator_names()) {
       auto acc = make_accelerator(name);
@@ -197,7 +190,7 @@ TEST(Degenerate, DuplicatedFacesGiveOneOfThemAtTheSameDistance) {
                                b + 0.75f * (c - b)};
   for (const glm::vec3& t : targets)
     for (glm::vec3 o : {glm::vec3(0.5f, 0.5f, -3.f), glm::vec3(1.f, 1.f, 4.f), glm::vec3(-2.f, 0.3f, 1.1f)})
-      rays.push_back(make_ray(o, t - o));
+      rays.push_back(Ray{o, t - o});
   expect_brute_force_answers(g, rays, "duplicated faces");
   for (const std::string& name : accelerator_names()) {
     auto acc = make_accelerator(name);
@@ -264,8 +257,8 @@ TEST(Degenerate, CoordinatesNearTheEndsOfTheFloatRange) {
     std::vector<Ray> rays;
     for (int k = 0; k < 60; ++k) {
       const glm::vec3 target = s * glm::vec3((float(k) - 30.f) / 16.f, 0.125f * float(k % 7) - 0.4f, 2.2f);
-      rays.push_back(make_ray(glm::vec3(0.f), target));
-      rays.push_back(make_ray(s * glm::vec3(0.3f, -0.2f, -1.f), target - s * glm::vec3(0.3f, -0.2f, -1.f)));
+      rays.push_back(Ray{glm::vec3(0.f), target});
+      rays.push_back(Ray{s * glm::vec3(0.3f, -0.2f, -1.f), target - s * glm::vec3(0.3f, -0.2f, -1.f)});
     }
     expect_brute_force_answers(g, rays, "coordinates x" + std::to_string(s), s > 1e36f);
   }
@@ -292,7 +285,7 @@ TEST(Degenerate, GridRayLeavingThroughACellEdgeAtAVertexIsHit) {
     g.begin_object("box", 0);
     const std::vector<glm::vec3> p = hardcase_scaled(box.positions, c.scale);
     for (const glm::uvec3& t : box.triangles) g.add_triangle(p[t[0]], p[t[1]], p[t[2]]);
-    const Ray r = make_ray(c.o, c.d);
+    const Ray r = Ray{c.o, c.d};
     const ReferenceHit ref = reference_nearest(g, r);
     ASSERT_TRUE(ref.hit);
     for (const std::string& name : accelerator_names()) {

@@ -16,6 +16,7 @@
 #include "raystep/report/hardcase_battery.h"
 #include "raystep/report/hardcase_reference.h"
 #include "raystep/report/hardcases.h"
+#include "test_budget.h"
 
 namespace raystep {
 namespace {
@@ -35,7 +36,7 @@ const HardCaseRow* find_row(const HardCaseReport& r, const std::string& structur
 // Every structure, the variants too, in child processes: the built-in battery is clean.
 TEST(HardCases, BuiltInBatteryIsCleanForEveryStructure) {
   HardCaseOptions options;
-  options.mesh_rays = 256;
+  options.mesh_rays = size_t(test::budget(256));
   std::string note;
   std::vector<HardCaseSet> battery = hardcase_battery(nullptr, options, &note);
   EXPECT_EQ(note, "");
@@ -54,7 +55,7 @@ TEST(HardCases, ShippedMeshesAreCleanForEveryStructure) {
   for (const char* name : kMeshes) {
     TriangleMesh mesh = load_obj(mesh_path(name));
     HardCaseOptions options;
-    options.mesh_rays = 256;
+    options.mesh_rays = size_t(test::budget(256));
     options.built_in_families = false;
     std::string note;
     std::vector<HardCaseSet> battery = hardcase_battery(&mesh, options, &note);
@@ -68,7 +69,8 @@ TEST(HardCases, ShippedMeshesAreCleanForEveryStructure) {
     const HardCaseRow* inside = find_row(report, "bsp", HardCaseFamily::inside);
     if (closed) {
       ASSERT_NE(inside, nullptr) << name;
-      EXPECT_GE(inside->rays, 4u * 200u) << name;  // most of the 4 x 256 rays found an inside point
+      // Most of the 4 x mesh_rays rays found an inside point.
+      EXPECT_GE(inside->rays, 4u * uint32_t(test::budget(200))) << name;
     } else {
       EXPECT_EQ(inside, nullptr) << name;
     }
@@ -83,7 +85,7 @@ double max_abs(const glm::vec3& v) {
 // edge of the set's geometry; every ray the generator says must hit is hit by the reference.
 TEST(HardCases, GeneratedRaysAreWhatTheyClaim) {
   HardCaseOptions options;
-  options.mesh_rays = 128;
+  options.mesh_rays = size_t(test::budget(128));
   TriangleMesh knot = load_obj(mesh_path("torus_knot"));
   std::vector<HardCaseSet> battery = hardcase_battery(nullptr, options, nullptr);
   std::vector<HardCaseSet> mine = hardcase_battery(&knot, options, nullptr);

@@ -19,6 +19,7 @@
 #include "raystep/trace/event_recorder.h"
 #include "raystep/util/error.h"
 #include "ray_battery.h"
+#include "test_budget.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -79,7 +80,7 @@ TEST(KdTree, AgreesWithBruteForceOnRandomRays) {
     Geometry g = make_soup(5, 400, spheres);
     BruteForce brute;
     brute.build(g);
-    std::vector<Ray> rays = random_rays(g.bounds(), 100000, 9);
+    std::vector<Ray> rays = random_rays(g.bounds(), test::budget(100000), 9);
     for (KdBuilder builder : kBuilders)
       for (bool mailboxes : {true, false}) {
         auto tree = make_tree(g, builder, mailboxes);

@@ -29,6 +29,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
 #include "raystep/scene/scene_loader.h"
+#include "test_budget.h"
 #include "test_scenes.h"
 
 namespace raystep::kd {
@@ -40,7 +41,8 @@ Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& b
 namespace raystep {
 namespace {
 
-constexpr int kWidth = 48, kHeight = 36;
+// (A quarter of the pixels in the sanitizer passes, test_budget.h.)
+constexpr int kWidth = test::kSanitized ? 24 : 48, kHeight = test::kSanitized ? 18 : 36;
 const char* const kStructures[] = {"grid", "kd", "bvh", "bvh4", "bvh8", "octree", "bsp"};
 
 // p -> scale * p + offset, computed in double and rounded once to float (as a modelling tool would write the

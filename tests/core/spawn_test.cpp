@@ -15,13 +15,6 @@
 namespace raystep {
 namespace {
 
-Ray make_ray(glm::vec3 o, glm::vec3 d) {
-  Ray r;
-  r.origin = o;
-  r.direction = d;
-  return r;
-}
-
 glm::vec3 reflect(const glm::vec3& w, const glm::vec3& n) {
   return w - 2.f * glm::dot(w, n) * n;
 }
@@ -66,7 +59,7 @@ TEST(Spawn, NoSelfIntersectionOnTrianglesAtEveryScale) {
       glm::vec3 target = (1.f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
       float from_side = (i % 4 < 2) ? 1.f : -1.f;  // incoming from the front or the back
       glm::vec3 origin = target + from_side * size * (2.f * nn + glm::vec3(u(rng), u(rng), u(rng)));
-      Ray in = make_ray(origin, target - origin);
+      Ray in = Ray{origin, target - origin};
       TriangleHit h;
       if (!intersect_triangle(in, p0, p1, p2, &h)) continue;
       glm::vec3 err;
@@ -122,7 +115,7 @@ TEST(Spawn, NoSelfIntersectionOnSpheresAtEveryScale) {
                              ? s.center
                              : s.center + 3.f * radius * glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
       glm::vec3 aim = s.center + 0.9f * radius * glm::vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.f);
-      Ray in = make_ray(origin, from_inside ? glm::vec3(u(rng), u(rng), u(rng)) : aim - origin);
+      Ray in = Ray{origin, from_inside ? glm::vec3(u(rng), u(rng), u(rng)) : aim - origin};
       float t;
       if (!intersect_sphere(in, s, in.tmax, &t)) continue;
       glm::vec3 err;

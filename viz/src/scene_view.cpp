@@ -46,6 +46,7 @@
 #include "backdrop_cache.h"
 #include "kd_tree_model.h"
 #include "palette.h"
+#include "scene_mesh.h"
 #include "session.h"
 
 namespace raystep::viz {
@@ -151,35 +152,21 @@ vtkSmartPointer<vtkActor> cellColoredActor(vtkPolyData* data, float lineWidth) {
   return actor;
 }
 
-// A sphere as a UV-tessellated triangle list.
-void addSphere(vtkPoints* pts, vtkCellArray* tris, const glm::vec3& c, float r, int slices = 24, int stacks = 14) {
-  vtkIdType base = pts->GetNumberOfPoints();
-  for (int i = 0; i <= stacks; ++i) {
-    double th = M_PI * i / stacks;
-    for (int j = 0; j < slices; ++j) {
-      double ph = 2 * M_PI * j / slices;
-      pts->InsertNextPoint(c.x + r * std::sin(th) * std::cos(ph), c.y + r * std::cos(th),
-                           c.z + r * std::sin(th) * std::sin(ph));
-    }
+// A sphere as the scene's mesh draws it (scene_mesh.h), appended to pts/tris.
+void addSphere(vtkPoints* pts, vtkCellArray* tris, const glm::vec3& c, float r) {
+  std::vector<glm::vec3> points;
+  std::vector<int32_t> triangles;
+  sphereMesh(c, r, &points, &triangles);
+  const vtkIdType base = pts->GetNumberOfPoints();
+  for (const glm::vec3& q : points) pts->InsertNextPoint(q.x, q.y, q.z);
+  for (size_t t = 0; t < triangles.size(); t += 3) {
+    vtkIdType ids[3] = {base + triangles[t], base + triangles[t + 1], base + triangles[t + 2]};
+    tris->InsertNextCell(3, ids);
   }
-  for (int i = 0; i < stacks; ++i)
-    for (int j = 0; j < slices; ++j) {
-      vtkIdType a = base + i * slices + j, b = base + i * slices + (j + 1) % slices;
-      vtkIdType c2 = a + slices, d = b + slices;
-      vtkIdType t1[3] = {a, c2, b}, t2[3] = {b, c2, d};
-      tris->InsertNextCell(3, t1);
-      tris->InsertNextCell(3, t2);
-    }
 }
 
 constexpr size_t kMaxVisitedDrawn = 2000;
 constexpr int kMaxLatticeCells = 16;  // per axis
-
-struct PrimShape {
-  bool sphere = false;
-  glm::vec3 v[3];
-  float radius = 0.f;
-};
 
 void addPrim(vtkPoints* pts, vtkCellArray* tris, const PrimShape& p) {
   if (p.sphere) {
@@ -189,19 +176,6 @@ void addPrim(vtkPoints* pts, vtkCellArray* tris, const PrimShape& p) {
   vtkIdType ids[3];
   for (int k = 0; k < 3; ++k) ids[k] = pts->InsertNextPoint(p.v[k].x, p.v[k].y, p.v[k].z);
   tris->InsertNextCell(3, ids);
-}
-
-// A scene primitive's shape, read from its geometry.
-PrimShape shapeOf(const Geometry& g, uint32_t id) {
-  PrimShape p;
-  if (g.type(id) == PrimType::sphere) {
-    p.sphere = true;
-    p.v[0] = g.sphere(id).center;
-    p.radius = g.sphere(id).radius;
-  } else {
-    for (int k = 0; k < 3; ++k) p.v[k] = g.vertex(id, k);
-  }
-  return p;
 }
 
 QJsonArray jsonColor(const QColor& c) { return QJsonArray{c.red(), c.green(), c.blue()}; }
@@ -252,7 +226,8 @@ struct SceneView::Impl {
   bool havePicked = false;
   glm::vec3 picked{0.f};
   int pickedPrim = -1;              // the primitive under the click (-1: unknown)
-  std::vector<int32_t> cellPrim;  // the scene mesh's cells' primitive ids (a sphere is many cells)
+  // The scene's (or trace's) mesh: sceneData shares its arrays; its cells' primitive ids for picking.
+  std::shared_ptr<const SceneMesh> mesh;
 
   // What the walk refers to: grid geometry and the primitives by id.
   bool haveGrid = false;
@@ -526,68 +501,33 @@ void SceneView::prepareSurfaceFormat() { QSurfaceFormat::setDefaultFormat(QVTKOp
 
 void SceneView::rebuildGeometry() {
   Impl& d = *d_;
-  vtkNew<vtkPoints> pts;
-  vtkNew<vtkCellArray> tris;
-  vtkNew<vtkUnsignedCharArray> colors;
-  colors->SetNumberOfComponents(3);
   d.primBlockRay = nullptr;
   d.primBlock = -2;
   d.haveGrid = false;
-  // The scene's mesh is made again only for another scene (or trace): a new structure over the same scene
-  // changes the outline and the lattice, and the bunny's 70k triangles cost a lesson step 100 ms.
+  // The scene's mesh is taken again only for another scene (or trace): a new structure over the same scene
+  // changes the outline and the lattice. A scene's was made on the loading worker (SceneData::mesh).
   const void* source = session_->scene() ? static_cast<const void*>(session_->scene())
                                          : static_cast<const void*>(session_->trace());
-  const bool sameMesh = source && source == d.meshSource;
-  Bounds3 bounds = sameMesh ? d.meshBounds : Bounds3();
-  if (!sameMesh) {
+  if (!source || source != d.meshSource) {
     d.prims.clear();
     d.geometry = nullptr;
-    d.cellPrim.clear();
-  }
-  auto addColor = [&](vtkIdType count, const glm::vec3& c) {
-    unsigned char rgb[3];
-    for (int k = 0; k < 3; ++k) rgb[k] = (unsigned char)std::lround(255.0 * std::pow(std::clamp(double(c[k]), 0.0, 1.0), 1 / 2.2));
-    for (vtkIdType i = 0; i < count; ++i) colors->InsertNextTypedTuple(rgb);
-  };
-
-  if (sameMesh) {
-    // kept
-  } else if (const SceneData* sd = session_->scene()) {
-    const Geometry& g = sd->scene.geometry;
-    d.geometry = &g;
-    d.cellPrim.reserve(g.size());
-    for (uint32_t id = 0; id < g.size(); ++id) {
-      const PrimShape p = shapeOf(g, id);
-      vtkIdType before = tris->GetNumberOfCells();
-      addPrim(pts, tris, p);
-      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), int32_t(id));
-      glm::vec3 diffuse = sd->scene.materials[g.material(id)].diffuse;
-      if (sd->scene.materials[g.material(id)].mirror > 0.f) diffuse = glm::vec3(0.55f, 0.6f, 0.7f);  // a mirror reads as metal
-      addColor(tris->GetNumberOfCells() - before, glm::max(diffuse, glm::vec3(0.12f)));
+    d.mesh.reset();
+    if (const SceneData* sd = session_->scene()) {
+      d.geometry = &sd->scene.geometry;
+      d.mesh = sd->mesh ? sd->mesh : SceneMesh::fromScene(sd->scene);
+    } else if (const Trace* t = session_->trace()) {
+      d.mesh = SceneMesh::fromTrace(*t);
+      for (const TracePrimitive& tp : t->primitives) d.prims[tp.id] = shapeOf(tp);
     }
-    bounds = g.bounds();
-  } else if (const Trace* t = session_->trace()) {
-    for (const TracePrimitive& tp : t->primitives) {
-      PrimShape p;
-      p.sphere = tp.type == PrimType::sphere;
-      for (int k = 0; k < 3; ++k) p.v[k] = tp.v[k];
-      p.radius = tp.radius;
-      vtkIdType before = tris->GetNumberOfCells();
-      addPrim(pts, tris, p);
-      d.cellPrim.resize(size_t(tris->GetNumberOfCells()), tp.id);
-      addColor(tris->GetNumberOfCells() - before, glm::vec3(0.6f));
-      d.prims[tp.id] = p;
-    }
-    bounds = t->structure.bounds;
-  }
-  if (!sameMesh) {
-    d.sceneData->SetPoints(pts);
-    d.sceneData->SetPolys(tris);
-    d.sceneData->GetCellData()->SetScalars(colors);
+    if (d.mesh)
+      d.sceneData->ShallowCopy(d.mesh->data());
+    else
+      d.sceneData->Initialize();
     d.sceneData->Modified();
     d.meshSource = source;
-    d.meshBounds = bounds;
+    d.meshBounds = d.mesh ? d.mesh->bounds() : Bounds3();
   }
+  Bounds3 bounds = d.meshBounds;
 
   // The structure: the scene's grid, or the one named by a trace opened on its own.
   const UniformGrid* liveGrid = session_->structure() ? session_->structure()->grid() : nullptr;
@@ -812,7 +752,7 @@ bool SceneView::pickDisplay(int x, int y) {
   d.havePicked = true;
   d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
   const vtkIdType cell = d.picker->GetCellId();
-  d.pickedPrim = size_t(cell) < d.cellPrim.size() ? d.cellPrim[size_t(cell)] : -1;
+  d.pickedPrim = d.mesh && size_t(cell) < d.mesh->cellPrim().size() ? d.mesh->cellPrim()[size_t(cell)] : -1;
   Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
   return true;
 }

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "kd_tree_model.h"
+#include "scene_mesh.h"
 #include "raystep/io/image_io.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/pixel_samples.h"
@@ -28,6 +29,7 @@ std::shared_ptr<const SceneData> loadSceneData(const std::string& path) {
   data->scene = load_scene(path);
   data->path = path;
   data->hash = file_content_hash(path);
+  data->mesh = SceneMesh::fromScene(data->scene);
   return data;
 }
 

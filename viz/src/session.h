@@ -27,9 +27,14 @@
 
 namespace raystep::viz {
 
+class SceneMesh;
+
 struct SceneData {
   Scene scene;
   std::string path, hash;
+  // The 3D view's mesh of the scene (scene_mesh.h), made with it on the loading worker; null: the view makes
+  // it when it shows the scene.
+  std::shared_ptr<const SceneMesh> mesh;
 };
 
 // Any accelerator that records events: "grid", "kd" (SAH), "kd-median", "bvh" (binned SAH), "bvh-sweep",

@@ -81,7 +81,8 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   }
   const Mailboxes& mailboxes() const { return mailboxes_; }
   // The position of cell boundary `index` (0..n) on an axis: the expression cell_bounds() gives the cells the
-  // primitives are inserted in, so that the 3D-DDA walks those very cells.
+  // primitives are inserted in, so that the 3D-DDA walks those very cells. The walk's boundary_t (intersect)
+  // repeats it on plain arrays: the two must stay the same expression.
   float boundary(int axis, int index) const {
     return index == n_[axis] ? component(bounds_.hi, axis)
                              : component(bounds_.lo, axis) + float(index) * component(cell_size_, axis);
@@ -132,17 +133,19 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     return false;
   }
 
-  // Set up the 3D-DDA: the start cell (clamped), and per axis stepX, tMaxX (t of the next boundary), tDeltaX.
+  // Set up the 3D-DDA: the start cell (clamped), and per axis stepX and tMaxX (t of the next boundary). tDeltaX,
+  // a cell's width in t, is shown to the recorder only: the walk computes each boundary's t from its position.
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
-  float t_max[3], t_delta[3];  // plain arrays: indexed by a run-time axis without glm's switch
-  float inv_d[3];              // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
+  float t_max[3];  // plain arrays: indexed by a run-time axis without glm's switch
+  float inv_d[3];  // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
   // The grid's corners, cell sizes and the ray's origin as plain arrays too, for boundary_t in the loop.
   float lo[3], hi[3], size[3], origin[3];
   for (int a = 0; a < 3; ++a) {
     lo[a] = bounds_.lo[a], hi[a] = bounds_.hi[a], size[a] = cell_size_[a], origin[a] = ray.origin[a];
   }
-  // The t where the ray meets boundary `index` of an axis: boundary()'s expression, on the arrays.
+  // The t where the ray meets boundary `index` of an axis: boundary()'s expression (keep them the same), on the
+  // arrays.
   auto boundary_t = [&](int axis, int index) {
     float position = index == n_[axis] ? hi[axis] : lo[axis] + float(index) * size[axis];
     return (position - origin[axis]) * inv_d[axis];
@@ -160,18 +163,15 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
       step[a] = 1;
       out[a] = n_[a];
       t_max[a] = boundary_t(a, cell[a] + 1);
-      t_delta[a] = cell_size_[a] / d;
     } else if (d < 0.f) {
       while (cell[a] + 1 < n_[a] && boundary_t(a, cell[a] + 1) > t_enter) ++cell[a];
       step[a] = -1;
       out[a] = -1;
       t_max[a] = boundary_t(a, cell[a]);
-      t_delta[a] = -cell_size_[a] / d;
     } else {
       step[a] = 0;
       out[a] = -2;  // never reached
       t_max[a] = kInfinity;
-      t_delta[a] = kInfinity;
     }
   }
 
@@ -189,11 +189,13 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     // so a ray through an edge or a vertex visits the cells around it one axis at a time.
     int axis = (t_max[0] <= t_max[1] && t_max[0] <= t_max[2]) ? 0 : (t_max[1] <= t_max[2] ? 1 : 2);
     float t_cell_exit = std::min(t_max[axis], t_exit);
-    if constexpr (Recorder::enabled)
-      rec.cell(GridCellStep{
-          cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit, glm::vec3(t_max[0], t_max[1], t_max[2]),
-          glm::vec3(t_delta[0], t_delta[1], t_delta[2]), t_max[axis] <= t_exit ? axis : -1});
-    else
+    if constexpr (Recorder::enabled) {
+      glm::vec3 t_delta(kInfinity);
+      for (int a = 0; a < 3; ++a)
+        if (step[a] != 0) t_delta[a] = cell_size_[a] / std::fabs(ray.direction[a]);
+      rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit,
+                            glm::vec3(t_max[0], t_max[1], t_max[2]), t_delta, t_max[axis] <= t_exit ? axis : -1});
+    } else
       rec.cell(GridCellStep{});
 
     // Test the cell's primitives, skipping those already tested for this ray (mailbox).
