@@ -23,6 +23,7 @@
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "question_test_util.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -30,35 +31,8 @@ namespace {
 
 const std::string kSource = RAYSTEP_SOURCE_DIR;
 
-// 200 random rays from outside the soup's box [-2, 2]^3 through a random point inside it, fixed seed.
-std::vector<RayRequest> random_rays(uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.f, 1.f);
-  std::vector<RayRequest> rays;
-  while (rays.size() < 200) {
-    glm::vec3 o(u(rng), u(rng), u(rng));
-    if (glm::length(o) < 1e-3f) continue;
-    o = 4.f * o / glm::length(o);  // on a sphere of radius 4
-    glm::vec3 target = 1.8f * glm::vec3(u(rng), u(rng), u(rng));
-    RayRequest r;
-    r.ray.origin = o;
-    r.ray.direction = glm::normalize(target - o);
-    rays.push_back(r);
-  }
-  return rays;
-}
-
-// The nearest hit among the prim_test events before `end`, ties to the lower id (as the kernels keep it).
-void nearest_before(const std::vector<Event>& ev, size_t end, int32_t* prim, float* t) {
-  *prim = -1;
-  for (size_t i = 0; i < end; ++i) {
-    const Event& e = ev[i];
-    if (e.type != EventType::prim_test || !e.hit) continue;
-    if (*prim >= 0 && (e.t > *t || (e.t == *t && e.prim > *prim))) continue;
-    *prim = e.prim;
-    *t = e.t;
-  }
-}
+using test::nearest_before;
+using test::soup_rays;
 
 size_t end_of_block(const std::vector<Event>& ev, size_t i) {
   ++i;
@@ -82,7 +56,7 @@ TEST(QuestionAcceptance, GridAnswersEqualThe3dDda) {
   accel->build(g);
   const UniformGrid& grid = dynamic_cast<const UniformGrid&>(*accel);
   const std::array<int, 3> res = grid.resolution();
-  Trace trace = record_trace(g, *accel, random_rays(11), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(11), "soup", "");
   int next_cell = 0, dda_axis = 0, stops = 0, steps = 0;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
     const TracedRay& ray = trace.rays[size_t(r)];
@@ -140,7 +114,7 @@ void check_tree(const std::string& name) {
   accel->build(g);
   const KdTree& kd = dynamic_cast<const KdTree&>(*accel);
   const KdTreeData& tree = kd.data();
-  Trace trace = record_trace(g, *accel, random_rays(name == "kd" ? 21 : 22), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(name == "kd" ? 21 : 22), "soup", "");
   int first_child = 0, pushed = 0, next_pop = 0, pops = 0, stops = 0;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
     const TracedRay& ray = trace.rays[size_t(r)];
@@ -211,7 +185,7 @@ TEST(QuestionAcceptance, BvhNextPopSkipsEntriesBeyondTheHit) {
   auto accel = make_accelerator("bvh", options);
   accel->build(g);
   const BvhData& bvh = dynamic_cast<const Bvh&>(*accel).data();
-  Trace trace = record_trace(g, *accel, random_rays(23), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(23), "soup", "");
   int answers = 0, pops = 0, stops = 0, after_skips = 0;
   bool first_child_refused = false;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
@@ -391,7 +365,7 @@ TEST(Question, DoesNotApplyGivesOneLine) {
   Geometry g = test::make_soup(7, 50, 0);
   auto grid = make_accelerator("grid", StructureOptions{});
   grid->build(g);
-  Trace trace = record_trace(g, *grid, random_rays(1), "soup", "");
+  Trace trace = record_trace(g, *grid, soup_rays(1), "soup", "");
   EXPECT_THROW(answer_question(QuestionKind::first_child, context_at(trace, *grid, 0, 0)), InputError);
   EXPECT_THROW(answer_question(QuestionKind::next_pop, context_at(trace, *grid, 0, 0)), InputError);
   EXPECT_THROW(answer_question(QuestionKind::dda_axis, context_at(trace, *grid, 0, 0)),

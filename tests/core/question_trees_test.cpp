@@ -18,6 +18,7 @@
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "question_test_util.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -25,34 +26,8 @@ namespace {
 
 const std::string kSource = RAYSTEP_SOURCE_DIR;
 
-// 200 random rays from a sphere of radius 4 (outside the soup's box [-2, 2]^3) through a point inside it.
-std::vector<RayRequest> random_rays(uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.f, 1.f);
-  std::vector<RayRequest> rays;
-  while (rays.size() < 200) {
-    glm::vec3 o(u(rng), u(rng), u(rng));
-    if (glm::length(o) < 1e-3f) continue;
-    o = 4.f * o / glm::length(o);
-    RayRequest r;
-    r.ray.origin = o;
-    r.ray.direction = glm::normalize(1.8f * glm::vec3(u(rng), u(rng), u(rng)) - o);
-    rays.push_back(r);
-  }
-  return rays;
-}
-
-// The nearest hit among the prim_test events before `end`, ties to the lower id.
-void nearest_before(const std::vector<Event>& ev, size_t end, int32_t* prim, float* t) {
-  *prim = -1;
-  for (size_t i = 0; i < end; ++i) {
-    const Event& e = ev[i];
-    if (e.type != EventType::prim_test || !e.hit) continue;
-    if (*prim >= 0 && (e.t > *t || (e.t == *t && e.prim > *prim))) continue;
-    *prim = e.prim;
-    *t = e.t;
-  }
-}
+using test::nearest_before;
+using test::soup_rays;
 
 size_t end_of_block(const std::vector<Event>& ev, size_t i) {
   ++i;
@@ -83,7 +58,7 @@ TEST(QuestionAcceptance, BspFirstChildAndNextPopAreTheKernels) {
   auto accel = make_accelerator("bsp", options);
   accel->build(g);
   const BspTreeData& tree = dynamic_cast<const BspTree&>(*accel).data();
-  Trace trace = record_trace(g, *accel, random_rays(31), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(31), "soup", "");
   ASSERT_EQ(trace.structure.kind, "bsp");
   int first_child = 0, pushed = 0, slanted = 0, next_pop = 0, pops = 0, stops = 0, dropped = 0;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
@@ -166,7 +141,7 @@ TEST(QuestionAcceptance, OctreeFirstChildAndNextCellFollowRevelles) {
   auto accel = make_accelerator("octree", options);
   accel->build(g);
   const OctreeData& tree = dynamic_cast<const Octree&>(*accel).data();
-  Trace trace = record_trace(g, *accel, random_rays(32), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(32), "soup", "");
   ASSERT_EQ(trace.structure.kind, "octree");
   int first_child = 0, by_planes = 0, next_cell = 0, siblings = 0, upward = 0, stops = 0, grazed = 0;
   for (int r = 0; r < int(trace.rays.size()); ++r) {
@@ -303,7 +278,7 @@ TEST(Question, OctreeAndBspFormsAndRefusals) {
   StructureOptions options;
   auto accel = make_accelerator("octree", options);
   accel->build(g);
-  Trace trace = record_trace(g, *accel, random_rays(33), "soup", "");
+  Trace trace = record_trace(g, *accel, soup_rays(33), "soup", "");
   int leaf = -1, ray = -1;
   for (int r = 0; r < int(trace.rays.size()) && leaf < 0; ++r)
     for (int i = 0; i < int(trace.rays[size_t(r)].events.size()) && leaf < 0; ++i)
