@@ -12,20 +12,13 @@ inline bool grid_intersect_hookfree(const UniformGrid& grid, const Ray& ray, Hit
   SlabRay slab(ray);
   float t_enter, t_exit;
   if (grid.empty() || !intersect_slabs(grid.bounds(), slab, &t_enter, &t_exit)) return false;
-  const Bounds3& bounds = grid.bounds();
-  glm::vec3 cell_size = grid.cell_size();
   std::array<int, 3> n = grid.resolution();
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
   float t_max[3], inv_d[3];
-  float lo[3], hi[3], size[3], origin[3];
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = bounds.lo[a], hi[a] = bounds.hi[a], size[a] = cell_size[a], origin[a] = ray.origin[a];
-  }
-  auto boundary_t = [&](int axis, int index) {
-    float position = index == n[size_t(axis)] ? hi[axis] : lo[axis] + float(index) * size[axis];
-    return (position - origin[axis]) * inv_d[axis];
-  };
+  const float* positions[3] = {grid.boundaries(0), grid.boundaries(1), grid.boundaries(2)};
+  const float origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  auto boundary_t = [&](int axis, int index) { return (positions[axis][index] - origin[axis]) * inv_d[axis]; };
   for (int a = 0; a < 3; ++a) {
     cell[a] = grid.cell_of(start[a], a);
     float d = ray.direction[a];

@@ -70,6 +70,9 @@ void UniformGrid::set_resolution(const std::array<int, 3>& n) {
     n_[a] = n[a];
     cell_size_[a] = (bounds_.hi[a] - bounds_.lo[a]) / float(n[a]);
     inv_cell_size_[a] = float(n[a]) / (bounds_.hi[a] - bounds_.lo[a]);
+    boundaries_[a].resize(size_t(n[a]) + 1);
+    for (int i = 0; i < n[a]; ++i) boundaries_[a][size_t(i)] = bounds_.lo[a] + float(i) * cell_size_[a];
+    boundaries_[a][size_t(n[a])] = bounds_.hi[a];
   }
 }
 
@@ -102,7 +105,10 @@ void UniformGrid::build(const Geometry& geometry) {
   occupied_.clear();
   coarsening_ = GridCoarsening::none;
   mailboxes_.reset(geometry.size());
-  if (geometry.size() == 0) return;
+  if (geometry.size() == 0) {
+    set_resolution({n_[0], n_[1], n_[2]});  // boundary() stays defined
+    return;
+  }
 
   // The scene's bounding box; a flat axis (a planar scene) gets a thickness so that cells have a size.
   bounds_ = geometry.bounds();

@@ -45,7 +45,8 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   void build(const Geometry& geometry) override;
   size_t memory_bytes() const override {
     return cell_start_.capacity() * sizeof(uint32_t) + prim_index_.capacity() * sizeof(uint32_t) +
-           occupied_.capacity() * sizeof(uint64_t);
+           occupied_.capacity() * sizeof(uint64_t) +
+           (boundaries_[0].capacity() + boundaries_[1].capacity() + boundaries_[2].capacity()) * sizeof(float);
   }
 
   // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
@@ -80,13 +81,11 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
     return &prim_index_[0] + cell_start_[cell_id(i, j, k) + 1];
   }
   const Mailboxes& mailboxes() const { return mailboxes_; }
-  // The position of cell boundary `index` (0..n) on an axis: the expression cell_bounds() gives the cells the
-  // primitives are inserted in, so that the 3D-DDA walks those very cells. The walk's boundary_t (intersect)
-  // repeats it on plain arrays: the two must stay the same expression.
-  float boundary(int axis, int index) const {
-    return index == n_[axis] ? component(bounds_.hi, axis)
-                             : component(bounds_.lo, axis) + float(index) * component(cell_size_, axis);
-  }
+  // The position of cell boundary `index` (0..n) on an axis: lo + index * size, and hi at n. cell_bounds()
+  // gives the cells the primitives are inserted in by these positions, and the 3D-DDA crosses these very
+  // boundaries (it reads the same table), so walk and cells agree to the last bit.
+  float boundary(int axis, int index) const { return boundaries_[axis][size_t(index)]; }
+  const float* boundaries(int axis) const { return boundaries_[axis].data(); }  // the n + 1 of an axis
   // The cell index containing coordinate p on an axis, clamped to the grid (NaN gives 0).
   int cell_of(float p, int axis) const {
     float x = (p - component(bounds_.lo, axis)) * component(inv_cell_size_, axis);
@@ -115,6 +114,7 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   std::array<int, 3> requested_{1, 1, 1};
   GridCoarsening coarsening_ = GridCoarsening::none;
   glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
+  std::vector<float> boundaries_[3];   // per axis, the n + 1 boundary positions (boundary())
   std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
   std::vector<uint32_t> prim_index_;
   std::vector<uint64_t> occupied_;  // one bit per cell: cell_start_[id] < cell_start_[id + 1]
@@ -139,17 +139,11 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   int cell[3], step[3], out[3];
   float t_max[3];  // plain arrays: indexed by a run-time axis without glm's switch
   float inv_d[3];  // 1 / d: a boundary's t is (position - origin) * inv_d, with no division
-  // The grid's corners, cell sizes and the ray's origin as plain arrays too, for boundary_t in the loop.
-  float lo[3], hi[3], size[3], origin[3];
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = bounds_.lo[a], hi[a] = bounds_.hi[a], size[a] = cell_size_[a], origin[a] = ray.origin[a];
-  }
-  // The t where the ray meets boundary `index` of an axis: boundary()'s expression (keep them the same), on the
-  // arrays.
-  auto boundary_t = [&](int axis, int index) {
-    float position = index == n_[axis] ? hi[axis] : lo[axis] + float(index) * size[axis];
-    return (position - origin[axis]) * inv_d[axis];
-  };
+  // The boundary positions and the ray's origin as plain arrays too, for boundary_t in the loop.
+  const float* positions[3] = {boundaries_[0].data(), boundaries_[1].data(), boundaries_[2].data()};
+  const float origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  // The t where the ray meets boundary `index` (0..n) of an axis.
+  auto boundary_t = [&](int axis, int index) { return (positions[axis][index] - origin[axis]) * inv_d[axis]; };
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
