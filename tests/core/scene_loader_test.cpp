@@ -163,6 +163,22 @@ TEST(SceneLoader, EveryFieldIsRead) {
   EXPECT_EQ(s.render.seed, 18446744073709551615ull);
 }
 
+// Regression input of the scene fuzzer (fuzz/scene_fuzz.cpp): a material name holding "\u0000" was looked up
+// again by its C string, cut at the NUL, and nlohmann's out_of_range escaped instead of an InputError or a
+// scene. The name is kept whole, and an object names it.
+TEST(SceneLoader, MaterialNameWithANulCharacterIsReadWhole) {
+  const std::string text = R"({"materials": {"solid": {"diffuse": 0.5}, "a\u0000b": {"diffuse": [0.9, 0.1, 0.1]}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "a\u0000b"}]})";
+  Scene s = parse_scene(text, "scene.json");
+  ASSERT_EQ(s.materials.size(), 3u);  // the default, then by name: "a\0b" sorts before "solid"
+  EXPECT_EQ(s.materials[1].name, std::string("a\0b", 3));
+  expect_vec3(s.materials[1].diffuse, glm::vec3(0.9f, 0.1f, 0.1f));
+  EXPECT_EQ(s.geometry.material(0), 1u);
+  // A material of that name that is not an object is refused as any other would be.
+  InputError e = scene_error(R"({"materials": {"a\u0000b": 7}, "objects": [)" + std::string(kSphere) + "]}");
+  EXPECT_NE(std::string(e.what()).find("scene.json"), std::string::npos) << e.what();
+}
+
 TEST(SceneLoader, OrthographicCameraAndNoLights) {
   Scene s = parse_scene(scene_with(R"("camera": {"type": "orthographic", "eye": [0, 0, 1], "height": 48},
                                       "lights": [])"),

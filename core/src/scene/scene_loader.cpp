@@ -211,7 +211,9 @@ class SceneReader {
     Node all = top.at("materials");
     if (!all.value.is_object()) fail(all.path, "expected an object of named materials");
     for (auto it = all.value.begin(); it != all.value.end(); ++it) {  // nlohmann keeps keys sorted
-      Node n = all.at(it.key().c_str());
+      // The member itself, not a second look-up by the key's C string: a name may hold "\u0000" (a fuzz
+      // finding: the look-up cut it at the NUL and nlohmann's out_of_range escaped).
+      Node n{it.value(), all.path.child(it.key())};
       check_keys(n, kMaterialKeys);
       Material m;
       m.name = it.key();
