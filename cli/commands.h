@@ -206,6 +206,8 @@ int run_cost(const CostArgs& args);
 int run_lesson_check(const LessonCheckArgs& args);
 int run_lesson_command(const LessonCommandArgs& args);
 int run_lesson_answers(const LessonAnswersArgs& args);
+int run_lesson_numbers(const LessonAnswersArgs& args);
+int run_lesson_facts();
 
 // export_commands.cpp: `raystep export-vtk`, the scene, a structure and recorded walks for ParaView
 // (docs/vtk-export.md).

@@ -5,6 +5,8 @@
 
 #include "commands.h"
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_facts.h"
+#include "raystep/lesson/lesson_numbers.h"
 #include "raystep/lesson/lesson_runner.h"
 #include "raystep/util/error.h"
 
@@ -35,9 +37,11 @@ int run_lesson_check(const LessonCheckArgs& args) {
   for (const std::string& p : paths)
     for (const std::string& file : lesson_files(p)) {
       const Lesson lesson = parse_lesson(file);
-      const int questions = check_lesson(lesson);
-      std::printf("%s: %s, %s: ok\n", file.c_str(), plural(lesson.steps.size(), "step", "steps").c_str(),
-                  plural(size_t(questions), "question", "questions").c_str());
+      int numbers = 0;
+      const int questions = check_lesson(lesson, &numbers);
+      std::printf("%s: %s, %s, %s: ok\n", file.c_str(), plural(lesson.steps.size(), "step", "steps").c_str(),
+                  plural(size_t(questions), "question", "questions").c_str(),
+                  plural(size_t(numbers), "number", "numbers").c_str());
       std::fflush(stdout);
     }
   return 0;
@@ -68,6 +72,31 @@ int run_lesson_answers(const LessonAnswersArgs& args) {
     std::printf("step %zu '%s' (%s, line %d): %s\n  %s\n", i + 1, step.title.c_str(),
                 question_kind_name(*step.ask), step.ask_line, w.answer->text.c_str(), w.answer->why.c_str());
   }
+  return 0;
+}
+
+int run_lesson_numbers(const LessonAnswersArgs& args) {
+  const Lesson lesson = parse_lesson(args.file);
+  int failures = 0;
+  for (const LessonNumberResult& r : compute_lesson_numbers(lesson)) {
+    const LessonNumber& n = *r.number;
+    const std::string value = r.error.empty() ? format_lesson_number(r.value, ".6g") : "-";
+    const char* verdict = !r.error.empty() ? "cannot compute" : !n.checked ? "filled" : r.agrees ? "agrees" : "DISAGREES";
+    std::printf("%s:%d: step %d: %s  value %s  shown %s  %s%s%s\n", args.file.c_str(), n.line, r.step + 1,
+                n.token.c_str(), value.c_str(), r.error.empty() ? shown_lesson_number(n, r.value).c_str() : "-",
+                verdict, r.error.empty() ? "" : ": ", r.error.c_str());
+    failures += !r.error.empty() || !r.agrees;
+  }
+  std::fflush(stdout);
+  if (failures)
+    throw InputError(args.file, 0, std::to_string(failures) + " of its numbers disagree or cannot be computed");
+  return 0;
+}
+
+int run_lesson_facts() {
+  for (const LessonFactInfo& f : lesson_fact_list())
+    std::printf("%-26s %s%s\n", (f.name + (f.function ? "(\"...\")" : "")).c_str(), f.help.c_str(),
+                f.costly ? " [runs a report: checked numbers only]" : "");
   return 0;
 }
 

@@ -293,6 +293,12 @@ int main(int argc, char** argv) {
   CLI::App* lesson_answers_cmd =
       lesson_cmd->add_subcommand("answers", "Print every question's computed answer and its reason");
   lesson_answers_cmd->add_option("lesson", lesson_answers.file, "lesson file (.md)")->required();
+  LessonAnswersArgs lesson_numbers;
+  CLI::App* lesson_numbers_cmd = lesson_cmd->add_subcommand(
+      "numbers", "Print every number of a lesson's text ({{...}}) as written and as the tool computes it");
+  lesson_numbers_cmd->add_option("lesson", lesson_numbers.file, "lesson file (.md)")->required();
+  CLI::App* lesson_facts_cmd =
+      lesson_cmd->add_subcommand("facts", "List the facts and functions a lesson's numbers can use");
 
   AaReportArgs aa_report;
   CLI::App* aa_report_cmd = app.add_subcommand(
@@ -387,6 +393,8 @@ int main(int argc, char** argv) {
     if (*lesson_check_cmd) return run_lesson_check(lesson_check);
     if (*lesson_command_cmd) return run_lesson_command(lesson_command);
     if (*lesson_answers_cmd) return run_lesson_answers(lesson_answers);
+    if (*lesson_numbers_cmd) return run_lesson_numbers(lesson_numbers);
+    if (*lesson_facts_cmd) return run_lesson_facts();
     if (*export_vtk_cmd) return run_export_vtk(export_vtk);
     if (*hardcases_cmd) return run_hardcases(hardcases);
   } catch (const raystep::InputError& e) {

@@ -10,6 +10,8 @@ PACKAGES=(
   clang libclang-rt-14-dev
   # core
   libglm-dev nlohmann-json3-dev libtinyobjloader-dev libpng-dev libstb-dev libtbb-dev libgmp-dev
+  # the lessons' number expressions ({{cost.primitives}}: docs/lesson-format.md)
+  libmuparser-dev
   # command line, tests, benchmarks (Embree 3 is the speed yardstick)
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev valgrind
   # the reports' plots (gnuplot draws PNG without a display)

@@ -478,14 +478,14 @@ TEST_F(LessonCli, CheckPassesAGoodLesson) {
   std::string file = lesson("good.md", "");
   Outcome r = run("lesson check " + file);
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out, file + ": 2 steps, 1 question: ok\n");
+  EXPECT_EQ(r.out, file + ": 2 steps, 1 question, 0 numbers: ok\n");
   EXPECT_EQ(r.err, "");
   // A folder: its lessons in name order.
   lesson("another.md", "", "## Three\n\n```raystep\naccel: kd\nstep-to: node:1\nask: first-child\n```\n");
   std::remove(file.c_str());
   r = run("lesson check " + dir_.string());
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out, path("another.md") + ": 3 steps, 2 questions: ok\n");
+  EXPECT_EQ(r.out, path("another.md") + ": 3 steps, 2 questions, 0 numbers: ok\n");
 }
 
 TEST_F(LessonCli, CheckReportsTheLineOfTheDamage) {
@@ -508,7 +508,7 @@ TEST_F(LessonCli, CheckReportsTheLineOfTheDamage) {
   std::string good = lesson("a.md", "");
   Outcome r = run("lesson check " + good + " " + path("pixel.md") + " " + good);
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.out, good + ": 2 steps, 1 question: ok\n");
+  EXPECT_EQ(r.out, good + ": 2 steps, 1 question, 0 numbers: ok\n");
   expect_error(r, path("pixel.md") + ":13: ");
   expect_error(run("lesson check " + path("none.md")), path("none.md") + ": no such lesson file or folder");
 }

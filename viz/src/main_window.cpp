@@ -39,6 +39,7 @@
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_runner.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/trace/trace_file.h"
@@ -384,7 +385,8 @@ void MainWindow::releaseLessonPaneWidth() {
 
 void MainWindow::openLessonReportingErrors(const QString& path) {
   try {
-    Lesson lesson = parse_lesson(path.toStdString());  // all of it checked before anything changes
+    // All of it checked before anything changes; its numbers computed and written in (lesson_numbers.h).
+    Lesson lesson = lesson_with_numbers(parse_lesson(path.toStdString()));
     bool hadPane = lessonDock_ && lessonDock_->isVisible();
     Presenter* p = openLesson(lesson);
     if (!hadPane) fitLessonPane();

@@ -35,6 +35,7 @@
 #include "presenter.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_runner.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/multi_trace.h"
@@ -543,7 +544,7 @@ std::vector<int> parseStepList(const QString& option, const QString& spec, int s
 // slides), export the handout.
 int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool anyScript) {
   // A damaged lesson is reported with its file and line before anything is shown.
-  Lesson lesson = parse_lesson(p.value("lesson").toStdString());
+  Lesson lesson = lesson_with_numbers(parse_lesson(p.value("lesson").toStdString()));
   Presenter* presenter = window.openLesson(lesson);
   if (!anyScript) {
     // Presenting: the whole screen (a projector's), unless --window says otherwise.

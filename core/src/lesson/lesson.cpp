@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "markdown_fence.h"
+#include "raystep/lesson/lesson_numbers.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -22,30 +24,6 @@ std::string trim(const std::string& s) {
   if (b == std::string::npos) return "";
   size_t e = s.find_last_not_of(" \t");
   return s.substr(b, e - b + 1);
-}
-
-// A fence line: up to 3 spaces, then 3 or more ` or ~; `info` is the rest, trimmed.
-struct Fence {
-  char ch = 0;
-  size_t length = 0;
-  std::string info;
-};
-bool fence_of(const std::string& line, Fence* f) {
-  size_t i = 0;
-  while (i < line.size() && i < 3 && line[i] == ' ') ++i;
-  if (i >= line.size() || (line[i] != '`' && line[i] != '~')) return false;
-  char ch = line[i];
-  size_t n = 0;
-  while (i + n < line.size() && line[i + n] == ch) ++n;
-  if (n < 3) return false;
-  std::string info = trim(line.substr(i + n));
-  if (ch == '`' && info.find('`') != std::string::npos) return false;  // CommonMark: not a fence
-  *f = Fence{ch, n, info};
-  return true;
-}
-bool closes(const Fence& open, const std::string& line) {
-  Fence f;
-  return fence_of(line, &f) && f.ch == open.ch && f.length >= open.length && f.info.empty();
 }
 
 // An ATX heading outside fences: its level (1..6) and text, or 0.
@@ -108,26 +86,42 @@ Lesson parse_lesson_text(const std::string& text, const std::string& path) {
   lesson.path = path;
   int title_line = 0;
   std::vector<std::string> intro, narration;  // the text of the part being read
+  std::vector<int> intro_at, narration_at;    // their lines' numbers in the file
   int state_line = 0;                         // the current step's state block (0: none yet)
+  auto numbers = [&](const std::vector<std::string>& text, const std::vector<int>& at) {
+    try {
+      return scan_lesson_numbers(text, at);
+    } catch (const InputError& e) {
+      throw InputError(path, e.line(), e.detail());
+    }
+  };
   auto finish_step = [&] {
-    if (!lesson.steps.empty()) lesson.steps.back().narration = join_trimmed(narration);
+    if (!lesson.steps.empty()) {
+      lesson.steps.back().narration = join_trimmed(narration);
+      lesson.steps.back().numbers = numbers(narration, narration_at);
+    }
     narration.clear();
+    narration_at.clear();
   };
 
   for (size_t i = 0; i < lines.size(); ++i) {
     const int line_no = int(i) + 1;
     const std::string& line = lines[i];
     std::vector<std::string>& part = lesson.steps.empty() ? intro : narration;
+    std::vector<int>& part_at = lesson.steps.empty() ? intro_at : narration_at;
     Fence fence;
     if (fence_of(line, &fence)) {
       // Find the closing fence first: an unclosed fence would swallow the rest of the lesson unseen.
       size_t close = i + 1;
-      while (close < lines.size() && !closes(fence, lines[close])) ++close;
+      while (close < lines.size() && !fence_closes(fence, lines[close])) ++close;
       if (close == lines.size())
         fail(line_no, "unclosed code fence " + std::string(fence.length, fence.ch) + fence.info +
                           " (no closing " + std::string(fence.length, fence.ch) + ")");
       if (fence.info != "raystep") {  // narration, shown as code; headings inside are not headings
-        for (size_t j = i; j <= close; ++j) part.push_back(lines[j]);
+        for (size_t j = i; j <= close; ++j) {
+          part.push_back(lines[j]);
+          part_at.push_back(int(j) + 1);
+        }
         i = close;
         continue;
       }
@@ -174,6 +168,7 @@ Lesson parse_lesson_text(const std::string& text, const std::string& path) {
       title_line = line_no;
       lesson.title = heading;
       intro.clear();  // anything before the title is not the introduction
+      intro_at.clear();
       continue;
     }
     if (level == 2) {
@@ -196,6 +191,7 @@ Lesson parse_lesson_text(const std::string& text, const std::string& path) {
       continue;
     }
     part.push_back(line);
+    part_at.push_back(line_no);
   }
 
   if (!title_line) fail(lines.empty() ? 0 : 1, "no title: a lesson starts with a # heading");
@@ -205,6 +201,7 @@ Lesson parse_lesson_text(const std::string& text, const std::string& path) {
          "step '" + lesson.steps.back().title + "' has no scene: the first step must name one (scene: FILE)");
   finish_step();
   lesson.intro = join_trimmed(intro);
+  lesson.intro_numbers = numbers(intro, intro_at);
   return lesson;
 }
 

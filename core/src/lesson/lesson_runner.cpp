@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "raystep/lesson/lesson_facts.h"
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -286,27 +287,138 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
   return w;
 }
 
-int check_lesson(const Lesson& lesson) {
+namespace {
+
+// The step's numbers with the introduction's in front of the first step's.
+std::vector<const LessonNumber*> step_numbers(const Lesson& lesson, size_t i, bool filled_only) {
+  std::vector<const LessonNumber*> out;
+  auto add = [&](const std::vector<LessonNumber>& v) {
+    for (const LessonNumber& n : v)
+      if (!filled_only || !n.checked) out.push_back(&n);
+  };
+  if (i == 0) add(lesson.intro_numbers);
+  add(lesson.steps[i].numbers);
+  return out;
+}
+
+std::string disagreement(const LessonNumber& n, double value) {
+  return n.token + ": the text says " + n.written + ", the tool computes " + format_lesson_number(value, ".6g") +
+         " (agreement asked: within " + format_lesson_number(n.tolerance, ".3g") + ")";
+}
+
+// The step's failure, pointed at the line of its last responsible setting (else its heading).
+[[noreturn]] void rethrow_step(const Lesson& lesson, const LessonStep& step, const StepError& e) {
+  int line = 0;
+  for (const std::string& key : e.keys()) {
+    if (key == "ask" && step.ask) line = std::max(line, step.ask_line);
+    for (const LessonSetting& s : step.changes)
+      if (s.key == key) line = std::max(line, s.line);
+  }
+  throw InputError(lesson.path, line ? line : step.line, "step '" + step.title + "': " + e.detail());
+}
+
+}  // namespace
+
+int check_lesson(const Lesson& lesson, int* numbers) {
   LessonRunner runner;
-  int questions = 0;
-  for (const LessonStep& step : lesson.steps) {
+  int questions = 0, computed = 0;
+  for (size_t i = 0; i < lesson.steps.size(); ++i) {
+    const LessonStep& step = lesson.steps[i];
+    StepWorld w;
     try {
-      StepWorld w = runner.enter(step.state, step.ask);
+      w = runner.enter(step.state, step.ask);
       if (w.answer) ++questions;
     } catch (const StepError& e) {
-      // The line of this step's last setting among those responsible; else the step's heading.
-      int line = 0;
-      for (const std::string& key : e.keys()) {
-        if (key == "ask" && step.ask) line = std::max(line, step.ask_line);
-        for (const LessonSetting& s : step.changes)
-          if (s.key == key) line = std::max(line, s.line);
-      }
-      throw InputError(lesson.path, line ? line : step.line, "step '" + step.title + "': " + e.detail());
+      rethrow_step(lesson, step, e);
     } catch (const InputError& e) {
       throw InputError(lesson.path, step.line, "step '" + step.title + "': " + e.what());
     }
+    LessonFacts facts(w, step.state);
+    for (const LessonNumber* n : step_numbers(lesson, i, false)) {
+      double v = 0;
+      try {
+        v = evaluate_lesson_number(*n, facts);
+      } catch (const InputError& e) {
+        throw InputError(lesson.path, n->line, "step '" + step.title + "': " + e.detail());
+      }
+      if (n->checked && !lesson_number_agrees(*n, v))
+        throw InputError(lesson.path, n->line, "step '" + step.title + "': " + disagreement(*n, v));
+      ++computed;
+    }
   }
+  if (numbers) *numbers = computed;
   return questions;
+}
+
+std::vector<LessonNumberResult> compute_lesson_numbers(const Lesson& lesson) {
+  LessonRunner runner;
+  std::vector<LessonNumberResult> out;
+  for (size_t i = 0; i < lesson.steps.size(); ++i) {
+    const std::vector<const LessonNumber*> ns = step_numbers(lesson, i, false);
+    if (ns.empty()) continue;
+    const LessonStep& step = lesson.steps[i];
+    std::optional<StepWorld> w;
+    std::string step_error;
+    try {
+      w = runner.enter(step.state, std::nullopt);
+    } catch (const InputError& e) {
+      step_error = "step '" + step.title + "': " + e.detail();
+    }
+    std::optional<LessonFacts> facts;
+    if (w) facts.emplace(*w, step.state);
+    for (const LessonNumber* n : ns) {
+      LessonNumberResult r;
+      r.number = n;
+      r.step = int(i);
+      r.error = step_error;
+      if (facts) {
+        try {
+          r.value = evaluate_lesson_number(*n, *facts);
+          r.agrees = !n->checked || lesson_number_agrees(*n, r.value);
+        } catch (const InputError& e) {
+          r.error = e.detail();
+        }
+      }
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+Lesson lesson_with_numbers(const Lesson& lesson) {
+  Lesson out = lesson;
+  LessonRunner runner;
+  for (size_t i = 0; i < out.steps.size(); ++i) {
+    const LessonStep& step = lesson.steps[i];
+    std::optional<StepWorld> w;
+    std::optional<LessonFacts> facts;
+    if (!step_numbers(lesson, i, true).empty()) {
+      try {
+        w = runner.enter(step.state, std::nullopt);
+      } catch (const StepError& e) {
+        rethrow_step(lesson, step, e);
+      }
+      facts.emplace(*w, step.state);
+    }
+    auto shown = [&](const std::vector<LessonNumber>& ns) {
+      std::vector<std::string> texts;
+      for (const LessonNumber& n : ns) {
+        if (n.checked) {
+          texts.push_back(n.written);
+          continue;
+        }
+        try {
+          texts.push_back(shown_lesson_number(n, evaluate_lesson_number(n, *facts)));
+        } catch (const InputError& e) {
+          throw InputError(lesson.path, n.line, "step '" + step.title + "': " + e.detail());
+        }
+      }
+      return texts;
+    };
+    if (i == 0) out.intro = fill_lesson_numbers(lesson.intro, shown(lesson.intro_numbers));
+    out.steps[i].narration = fill_lesson_numbers(step.narration, shown(step.numbers));
+  }
+  return out;
 }
 
 }  // namespace raystep

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "raystep/lesson/lesson_numbers.h"
 #include "raystep/lesson/lesson_state.h"
 #include "raystep/lesson/question.h"
 
@@ -25,12 +26,14 @@ struct LessonStep {
   LessonState state;                   // the whole state: the previous step's with the changes applied
   std::optional<QuestionKind> ask;
   int ask_line = 0;
+  std::vector<LessonNumber> numbers;  // the narration's {{...}} numbers, in order (lesson_numbers.h)
 };
 
 struct Lesson {
   std::string path;   // as given
   std::string title;  // the level-1 heading
   std::string intro;  // Markdown before the first step ("" if none)
+  std::vector<LessonNumber> intro_numbers;  // the introduction's numbers, computed at the first step
   std::vector<LessonStep> steps;
 };
 

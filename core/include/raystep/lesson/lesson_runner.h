@@ -40,8 +40,25 @@ class LessonRunner {
   std::shared_ptr<Cache> cache_;
 };
 
-// Reaches every step of the lesson in order and answers every question; throws InputError(lesson path, line of
-// the failing step's setting or heading, what) on the first failure. Returns the number of questions answered.
-int check_lesson(const Lesson& lesson);
+// Reaches every step of the lesson in order, answers every question and computes every number; throws
+// InputError(lesson path, line of the failing step's setting, heading or number, what) on the first failure,
+// a checked number that disagrees with the tool included. Returns the number of questions answered (and in
+// `numbers` the numbers computed).
+int check_lesson(const Lesson& lesson, int* numbers = nullptr);
+
+// Every number of the lesson computed at its step (the introduction's at the first), in file order.
+struct LessonNumberResult {
+  const LessonNumber* number = nullptr;
+  int step = 0;       // 0-based
+  double value = 0;   // computed
+  std::string error;  // why it could not be computed ("": it was)
+  bool agrees = true;  // a checked number: its literal agrees with the value
+};
+std::vector<LessonNumberResult> compute_lesson_numbers(const Lesson& lesson);
+
+// The lesson as a reader sees it: every filled number ({{EXPR}}) computed and written in, every checked one
+// ({{EXPR = VALUE}}) replaced by its VALUE. Reports are never run (a filled number cannot name one). Throws
+// InputError(lesson path, line, what) when a step or a filled number cannot be computed.
+Lesson lesson_with_numbers(const Lesson& lesson);
 
 }  // namespace raystep
