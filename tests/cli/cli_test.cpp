@@ -513,6 +513,37 @@ TEST_F(LessonCli, CheckReportsTheLineOfTheDamage) {
   expect_error(run("lesson check " + path("none.md")), path("none.md") + ": no such lesson file or folder");
 }
 
+// A shipped lesson's numbers: a copy checks as the lesson does, and a number edited in the copy fails the check
+// at its line; `lesson numbers` lists each number with the value the tool computes (the adaptive bound 145).
+TEST_F(LessonCli, AnEditedNumberFailsTheCheck) {
+  std::ifstream in(std::string(RAYSTEP_SOURCE_DIR) + "/lessons/04-adaptive-sampling.md", std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (size_t at = text.find("../scenes/"); at != std::string::npos; at = text.find("../scenes/", at))
+    text.replace(at, 10, std::string(RAYSTEP_SOURCE_DIR) + "/scenes/");
+  const std::string copy = write("copy.md", text);
+  Outcome r = run("lesson check " + copy);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find(": 10 steps, 5 questions, "), std::string::npos) << r.out;
+  r = run("lesson numbers " + copy);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("{{(2^aa.depth + 1)^2 + 4^aa.depth}}  value 145  shown 145  filled"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("{{pixel.squares = 37}}  value 37  shown 37  agrees"), std::string::npos) << r.out;
+
+  const size_t at = text.find("{{pixel.squares = 37}}");
+  ASSERT_NE(at, std::string::npos);
+  const int line = 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+  std::string edited = text;
+  edited.replace(at, 22, "{{pixel.squares = 36}}");
+  const std::string bad = write("edited.md", edited);
+  expect_error(run("lesson check " + bad),
+               bad + ":" + std::to_string(line) +
+                   ": step 'The depth limit': {{pixel.squares = 36}}: the text says 36, the tool computes 37");
+  r = run("lesson numbers " + bad);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("{{pixel.squares = 36}}  value 37  shown 36  DISAGREES"), std::string::npos) << r.out;
+}
+
 TEST_F(LessonCli, CommandPrintsTheStepsGuiArguments) {
   std::string file =
       lesson("good.md", "accel: kd\nzoom: 8\n", "## Three\n\n```raystep\nnode-path: LR\n```\n");

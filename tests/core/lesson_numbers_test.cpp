@@ -81,7 +81,7 @@ TEST(LessonNumbers, Formats) {
 }
 
 TEST(LessonNumbers, ErrorsNameTheLine) {
-  EXPECT_EQ(scan_error("x {{scene.primitives"), "7: '{{' without its '}}' on the same line");
+  EXPECT_EQ(scan_error("x {{scene.primitives"), "7: '{{' without its '}}' in the same paragraph");
   EXPECT_EQ(scan_error("{{scene.primitivs}}"),
             "7: {{scene.primitivs}}: 'scene.primitivs' is no lesson fact (`raystep lesson facts` lists them)");
   EXPECT_NE(scan_error("{{scene.primitives +}}").find("7: {{scene.primitives +}}: "), std::string::npos);
@@ -95,6 +95,22 @@ TEST(LessonNumbers, ErrorsNameTheLine) {
             std::string::npos);
   EXPECT_EQ(scan_error("{{" + std::string(400, '1') + "}}"),
             "7: a number's expression of 400 characters, more than 300");
+}
+
+TEST(LessonNumbers, ANumberMayWrapWithinItsParagraph) {
+  std::vector<LessonNumber> n = scan_lesson_numbers({"a {{aa.max_samples", "/ 2}} b {{aa.k}}"}, {3, 4});
+  ASSERT_EQ(n.size(), 2u);
+  EXPECT_EQ(n[0].line, 3);
+  EXPECT_EQ(n[0].expr, "aa.max_samples / 2");
+  EXPECT_EQ(n[1].line, 4);
+  EXPECT_EQ(fill_lesson_numbers("x\na {{aa.max_samples\n/ 2}} b {{aa.k}}\n\nc\n", {"72.5", "4"}),
+            "x\na 72.5 b 4\n\nc\n");
+  try {
+    scan_lesson_numbers({"a {{aa.k", "", "}}"}, {3, 4, 5});
+    FAIL() << "a number across paragraphs";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 3);
+  }
 }
 
 TEST(LessonNumbers, CodeFencesAreNotScannedNorFilled) {

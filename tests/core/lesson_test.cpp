@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -518,6 +520,51 @@ TEST(Lesson, DamagedLessonsGiveInputErrors) {
   }
   EXPECT_GT(read, 50);
   EXPECT_GT(refused, 50);
+}
+
+}  // namespace
+}  // namespace raystep
+
+namespace raystep {
+namespace {
+
+// lessons/README.md's table: every lesson listed, with the number of questions it asks (the last column's
+// leading number) and every scene file it uses named in its scene column.
+TEST(Lesson, ReadmeTableMatchesTheLessons) {
+  std::ifstream in(kSource + "/lessons/README.md");
+  ASSERT_TRUE(in) << "lessons/README.md";
+  std::map<std::string, std::pair<std::string, std::string>> rows;  // file -> (scene column, questions column)
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("| [", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line.substr(1));
+    std::string cell;
+    while (std::getline(ss, cell, '|')) cells.push_back(cell);
+    ASSERT_GE(cells.size(), 4u) << line;
+    const std::string file = cells[0].substr(cells[0].find('[') + 1, cells[0].find(']') - cells[0].find('[') - 1);
+    rows[file] = {cells[cells.size() - 2], cells.back()};
+  }
+  const std::vector<std::string> files = lesson_files(kSource + "/lessons");
+  EXPECT_EQ(rows.size(), files.size());
+  for (const std::string& path : files) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    auto it = rows.find(name);
+    ASSERT_NE(it, rows.end()) << name << " is not in lessons/README.md";
+    const Lesson lesson = parse_lesson(path);
+    int asks = 0;
+    for (const LessonStep& s : lesson.steps) {
+      asks += s.ask.has_value();
+      const std::string scene = std::filesystem::path(s.state.scene).filename().string();
+      EXPECT_NE(it->second.first.find(scene), std::string::npos) << name << " uses " << scene;
+    }
+    // "1 first-child, 2 next-cell": the counts of the kinds, summed.
+    int listed = 0;
+    std::stringstream kinds(it->second.second);
+    std::string kind;
+    while (std::getline(kinds, kind, ',')) listed += std::atoi(kind.c_str());
+    EXPECT_EQ(listed, asks) << name << ": " << it->second.second;
+  }
 }
 
 }  // namespace

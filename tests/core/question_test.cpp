@@ -147,6 +147,15 @@ void check_tree(const std::string& name) {
         EXPECT_TRUE(prediction_matches(
             a, std::string(first == below ? "below" : "above") + (push ? ",push" : ",no push")));
         EXPECT_FALSE(prediction_matches(a, std::string(first == below ? "above" : "below")));
+        // The slides' path notation: the path the answer names leads from the root to the same node.
+        ASSERT_FALSE(a.first_child_path.empty());
+        ASSERT_EQ(kd_node_by_path(tree, a.first_child_path), uint32_t(first)) << a.first_child_path;
+        EXPECT_TRUE(prediction_matches(a, a.first_child_path));
+        std::string lower = a.first_child_path;
+        for (char& ch : lower) ch = char(std::tolower(ch));
+        EXPECT_TRUE(prediction_matches(a, lower + (push ? ",push" : ",no push")));
+        EXPECT_FALSE(prediction_matches(a, a.first_child_path + (a.first_child_path.back() == 'L' ? "L" : "R")));
+        if (push) ASSERT_EQ(kd_node_by_path(tree, a.far_child_path), uint32_t(far_child));
       }
       if (e.type == EventType::leaf) {
         // The stop rule: an empty stack, or the nearest hit before the top's t_min (beyond the margin).
@@ -161,6 +170,11 @@ void check_tree(const std::string& name) {
           ASSERT_EQ(a.stops, stop) << "ray " << r << " event " << at << ": " << a.why;
           if (!stop) ASSERT_EQ(a.node, stack.back()->node) << a.why;
           EXPECT_TRUE(prediction_matches(a, stop ? "stop" : std::to_string(stack.back()->node)));
+          if (!stop) {
+            ASSERT_EQ(kd_node_by_path(tree, a.node_path == "root" ? "" : a.node_path),
+                      uint32_t(stack.back()->node));
+            EXPECT_TRUE(prediction_matches(a, a.node_path));
+          }
         }
         (stop ? stops : pops) += 1;
       }
@@ -349,6 +363,13 @@ TEST(Question, NamesAndForms) {
   EXPECT_FALSE(prediction_matches(a, "x, 0.501"));
   EXPECT_FALSE(prediction_matches(a, "y"));
   EXPECT_THROW(prediction_matches(a, "x,abc"), InputError);
+  // The chart's own axis: across the node, 0% its minimum (here -1.5), 100% its maximum (0.5); within 2%.
+  a.lo = -1.5f;
+  EXPECT_TRUE(prediction_matches(a, "x, 100%"));
+  EXPECT_TRUE(prediction_matches(a, "x,98.5%"));
+  EXPECT_FALSE(prediction_matches(a, "x,97%"));
+  EXPECT_FALSE(prediction_matches(a, "x,50%"));
+  EXPECT_THROW(prediction_matches(a, "x,%"), InputError);
   a.kind = QuestionKind::first_child;
   a.first_child = 7;
   a.first_is_below = false;
@@ -357,6 +378,17 @@ TEST(Question, NamesAndForms) {
   EXPECT_TRUE(prediction_matches(a, "Above, No push"));
   EXPECT_FALSE(prediction_matches(a, "above,push"));
   EXPECT_THROW(prediction_matches(a, "left"), InputError);
+  // The slides' path notation, where the answer knows the node's path.
+  EXPECT_THROW(prediction_matches(a, "LR"), InputError);  // no path known: not a form of this answer
+  a.first_child_path = "LR";
+  EXPECT_TRUE(prediction_matches(a, "lr, no push"));
+  EXPECT_FALSE(prediction_matches(a, "LL"));
+  a.kind = QuestionKind::next_pop;
+  a.node = 4;
+  a.node_path = "root";
+  EXPECT_TRUE(prediction_matches(a, "Root"));
+  EXPECT_FALSE(prediction_matches(a, "L"));
+  EXPECT_TRUE(prediction_matches(a, "4"));
   a.kind = QuestionKind::subdivide;
   EXPECT_THROW(prediction_matches(a, "maybe"), InputError);
 }

@@ -432,7 +432,13 @@ TEST(Lesson, QuizMarksRightAndWrongPredictions) {
     const raystep::Answer& answer = c.step == 2 ? cell : *w5.answer;
     EXPECT_NE(quiz["result"].get<std::string>().find(answer.text.substr(0, 12)), std::string::npos)
         << quiz["result"];
-    EXPECT_NE(quiz["result"].get<std::string>().find("Debugger:"), std::string::npos) << quiz["result"];
+    EXPECT_NE(quiz["result"].get<std::string>().find("Debugger, at the walk's next step:"), std::string::npos)
+        << quiz["result"];
+    // A wrong prediction is answered with the feedback aimed at its misconception first.
+    const std::string feedback = raystep::prediction_feedback(answer, c.prediction);
+    EXPECT_EQ(feedback.empty(), c.right);
+    if (!c.right)
+      EXPECT_NE(quiz["result"].get<std::string>().find(feedback.substr(0, 30)), std::string::npos) << quiz["result"];
     EXPECT_EQ(j["panels"]["ruleLabel"].get<std::string>().find("Hidden"), std::string::npos)
         << "revealed: the Why text is back";
     EXPECT_EQ(j["lesson"]["away"], true) << "the walk stepped to what was asked";

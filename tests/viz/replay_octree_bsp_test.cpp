@@ -140,12 +140,18 @@ TEST(ReplayBsp, TStarAndChildrenAgreeWithTheWalk) {
         EXPECT_LE(std::fabs(glm::dot(glm::dvec3(n->normal), glm::dvec3(p)) - n->offset), 1e-5 * scale);
       }
       switch (c.crossing) {
+        // The near child is the side the ray starts in (the slides'): alone when the plane lies beyond the
+        // node's part of the ray or behind the origin; the far child alone when the ray crossed the plane
+        // before entering the node.
         case Crossing::nearOnly:
-          EXPECT_TRUE(!std::isfinite(c.tStar) || c.tLo > c.tMax + margin);
+          EXPECT_TRUE(!std::isfinite(c.tStar) || c.tLo > c.tMax + margin || (c.tHi < c.tMin - margin && c.tStar < 0))
+              << c.tStar;
           EXPECT_EQ(c.nearChild, next.node);
+          if (c.originSide != 0) EXPECT_EQ(c.nearIsBelow, c.originSide < 0);
           break;
         case Crossing::farOnly:
           EXPECT_LT(c.tHi, c.tMin - margin);
+          EXPECT_GE(c.tStar, 0);
           EXPECT_EQ(c.farChild, next.node);
           break;
         case Crossing::both:

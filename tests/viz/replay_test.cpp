@@ -192,19 +192,24 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
       const Event& next = ray.events[size_t(i + 1)];
       kinds[int(c.crossing)]++;
       switch (c.crossing) {
+        // The near child is the side the ray starts in (the slides'): only it is visited when the plane lies
+        // beyond the node's part of the ray or behind the origin; only the far one when the ray crossed the
+        // plane before entering the node.
         case Crossing::nearOnly:
-          EXPECT_GT(c.tStar, c.tMax);
+          EXPECT_TRUE(c.tStar > c.tMax || c.tStar < 0) << c.tStar;
+          if (ray.ray.origin[c.axis] != c.split) EXPECT_EQ(c.nearIsBelow, ray.ray.origin[c.axis] < c.split);
           break;
         case Crossing::farOnly:
           EXPECT_LT(c.tStar, c.tMin);
+          EXPECT_GE(c.tStar, 0);
           break;
         case Crossing::both:
           // The far child's interval starts at t*, clamped to the node's: the kernel's own numbers.
           EXPECT_EQ(next.t_min_node, std::min(std::max(c.tStar, c.tMin), c.tMax));
           EXPECT_EQ(ray.events[size_t(i + 2)].t_max_node, next.t_min_node);
           EXPECT_EQ(c.nearChild, ray.events[size_t(i + 2)].node);
-          // The near child is the side the ray comes from along its direction: below when it points up the
-          // axis.
+          // Both visited: the near child is the first, the side the direction points into (the origin's side
+          // but for an origin on the plane within rounding).
           EXPECT_EQ(c.nearChild == e.node + 1, c.nearIsBelow);
           break;
         case Crossing::inPlane:

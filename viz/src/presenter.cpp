@@ -208,8 +208,12 @@ void Presenter::predictAndReveal(const QString& prediction) {
     ++asked_;
     right_ += ok;
   }
-  QString text = html(answer_->text) + "<br>" + html(answer_->why);
-  // Then the walk goes where the question looked: the debugger's own Why there says it once more.
+  // A wrong answer first gets a sentence aimed at its likely misconception, then the answer and its reasons.
+  QString text;
+  if (!ok) text = "<i>" + html(predictionFeedback(*answer_, prediction.toStdString())) + "</i><br>";
+  text += tr("Answer: ") + html(answer_->text) + "<br>" + html(answer_->why);
+  // Then the walk goes where the question looked: the debugger's own Why there says it once more, labelled
+  // as the walk's next step (not as a verdict on the prediction).
   Session* s = window_.session();
   if (const TracedRay* r = s->ray()) {
     int to = -1;
@@ -231,7 +235,8 @@ void Presenter::predictAndReveal(const QString& prediction) {
                  answer_->kind == QuestionKind::first_child || answer_->kind == QuestionKind::next_pop;
     if (walks) {
       s->setStep(to >= 0 ? to : s->eventCount() - 1);
-      text += "<br><i>" + tr("Debugger:") + "</i> " + html(explainRule(s->trace(), *r, s->state()));
+      text += "<br><i>" + tr("Debugger, at the walk's next step:") + "</i> " +
+              html(explainRule(s->trace(), *r, s->state()));
     }
   }
   quiz->showResult(ok, text);

@@ -1,5 +1,5 @@
-// The quiz's two calls into core (question.h), in one place: the answer computed from the walk or the build,
-// and whether a typed prediction matches it.
+// The quiz's calls into core (question.h), in one place: the answer computed from the walk or the build,
+// whether a typed prediction matches it, and a wrong one's feedback.
 #pragma once
 
 #include "raystep/lesson/question.h"
@@ -11,6 +11,9 @@ inline Answer computeAnswer(QuestionKind kind, const QuestionContext& context) {
 }
 inline bool predictionMatches(const Answer& answer, const std::string& prediction) {
   return prediction_matches(answer, prediction);
+}
+inline std::string predictionFeedback(const Answer& answer, const std::string& prediction) {
+  return prediction_feedback(answer, prediction);
 }
 
 }  // namespace raystep::viz

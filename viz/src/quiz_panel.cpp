@@ -24,11 +24,12 @@ QString placeholderOf(QuestionKind kind, const std::string& walk) {
     case QuestionKind::dda_axis:
       return QObject::tr("x, y, z or none");
     case QuestionKind::first_child:
-      return QObject::tr("below or above, then ,push or ,no push");
+      return QObject::tr("below, above or a path (LR), then ,push or ,no push");
     case QuestionKind::next_pop:
-      return QObject::tr("node id or stop");
+      return QObject::tr("node id, path (LLR) or stop");
     case QuestionKind::sah_plane:
-      return QObject::tr("axis,position (e.g. x,0.5) or leaf; or click the chart");
+      return QObject::tr("axis,position in world units (x,-1.45) or across the node as the chart reads (x,51%), "
+                         "or leaf; or click the chart");
     case QuestionKind::subdivide:
       return QObject::tr("yes or no");
   }

@@ -240,7 +240,8 @@ NodeCrossing bspCrossing(const TraceNode& n, const TracedRay& ray, const ReplayS
   c.nDotDir = double(n.normal.x) * d.x + double(n.normal.y) * d.y + double(n.normal.z) * d.z;
   const BspCrossing k =
       bsp_crossing(BspPlane{n.normal, n.offset}, o, d, std::max(std::fabs(c.tMin), std::fabs(c.tMax)));
-  c.nearIsBelow = k.below_first;
+  // The near child is the side the ray starts in (the slides'); on the plane, the side the ray moves into.
+  c.nearIsBelow = c.originSide < 0 ? true : c.originSide > 0 ? false : k.below_first;
   c.tLo = k.t_lo;
   c.tHi = k.t_hi;
   if (k.kind == BspCrossing::crosses)
@@ -252,6 +253,8 @@ NodeCrossing bspCrossing(const TraceNode& n, const TracedRay& ray, const ReplayS
   if (next >= ev.size()) return c;
   if (ev[next].type == EventType::push) {
     c.crossing = k.kind == BspCrossing::undecided ? Crossing::inPlane : Crossing::both;
+    c.nearIsBelow = k.below_first;  // both visited: the near one is the first (the origin's side, or on the
+                                    // plane within rounding the side the ray moves into)
     c.farChild = ev[next].node;
     if (next + 1 < ev.size() && ev[next + 1].type == EventType::node) c.nearChild = ev[next + 1].node;
   } else if (ev[next].type == EventType::node) {
@@ -283,14 +286,18 @@ NodeCrossing nodeCrossing(const Trace& trace, const TracedRay& ray, const Replay
   c.split = n->split;
   c.tMin = e.t_min_node;
   c.tMax = e.t_max_node;
-  // As the kernel computes it: by the direction's reciprocal; the sign bit picks the near side.
+  // t* as the kernel computes it, by the direction's reciprocal. The near child is the side the ray starts in
+  // (the slides' definition); an origin on the plane starts in the side its direction points into. (The
+  // kernel orders the children by the direction's sign bit: the same child whenever the ray crosses the
+  // plane at t* >= 0, and when it does not, only one child is visited either way.)
   float o = ray.ray.origin[c.axis], d = ray.ray.direction[c.axis];
   c.tStar = (c.split - o) * (1.f / d);
-  c.nearIsBelow = !std::signbit(d);
+  c.nearIsBelow = o < c.split ? true : o > c.split ? false : !std::signbit(d);
   // Which children the walk visits from here, by the events that follow (the child below the plane is the
   // node right after its parent in depth-first order).
   if (ev[next].type == EventType::push) {
     c.crossing = std::isnan(c.tStar) ? Crossing::inPlane : Crossing::both;
+    c.nearIsBelow = !std::signbit(d);  // both visited: the near one is the first (see above)
     c.farChild = ev[next].node;
     if (next + 1 < ev.size() && ev[next + 1].type == EventType::node) c.nearChild = ev[next + 1].node;
   } else if (ev[next].type == EventType::node) {
@@ -649,18 +656,23 @@ std::string explainBspNode(const NodeCrossing& c) {
            ", t_min, t_max).";
   }
   head += "t* = (d - n.o) / (n.dir) = " + num(c.tStar) +
-          ". The near child is the side the ray comes from: " + side(c.nearIsBelow) +
+          ". The near child is the side the ray starts in: " + side(c.nearIsBelow) +
           (c.nDotDir > 0 ? " (n.dir > 0: the ray moves up the normal)"
                          : " (n.dir < 0: the ray moves down the normal)") +
           ".\n";
   switch (c.crossing) {
     case Crossing::nearOnly:
+      if (c.tStar < 0)
+        return head + "t* = " + num(c.tStar) +
+               " < 0: the plane lies behind the origin and the ray moves away from it, staying on its own "
+               "side.\nOnly the near child, " +
+               nearName + ", is visited: Intersect(near, t_min, t_max).";
       return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
              ": the ray leaves the node's cell before it reaches the plane.\nOnly the near child, " +
              nearName + ", is visited: Intersect(near, t_min, t_max).";
     case Crossing::farOnly:
-      return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
-             ": the node's part of the ray lies beyond the plane.\nOnly the far child, " + farName +
+      return head + "0 <= t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
+             ": the ray crossed the plane before it entered the node's cell.\nOnly the far child, " + farName +
              ", is visited: Intersect(far, t_min, t_max).";
     case Crossing::both: {
       bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;
@@ -846,6 +858,11 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
             return head + "The ray runs parallel to the plane (d." + a +
                    " = 0): it stays on one side.\nOnly " + nearName +
                    " is visited: Intersect(near, t_min, t_max).";
+          if (c.tStar < 0)
+            return head + "t* = " + num(c.tStar) + " < 0: the plane lies behind the origin (near side: " +
+                   side(c.nearIsBelow) +
+                   ", the side the ray starts in) and the ray moves away from it.\nOnly the near child, " +
+                   nearName + ", is visited: Intersect(near, t_min, t_max).";
           return head + "t* = " + num(c.tStar) + " > t_max = " + num(c.tMax) +
                  ": the ray leaves the node before it reaches the plane.\nOnly the near child, " + nearName +
                  ", is visited: Intersect(near, t_min, t_max).";
@@ -854,10 +871,8 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
             return head + "The ray runs parallel to the plane (d." + a +
                    " = 0): it stays on one side.\nOnly " + farName +
                    " is visited: Intersect(far, t_min, t_max).";
-          return head + "t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
-                 ": the node's part of the ray lies beyond the plane (the plane is behind the ray's origin, "
-                 "or "
-                 "the ray crossed it before it entered the node).\nOnly the far child, " +
+          return head + "0 <= t* = " + num(c.tStar) + " < t_min = " + num(c.tMin) +
+                 ": the ray crossed the plane before it entered the node.\nOnly the far child, " +
                  farName + ", is visited: Intersect(far, t_min, t_max).";
         case Crossing::both: {
           bool inside = c.tStar >= c.tMin && c.tStar <= c.tMax;

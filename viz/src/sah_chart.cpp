@@ -379,10 +379,10 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
 
   // The text: which node, what it holds, what the builder decided and why.
   QString t =
-      tr("<b>node %1</b> (path \"%2\"), depth %3<br>N = %4 primitives<br>box (%5, %6, %7)<br>"
+      tr("<b>node %1</b> (path %2), depth %3<br>N = %4 primitives<br>box (%5, %6, %7)<br>"
          "&nbsp;&nbsp;.. (%8, %9, %10)<br>")
           .arg(c.node)
-          .arg(path)
+          .arg(path.isEmpty() ? tr("root") : path)
           .arg(c.info.depth)
           .arg(c.n_prims)
           .arg(fmt(box.lo.x), fmt(box.lo.y), fmt(box.lo.z), fmt(box.hi.x), fmt(box.hi.y), fmt(box.hi.z));
@@ -655,10 +655,10 @@ void SahChart::drawBspCurve() {
   // decision in the BSP's terms and, first after it, what the best axis plane (a kd-tree's only choice) would
   // have cost. The cell's bounding box is in the tree view's tooltip.
   // (The candidates per group are in the legend.)
-  QString t = tr("<b>node %1</b> (path \"%2\"), depth %3, N = %4; its cell, a convex polytope, has area S = "
+  QString t = tr("<b>node %1</b> (path %2), depth %3, N = %4; its cell, a convex polytope, has area S = "
                  "%5<br>")
                   .arg(c.node)
-                  .arg(lastPath_)
+                  .arg(lastPath_.isEmpty() ? tr("root") : lastPath_)
                   .arg(c.info.depth)
                   .arg(c.n_prims)
                   .arg(fmt(c.info.area));

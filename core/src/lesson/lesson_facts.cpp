@@ -4,6 +4,10 @@
 #include "raystep/lesson/lesson_facts.h"
 
 #include <cmath>
+#include <cstdlib>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -17,6 +21,7 @@
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/reference.h"
 #include "raystep/report/aa_report.h"
+#include "raystep/report/bvol_report.h"
 #include "raystep/report/cost_report.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
@@ -30,6 +35,7 @@ struct LessonFacts::Impl {
   std::shared_ptr<const SahCurve> curve;
   std::shared_ptr<const CostReport> cost;
   std::shared_ptr<const AaReport> aa_report;
+  std::shared_ptr<const std::vector<BvolReportRow>> bvol;
   Impl(const StepWorld& world, const LessonState& state) : w(world), s(state) {}
 
   [[noreturn]] static void fail(const std::string& what) { throw InputError("", 0, what); }
@@ -120,6 +126,31 @@ struct LessonFacts::Impl {
     return n;
   }
 
+  // Möller–Trumbore's barycentrics (float, as its kernel computes them, without its early exits) for the
+  // K-th (1-based, as text) primitive test of the current ray: the non-watertight test beside raystep's.
+  glm::vec2 moller(const std::string& k_text) const {
+    const TracedRay& r = ray();
+    char* end = nullptr;
+    const long k = std::strtol(k_text.c_str(), &end, 10);
+    if (k_text.empty() || *end != 0 || k < 1) fail("'" + k_text + "': expected the test's number, 1, 2, ...");
+    long seen = 0;
+    for (const Event& e : r.events) {
+      if (e.type != EventType::prim_test || ++seen != k) continue;
+      for (const TracePrimitive& p : w.trace->primitives) {
+        if (p.id != e.prim) continue;
+        if (p.type != PrimType::triangle) fail("primitive test " + k_text + " is not a triangle's");
+        const glm::vec3 e1 = p.v[1] - p.v[0], e2 = p.v[2] - p.v[0];
+        const glm::vec3 pvec = glm::cross(r.ray.direction, e2);
+        const float inv_det = 1.f / glm::dot(e1, pvec);
+        const glm::vec3 tvec = r.ray.origin - p.v[0];
+        const glm::vec3 qvec = glm::cross(tvec, e1);
+        return {glm::dot(tvec, pvec) * inv_det, glm::dot(r.ray.direction, qvec) * inv_det};
+      }
+      fail("the trace lists no primitive " + std::to_string(e.prim));
+    }
+    fail("the ray has fewer than " + k_text + " primitive tests");
+  }
+
   // The reports, kept for the process: keyed by everything they depend on.
   std::string report_key() const {
     return s.scene + "|" + file_content_hash(s.scene) + "|" + std::to_string(w.width) + "x" +
@@ -176,6 +207,26 @@ struct LessonFacts::Impl {
     std::string names;
     for (const CostFactor& f : r.factors) names += (names.empty() ? "" : ", ") + f.technique;
     fail("the cost report has no technique '" + which + "' (techniques: " + names + ")");
+  }
+  const BvolReportRow& bvol_row(const std::string& kind) {
+    if (!bvol) {
+      static std::mutex mutex;
+      static std::map<std::string, std::shared_ptr<const std::vector<BvolReportRow>>> memo;
+      std::lock_guard<std::mutex> lock(mutex);
+      auto& slot = memo[s.scene + "|" + file_content_hash(s.scene)];
+      if (!slot) {
+        BvolReportOptions o;
+        o.reps = 1;  // the counts do not depend on the timing passes
+        slot = std::make_shared<std::vector<BvolReportRow>>(run_bvol_report(*w.scene, o));
+      }
+      bvol = slot;
+    }
+    std::string kinds;
+    for (const BvolReportRow& row : *bvol) {
+      if (row.kind == kind) return row;
+      kinds += (kinds.empty() ? "" : ", ") + row.kind;
+    }
+    fail("the bounding-volume report has no kind '" + kind + "' (kinds: " + kinds + ")");
   }
   const AaReportRow& aa_row(const std::string& spec) {
     const AaReport& r = aa_rep();
@@ -268,6 +319,14 @@ const std::vector<Fact>& facts() {
          [](I& i, const std::string& t) { return i.events(i.ray(), t, i.ray().events.size()); }),
       fn("walk.count", false, "events of a type so far, the current one included: walk.count(\"cell\")",
          [](I& i, const std::string& t) { return i.events(i.ray(), t, size_t(i.w.step) + 1); }),
+      fn("ray.moller_u", false, "Moller-Trumbore's u at the ray's K-th primitive test: ray.moller_u(\"1\")",
+         [](I& i, const std::string& k) { return double(i.moller(k).x); }),
+      fn("ray.moller_v", false, "Moller-Trumbore's v there", [](I& i, const std::string& k) { return double(i.moller(k).y); }),
+      fn("ray.moller_uv", false, "Moller-Trumbore's u + v there (the floats' exact sum, as the Why text gives it)",
+         [](I& i, const std::string& k) {
+           const glm::vec2 b = i.moller(k);
+           return double(b.x) + double(b.y);
+         }),
       fact("event.index", "the current event's index", [](I& i) { return double(i.w.step); }),
       fact("event.t_enter", "cell event: t where the ray enters the cell", [](I& i) { return double(i.event().t_enter); }),
       fact("event.t_exit", "cell event: t where it leaves the cell", [](I& i) { return double(i.event().t_exit); }),
@@ -284,6 +343,14 @@ const std::vector<Fact>& facts() {
       fact("node.depth", "the node's depth", [](I& i) { return double(i.node_curve().info.depth); }),
       fact("node.candidates", "candidate planes evaluated", [](I& i) { return double(i.node_curve().candidates.size()); }),
       fact("node.leaf_cost", "N t_i: the cost of making it a leaf", [](I& i) { return double(i.node_curve().leaf_cost); }),
+      fact("node.best", "the cheapest candidate's cost (a leaf's too)",
+           [](I& i) {
+             const SahCurve& c = i.node_curve();
+             if (c.candidates.empty()) I::fail("node " + std::to_string(i.w.node) + " has no candidate plane");
+             double best = INFINITY;
+             for (const SahCandidate& x : c.candidates) best = std::min(best, double(x.cost));
+             return best;
+           }),
       fact("node.cost", "the chosen split's SAH cost", [](I& i) { return double(i.chosen().cost); }),
       fact("node.axis", "the split's axis (0 x, 1 y, 2 z)", [](I& i) { return double(i.chosen().axis); }),
       fact("node.position", "the split plane's position (world units)", [](I& i) { return double(i.chosen().position); }),
@@ -304,6 +371,8 @@ const std::vector<Fact>& facts() {
       fact("node.size_z", "the node's extent along z", [](I& i) { const Bounds3& b = i.node_curve().info.box; return double(b.hi.z) - b.lo.z; }),
       fact("kd.t_i", "the kd-tree's cost of a primitive test", [](I& i) { return double(i.s.structure.kd.t_i); }),
       fact("kd.t_t", "the kd-tree's cost of a traversal step", [](I& i) { return double(i.s.structure.kd.t_t); }),
+      fact("bvh.bins", "the binned BVH builder's bins per axis", [](I& i) { return double(i.s.structure.bvh.bins); }),
+      fact("bvh.t_i", "the BVH's cost of a primitive test", [](I& i) { return double(i.s.structure.bvh.t_i); }),
       // The grid.
       fact("grid.nx", "cells along x", [](I& i) { return double(i.grid().resolution()[0]); }),
       fact("grid.ny", "cells along y", [](I& i) { return double(i.grid().resolution()[1]); }),
@@ -335,10 +404,10 @@ const std::vector<Fact>& facts() {
         if (std::isnan(c)) I::fail("the octree has no SAH cost");
         return c;
       }),
-      fact("bsp.axis_planes", "BSP inner nodes on an axis plane", [](I& i) { return double(i.bsp().inner_by_source[0]); }),
-      fact("bsp.face_planes", "BSP inner nodes on a primitive's face plane", [](I& i) { return double(i.bsp().inner_by_source[1]); }),
-      fact("bsp.body_planes", "BSP inner nodes on a body's direction", [](I& i) { return double(i.bsp().inner_by_source[2]); }),
-      fact("bsp.other_planes", "BSP inner nodes on the fourth source", [](I& i) { return double(i.bsp().inner_by_source[3]); }),
+      fact("bsp.axis_planes", "BSP inner nodes whose plane is an axis plane", [](I& i) { return double(i.bsp().inner_by_source[0]); }),
+      fact("bsp.face_diagonal_planes", "BSP inner nodes on one of the 6 face diagonals", [](I& i) { return double(i.bsp().inner_by_source[1]); }),
+      fact("bsp.body_diagonal_planes", "BSP inner nodes on one of the 4 body diagonals", [](I& i) { return double(i.bsp().inner_by_source[2]); }),
+      fact("bsp.primitive_planes", "BSP inner nodes on a primitive's own plane", [](I& i) { return double(i.bsp().inner_by_source[3]); }),
       // The cost report (`raystep cost` on the step's scene, size and anti-aliasing).
       costly("cost.pixels", "m^2", [](I& i) { return double(i.cost_report().pixels); }),
       costly("cost.samples_per_pixel", "k^2: the anti-aliasing's largest samples per pixel",
@@ -361,6 +430,16 @@ const std::vector<Fact>& facts() {
          [](I& i, const std::string& a) { return i.cost_factor(a).cut(); }),
       fn("cost.before", true, "a technique's measure without it", [](I& i, const std::string& a) { return i.cost_factor(a).before; }),
       fn("cost.after", true, "a technique's measure with it", [](I& i, const std::string& a) { return i.cost_factor(a).after; }),
+      // The bounding-volume report (`raystep bvol-report`, one ray per pixel of the scene's camera).
+      fn("bvol.objects", true, "objects (one volume each): bvol.objects(\"bvol\")",
+         [](I& i, const std::string& a) { return double(i.bvol_row(a).objects); }),
+      fn("bvol.entered", true, "a kind's volumes entered per ray: bvol.entered(\"bvol-obb\")",
+         [](I& i, const std::string& a) { return i.bvol_row(a).entered_per_ray; }),
+      fn("bvol.in_vain", true, "a kind's volumes entered in vain per ray (false positives)",
+         [](I& i, const std::string& a) { return i.bvol_row(a).false_positives_per_ray; }),
+      fn("bvol.false_positive_rate", true, "a kind's false positives / volumes entered",
+         [](I& i, const std::string& a) { return i.bvol_row(a).false_positive_rate; }),
+      fn("bvol.tests", true, "a kind's primitive tests per ray", [](I& i, const std::string& a) { return i.bvol_row(a).prim_tests_per_ray; }),
       // The anti-aliasing report (`raystep aa-report` on the step's scene and size).
       fn("aa.rmse", true, "a method's RMSE against the reference: aa.rmse(\"jitter:4\")",
          [](I& i, const std::string& a) { return i.aa_row(a).rmse; }),

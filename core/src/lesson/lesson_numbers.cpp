@@ -116,28 +116,74 @@ std::string mu_message(const mu::Parser::exception_type& e) { return e.GetMsg();
 
 }  // namespace
 
-std::vector<LessonNumber> scan_lesson_numbers(const std::vector<std::string>& lines, const std::vector<int>& at) {
-  std::vector<LessonNumber> numbers;
+namespace {
+
+// The lines outside code fences in runs: each run's text (lines joined by '\n') and its lines' numbers, so
+// that a number may wrap onto the next line of its paragraph.
+struct Run {
+  std::string text;
+  std::vector<int> at;  // at[i]: the file line of the run's i-th line
+  size_t first = 0;     // the run's first line in the input
+};
+std::vector<Run> runs_outside_fences(const std::vector<std::string>& lines, const std::vector<int>& at) {
+  std::vector<Run> runs;
   Fence open;
-  bool fenced = false;
+  bool fenced = false, in_run = false;
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string& line = lines[i];
-    const int line_no = i < at.size() ? at[i] : 0;
     if (fenced) {
       if (fence_closes(open, line)) fenced = false;
       continue;
     }
     if (fence_of(line, &open)) {
       fenced = true;
+      in_run = false;
       continue;
     }
-    for (size_t b = line.find("{{"); b != std::string::npos; b = line.find("{{", b)) {
-      const size_t e = line.find("}}", b + 2);
-      if (e == std::string::npos) fail(line_no, "'{{' without its '}}' on the same line");
+    if (!in_run) {
+      runs.push_back(Run{"", {}, i});
+      in_run = true;
+    } else {
+      runs.back().text += '\n';
+    }
+    runs.back().text += line;
+    runs.back().at.push_back(i < at.size() ? at[i] : 0);
+  }
+  return runs;
+}
+
+// The {{...}} tokens of a run: [begin, end) offsets; throws InputError("", line, ...) for an unclosed one.
+std::vector<std::pair<size_t, size_t>> tokens_of(const Run& run) {
+  std::vector<std::pair<size_t, size_t>> out;
+  auto line_at = [&](size_t offset) {
+    return run.at[size_t(std::count(run.text.begin(), run.text.begin() + long(offset), '\n'))];
+  };
+  for (size_t b = run.text.find("{{"); b != std::string::npos; b = run.text.find("{{", b)) {
+    const size_t e = run.text.find("}}", b + 2);
+    const size_t para = run.text.find("\n\n", b);
+    if (e == std::string::npos || (para != std::string::npos && para < e))
+      fail(line_at(b), "'{{' without its '}}' in the same paragraph");
+    out.push_back({b, e + 2});
+    b = e + 2;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<LessonNumber> scan_lesson_numbers(const std::vector<std::string>& lines, const std::vector<int>& at) {
+  std::vector<LessonNumber> numbers;
+  for (const Run& run : runs_outside_fences(lines, at)) {
+    for (const auto& [b, end] : tokens_of(run)) {
+      const size_t e = end - 2;
+      const std::string& line = run.text;
+      const int line_no = run.at[size_t(std::count(run.text.begin(), run.text.begin() + long(b), '\n'))];
       LessonNumber n;
       n.line = line_no;
       n.token = line.substr(b, e + 2 - b);
+      std::replace(n.token.begin(), n.token.end(), '\n', ' ');  // shown in messages on one line
       std::string inner = line.substr(b + 2, e - b - 2);
+      std::replace(inner.begin(), inner.end(), '\n', ' ');
       const size_t eq = find_equals(inner);
       if (eq != std::string::npos) {
         n.checked = true;
@@ -188,7 +234,6 @@ std::vector<LessonNumber> scan_lesson_numbers(const std::vector<std::string>& li
         fail(line_no, n.token + ": a report's number is written out and checked ({{EXPR = VALUE}}): the "
                                 "presenter does not run reports");
       numbers.push_back(std::move(n));
-      b = e + 2;
     }
   }
   return numbers;
@@ -253,33 +298,48 @@ std::string shown_lesson_number(const LessonNumber& number, double value) {
 }
 
 std::string fill_lesson_numbers(const std::string& markdown, const std::vector<std::string>& shown) {
-  std::string out;
-  size_t next = 0, pos = 0;
-  Fence open;
-  bool fenced = false;
-  while (pos < markdown.size()) {
+  std::vector<std::string> lines;
+  size_t pos = 0;
+  while (pos <= markdown.size()) {
     size_t end = markdown.find('\n', pos);
     if (end == std::string::npos) end = markdown.size();
-    std::string line = markdown.substr(pos, end - pos);
-    if (fenced) {
-      if (fence_closes(open, line)) fenced = false;
-    } else if (fence_of(line, &open)) {
-      fenced = true;
-    } else {
-      std::string filled;
-      size_t from = 0;
-      for (size_t b = line.find("{{"); b != std::string::npos && next < shown.size(); b = line.find("{{", from)) {
-        const size_t e = line.find("}}", b + 2);
-        if (e == std::string::npos) break;
-        filled += line.substr(from, b - from) + shown[next++];
-        from = e + 2;
-      }
-      line = filled + line.substr(from);
-    }
-    out += line;
-    if (end < markdown.size()) out += '\n';
+    lines.push_back(markdown.substr(pos, end - pos));
     pos = end + 1;
   }
+  const bool final_newline = !markdown.empty() && markdown.back() == '\n';
+  if (final_newline) lines.pop_back();
+  // Each run's tokens replaced, the run put back in place of its lines.
+  std::vector<std::string> out_lines = lines;
+  std::vector<bool> dropped(lines.size(), false);
+  size_t next = 0;
+  for (const Run& run : runs_outside_fences(lines, {})) {
+    std::vector<std::pair<size_t, size_t>> tokens;
+    try {
+      tokens = tokens_of(Run{run.text, std::vector<int>(run.at.size(), 0), run.first});
+    } catch (const InputError&) {
+      continue;  // scan_lesson_numbers has refused such a text already
+    }
+    if (tokens.empty()) continue;
+    std::string filled;
+    size_t from = 0;
+    for (const auto& [b, e] : tokens) {
+      if (next >= shown.size()) break;
+      filled += run.text.substr(from, b - from) + shown[next++];
+      from = e;
+    }
+    filled += run.text.substr(from);
+    out_lines[run.first] = filled;
+    for (size_t i = 1; i < run.at.size(); ++i) dropped[run.first + i] = true;
+  }
+  std::string out;
+  bool first = true;
+  for (size_t i = 0; i < out_lines.size(); ++i) {
+    if (dropped[i]) continue;
+    if (!first) out += '\n';
+    first = false;
+    out += out_lines[i];
+  }
+  if (final_newline) out += '\n';
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/octree.h"
+#include "raystep/lesson/tree_nodes.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
@@ -486,7 +487,13 @@ std::string bsp_first_child_why(const TracedRay& r, const Event& e, const TraceN
       double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z - double(n.offset);
   const double ndir = double(n.normal.x) * d.x + double(n.normal.y) * d.y + double(n.normal.z) * d.z;
   const float margin = tree_margin(r);
-  const std::string near = side(x.below_first), far = side(!x.below_first);
+  // The near child: the side the ray starts in; when both children are visited, the one visited first (the
+  // same, unless the origin lies on the plane within rounding: then the side the ray moves into).
+  const bool both = x.kind == BspCrossing::undecided ||
+                    (x.kind == BspCrossing::crosses && !(x.t_lo > e.t_max_node + margin) &&
+                     !(x.t_hi < e.t_min_node - margin));
+  const bool near_below = both ? x.below_first : dist < 0 ? true : dist > 0 ? false : x.below_first;
+  const std::string near = side(near_below), far = side(!near_below);
   const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
   std::string w = "Node " + std::to_string(e.node) + "'s plane n.p = d: " + bsp_plane_text(n) +
                   ". The origin's signed distance n.o - d = " + num(dist) + " (" +
@@ -507,17 +514,20 @@ std::string bsp_first_child_why(const TracedRay& r, const Event& e, const TraceN
   w += std::string("n.dir ") +
        (ndir > 0 ? "> 0: the ray moves up the normal, from below to above"
                  : "< 0: the ray moves down the normal, from above to below") +
-       ", so the near child is the one " + near + ". t* = (d - n.o) / (n.dir) = " + num(t_star) + ". ";
+       "; the near child is the side the ray starts in, " + near + ". t* = (d - n.o) / (n.dir) = " +
+       num(t_star) + ". ";
   if (x.t_lo > e.t_max_node + margin)
     return w + "t* > t_max = " + num(e.t_max_node) +
            ": the ray leaves the node before the plane. Only the near "
            "child (" +
            near + ") is visited; nothing is pushed.";
+  if (x.t_hi < e.t_min_node - margin && t_star < 0)
+    return w + "t* < 0: the plane lies behind the origin and the ray moves away from it. Only the near child (" +
+           near + ") is visited; nothing is pushed.";
   if (x.t_hi < e.t_min_node - margin)
-    return w + "t* < t_min = " + num(e.t_min_node) +
-           ": the node's part of the ray lies beyond the plane. Only "
-           "the far child (" +
-           far + ") is visited; nothing is pushed.";
+    return w + "0 <= t* < t_min = " + num(e.t_min_node) +
+           ": the ray crossed the plane before it entered the node. Only the far child (" + far +
+           ") is visited; nothing is pushed.";
   return w + "t* within " + interval + ": Intersect(near = " + near + ", t_min, t*) first, the far child (" +
          far + ") is pushed with (t*, t_max) = (" +
          num(std::clamp(float(t_star), e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ").";
@@ -551,26 +561,44 @@ Answer first_child_answer(const QuestionContext& c) {
     fail("first-child: the walk does not go on from node " + std::to_string(e.node));
   a.first_child = ev[first].node;
   a.first_is_below = a.first_child == e.node + 1;  // depth-first order: the child below follows its parent
+  if (c.trace) {
+    a.first_child_path = trace_node_path_text(*c.trace, a.first_child);
+    if (a.far_pushed) a.far_child_path = trace_node_path_text(*c.trace, a.far_child);
+  }
+  auto named = [](int32_t id, const std::string& path) {
+    return "node " + std::to_string(id) + (path.empty() ? "" : ", " + path);
+  };
   if (n->has_plane) {                              // a BSP tree's node: a plane of any orientation
     a.walk = "bsp";
     a.why = bsp_first_child_why(r, e, *n);
-    a.text = side(a.first_is_below) + " (node " + std::to_string(a.first_child) + ")" +
-             (a.far_pushed ? ", the far child, node " + std::to_string(a.far_child) + ", is pushed"
+    a.text = side(a.first_is_below) + " (" + named(a.first_child, a.first_child_path) + ")" +
+             (a.far_pushed ? ", the far child, " + named(a.far_child, a.far_child_path) + ", is pushed"
                            : ", nothing is pushed");
     return a;
   }
 
-  // The kernel's numbers: t* by the direction's reciprocal, the near side by the sign bit, the margin.
+  // The kernel's numbers: t* by the direction's reciprocal, the margin. The near child is the side the ray
+  // starts in (the slides'; an origin on the plane: the side its direction points into). The kernel orders
+  // by the direction's sign bit instead: the same child whenever both are visited.
   const int axis = n->axis;
   const std::string an = axis_name(axis);
   const float o = r.ray.origin[axis], d = r.ray.direction[axis];
   const float t_star = (n->split - o) * (1.f / d);
-  const bool near_below = !std::signbit(d);
   const float margin = tree_margin(r);
+  // Both children visited (or the ray in the plane): the near one is the one visited first, the side the
+  // direction points into, which is the origin's side unless the origin lies on the plane within rounding.
+  const bool crosses = std::isnan(t_star) || (!(t_star > e.t_max_node + margin) && !(t_star < e.t_min_node - margin));
+  const bool origin_below = o < n->split ? true : o > n->split ? false : !std::signbit(d);
+  const bool near_below = crosses ? !std::signbit(d) : origin_below;
+  const bool on_plane = o == n->split || near_below != origin_below;
   const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
-  const std::string head = "Node " + std::to_string(e.node) + " splits " + an + " at " + num(n->split) +
-                           "; the ray's direction d." + an + " = " + num(d) + " makes the " +
-                           side(near_below) + " child the near one. ";
+  const std::string head =
+      "Node " + std::to_string(e.node) + " splits " + an + " at " + num(n->split) + "; the ray starts at o." +
+      an + " = " + num(o) +
+      (on_plane ? std::string(o == n->split ? ", on the plane" : ", on the plane within rounding") +
+                      ", and moves " + (near_below ? "up" : "down") + " (d." + an + " = " + num(d) + ")"
+                : std::string(near_below ? ", below" : ", above") + " the plane") +
+      ", so the " + side(near_below) + " child is the near one. ";
   if (std::isnan(t_star))
     a.why = head + "The ray lies in the split plane (t* undefined): Intersect(near = " + side(near_below) +
             ") first, the far child is pushed with the whole " + interval + ".";
@@ -578,16 +606,20 @@ Answer first_child_answer(const QuestionContext& c) {
     a.why = head + "t* = " + num(t_star) + " > t_max = " + num(e.t_max_node) +
             ": the ray leaves the node before the plane. Only the near child (" + side(near_below) +
             ") is visited; nothing is pushed.";
+  else if (t_star < e.t_min_node - margin && t_star < 0)
+    a.why = head + "t* = " + num(t_star) +
+            " < 0: the plane lies behind the origin and the ray moves away from it. Only the near child (" +
+            side(near_below) + ") is visited; nothing is pushed.";
   else if (t_star < e.t_min_node - margin)
-    a.why = head + "t* = " + num(t_star) + " < t_min = " + num(e.t_min_node) +
-            ": the node's part of the ray lies beyond the plane. Only the far child (" + side(!near_below) +
+    a.why = head + "0 <= t* = " + num(t_star) + " < t_min = " + num(e.t_min_node) +
+            ": the ray crossed the plane before it entered the node. Only the far child (" + side(!near_below) +
             ") is visited; nothing is pushed.";
   else
     a.why = head + "t* = " + num(t_star) + " within " + interval + ": Intersect(near = " + side(near_below) +
             ", t_min, t*) first, the far child (t*, t_max) = (" +
             num(std::clamp(t_star, e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ") is pushed.";
-  a.text = side(a.first_is_below) + " (node " + std::to_string(a.first_child) + ")" +
-           (a.far_pushed ? ", the far child, node " + std::to_string(a.far_child) + ", is pushed"
+  a.text = side(a.first_is_below) + " (" + named(a.first_child, a.first_child_path) + ")" +
+           (a.far_pushed ? ", the far child, " + named(a.far_child, a.far_child_path) + ", is pushed"
                          : ", nothing is pushed");
   return a;
 }
@@ -730,7 +762,10 @@ Answer next_pop_answer(const QuestionContext& c) {
       a.why = head + "t(hit) = " + num(hit_t) + " >= t_min = " + num(top.t_min_node) +
               ": a nearer hit may lie in it. Pop node " + std::to_string(top.node) + " and visit it.";
   }
-  a.text = a.stops ? "the walk stops here" : "node " + std::to_string(a.node) + " is popped and visited";
+  if (!a.stops && c.trace) a.node_path = trace_node_path_text(*c.trace, a.node);
+  a.text = a.stops ? "the walk stops here"
+                   : "node " + std::to_string(a.node) + (a.node_path.empty() ? "" : " (" + a.node_path + ")") +
+                         " is popped and visited";
   return a;
 }
 
@@ -750,7 +785,10 @@ Answer sah_plane_answer(const QuestionContext& c) {
   a.node = c.node;
   a.axis = curve.leaf ? -1 : curve.axis;
   a.position = curve.position;
-  if (a.axis >= 0) a.extent = curve.info.box.hi[a.axis] - curve.info.box.lo[a.axis];
+  if (a.axis >= 0) {
+    a.extent = curve.info.box.hi[a.axis] - curve.info.box.lo[a.axis];
+    a.lo = curve.info.box.lo[a.axis];
+  }
   const KdOptions& o = kd->options();
   const std::string head = "Node " + std::to_string(c.node) + " holds N = " + std::to_string(curve.n_prims) +
                            " primitives; a leaf would cost N t_i = " + std::to_string(curve.n_prims) + " x " +
@@ -843,6 +881,12 @@ std::string normalised(const std::string& s) {
     if (!std::isspace(static_cast<unsigned char>(ch)))
       out += char(std::tolower(static_cast<unsigned char>(ch)));
   return out;
+}
+
+// A node's path as typed (normalised: lower case): L and R letters, or "root"; a BVH's the same.
+bool is_path(const std::string& s) {
+  if (s == "root") return true;
+  return !s.empty() && s.find_first_not_of("lr") == std::string::npos;
 }
 
 bool parse_whole(const std::string& s, long long* v) {
@@ -948,8 +992,10 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
         match = !answer.first_is_below;
       else if (parse_whole(parts[0], &v))
         match = v == answer.first_child;
+      else if (is_path(parts[0]) && !answer.first_child_path.empty())
+        match = parts[0] == normalised(answer.first_child_path);
       else
-        return bad("below, above or a node id, optionally followed by ,push or ,no push");
+        return bad("below, above, a node id or its path (LR), optionally followed by ,push or ,no push");
       if (parts.size() == 2) {
         if (parts[1] == "push")
           match = match && answer.far_pushed;
@@ -962,18 +1008,26 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
     }
     case QuestionKind::next_pop:
       if (p == "stop") return answer.stops;
-      if (!parse_whole(p, &v)) return bad("a node id or stop");
+      if (is_path(p) && !answer.node_path.empty()) return !answer.stops && p == normalised(answer.node_path);
+      if (!parse_whole(p, &v)) return bad("a node id, its path (LLR) or stop");
       return !answer.stops && v == answer.node;
     case QuestionKind::sah_plane: {
       if (p == "leaf") return answer.axis < 0;
       std::vector<std::string> parts = split_commas(p);
-      if (parts.size() > 2 || axis_of(parts[0]) < 0) return bad("x, y or z, optionally ,POSITION, or leaf");
+      const char* forms = "x, y or z, optionally ,POSITION (world units) or ,PERCENT% (across the node), or leaf";
+      if (parts.size() > 2 || axis_of(parts[0]) < 0) return bad(forms);
       if (answer.axis != axis_of(parts[0])) return false;
       if (parts.size() == 1) return true;
+      const bool percent = parts[1].size() > 1 && parts[1].back() == '%';
+      const std::string number = percent ? parts[1].substr(0, parts[1].size() - 1) : parts[1];
       char* end = nullptr;
-      double pos = std::strtod(parts[1].c_str(), &end);
-      if (parts[1].empty() || end != parts[1].c_str() + parts[1].size() || !std::isfinite(pos))
-        return bad("x, y or z, optionally ,POSITION, or leaf");
+      double pos = std::strtod(number.c_str(), &end);
+      if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(pos)) return bad(forms);
+      if (percent) {  // the chart's axis: a reading off the chart, within 2% of the node
+        if (!(answer.extent > 0.f)) return false;
+        const double fraction = (double(answer.position) - double(answer.lo)) / double(answer.extent);
+        return std::fabs(pos / 100.0 - fraction) <= 0.02;
+      }
       double tolerance = 1e-4 * (answer.extent > 0.f ? double(answer.extent)
                                                      : std::max(1.0, std::fabs(double(answer.position))));
       return std::fabs(pos - double(answer.position)) <= tolerance;
@@ -984,6 +1038,73 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
       return bad("yes or no");
   }
   return false;
+}
+
+std::string prediction_feedback(const Answer& answer, const std::string& prediction) {
+  if (prediction_matches(answer, prediction)) return "";
+  const std::string p = normalised(prediction);
+  const bool said_stop = p == "stop";
+  switch (answer.kind) {
+    case QuestionKind::next_cell:
+      if (said_stop)
+        return "The walk stops in a cell only once a hit lies inside it (t of the hit <= the cell's exit t): "
+               "traverse until tmin(next cell) > tmax(ray). Is there such a hit yet?";
+      if (answer.stops)
+        return "A hit found in this cell lies before the cell's exit, so no later cell can hold a nearer one: "
+               "the walk stops here.";
+      if (answer.walk == "octree")
+        return "The next cell lies across the face the ray leaves through: the exit plane with the smallest t "
+               "(t_exit per axis), not the nearest cell centre.";
+      return "The 3D-DDA steps to the neighbour across the face the ray leaves through: the axis with the "
+             "smallest tMax, which need not be the direction's largest component.";
+    case QuestionKind::dda_axis:
+      if (p == "none")
+        return "The walk ends in this cell only with a hit before the cell's exit or when it leaves the grid.";
+      return "Compare the three tMax values (the t where the ray reaches the next boundary on each axis): the "
+             "smallest decides, not the largest direction component nor the nearest boundary in space.";
+    case QuestionKind::first_child: {
+      std::vector<std::string> parts = split_commas(p);
+      const bool said_push = parts.size() == 2 && parts[1] == "push";
+      const bool said_no_push = parts.size() == 2 && parts[1] == "nopush";
+      if (answer.walk == "octree")
+        return "Of the children the ray crosses, it enters first the one at its entry point: the entry plane is "
+               "the one with the largest entry t; on each other axis it starts in the far half when it reaches "
+               "that axis's centre plane before it enters the cell.";
+      if (said_push && !answer.far_pushed)
+        return "A far child is pushed only when the ray meets the plane inside the node: t* within "
+               "[t_min, t_max]. Compare t* with the interval.";
+      if (said_no_push && answer.far_pushed)
+        return "t* lies within [t_min, t_max]: the ray crosses the plane inside the node, so the far child "
+               "is needed later and waits on the stack.";
+      return "The near child is the side of the plane the ray starts in; but compare t* with [t_min, t_max] "
+             "first: when the ray crossed the plane before entering the node (0 <= t* < t_min) only the far "
+             "child is visited.";
+    }
+    case QuestionKind::next_pop:
+      if (said_stop)
+        return "The walk stops only when the stack is empty or the top's t_min lies beyond the nearest hit: a "
+               "node that starts before the hit may still hold a nearer one.";
+      if (answer.stops)
+        return "Every entry on the stack starts beyond the nearest hit (or none is left): nothing in them can "
+               "be nearer, so the walk stops with the stack as it is.";
+      return "The stack is last in, first out: the next node is the one pushed most recently (the top), the "
+             "far child of the nearest split still open, not the first one pushed.";
+    case QuestionKind::sah_plane:
+      if (p == "leaf")
+        return "A split pays when its cost C = t_t + p_a N_a t_i + p_b N_b t_i is below the leaf's N t_i: "
+               "read the lowest point of the curves against the dashed line.";
+      if (answer.axis < 0)
+        return "Every candidate's cost lies above the leaf's N t_i (the dashed line): no split pays.";
+      return "The SAH takes the lowest point of all three curves: not the longest axis, the middle of the "
+             "node nor the median primitive. Read the minimum off the chart.";
+    case QuestionKind::subdivide:
+      if (answer.subdivided)
+        return "The contrast (max - min) / (max + min) of the five first samples exceeds the threshold in "
+               "some channel: the samples disagree, so the pixel is split.";
+      return "The five first samples agree within the threshold: the contrast (max - min) / (max + min) "
+             "stays below it, and the pixel keeps its 5 samples, even if a feature hides between them.";
+  }
+  return "";
 }
 
 const char* question_kind_name(QuestionKind kind) {

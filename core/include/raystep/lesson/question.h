@@ -53,8 +53,12 @@ struct Answer {
   int32_t far_child = -1;
   // next-pop: the node popped next (or stops = true); sah-plane: axis and position (axis -1: the SAH makes a leaf)
   int32_t node = -1;
+  // The nodes in the slides' path notation (tree_nodes.h: "LLR", "root"; "" where the tree takes no paths):
+  // first-child's first and far child, next-pop's popped node. A prediction may name a node by its path.
+  std::string first_child_path, far_child_path, node_path;
   float position = 0.f;
   float extent = 0.f;  // sah-plane: the node's extent along the chosen axis (a typed position's tolerance)
+  float lo = 0.f;      // sah-plane: the node's minimum along that axis (the chart's 0)
   // subdivide
   bool subdivided = false;
   uint32_t samples = 0;  // the pixel's samples under the settings
@@ -72,10 +76,18 @@ Answer answer_question(QuestionKind kind, const QuestionContext& context);
 
 // Whether a typed prediction matches the answer. Accepted forms, case and spaces aside:
 //   next-cell: "i,j,k" or "stop"; dda-axis: "x", "y", "z" or "none"; first-child: "below" or "above" (or the
-//   node id), optionally followed by ",push" / ",no push"; next-pop: a node id or "stop"; sah-plane: "x", "y"
-//   or "z" then optionally ",POSITION" (within 1e-4 of the node's extent) or "leaf"; subdivide: "yes" or
+//   node id or its path, "LL"), optionally followed by ",push" / ",no push"; next-pop: a node id, its path or
+//   "stop"; sah-plane: "x", "y"
+//   or "z" then optionally ",POSITION" in world units (within 1e-4 of the node's extent) or ",PERCENT%" across
+//   the node as the SAH chart's axis reads (0% the node's minimum, 100% its maximum; within 2%), or "leaf";
+//   subdivide: "yes" or
 //   "no". An octree's next-cell and first-child: a node id or an octant "x+y-z+" (next-cell also "stop").
 // Throws InputError("", 0, "what") for a form the kind does not accept.
 bool prediction_matches(const Answer& answer, const std::string& prediction);
+
+// For a wrong prediction (one prediction_matches accepts as a form but not as the answer): a sentence aimed at
+// the misconception it most likely shows, in the lecture's terms ("The stack is last in, first out: ..."),
+// without the answer itself (the answer's text and Why follow it). "" for a right prediction.
+std::string prediction_feedback(const Answer& answer, const std::string& prediction);
 
 }  // namespace raystep
