@@ -1,4 +1,6 @@
+// The accelerators by name (make_accelerator), and their build options as a cache key (structure_key).
 #include <algorithm>
+#include <cstdio>
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
@@ -91,6 +93,25 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
   for (size_t i = 1; i < bvol_kind_names().size(); ++i) known += ", " + bvol_kind_names()[i];
   throw InputError("", 0, "unknown accelerator '" + name + "' (known: " + known + ")");
+}
+
+std::string structure_key(const std::string& accel, const StructureOptions& o) {
+  char buf[384];
+  const GridOptions& g = o.grid;
+  const BvhOptions& b = o.bvh;
+  std::snprintf(buf, sizeof buf, "%s|%.9g|%d,%d,%d|%d|%.9g|%.9g|%.9g|%d|%d|%.9g|%d|%.9g|%.9g|%d|%d|%d|%d|%d",
+                accel.c_str(), double(g.density), g.resolution ? (*g.resolution)[0] : 0,
+                g.resolution ? (*g.resolution)[1] : 0, g.resolution ? (*g.resolution)[2] : 0,
+                int(g.exact_insert), double(o.kd.t_i), double(o.kd.t_t), double(o.kd.empty_bonus),
+                o.kd.max_depth, o.kd.leaf_size, double(o.kd.reference_budget), int(o.kd_mailboxes),
+                double(b.t_i), double(b.t_t), b.bins, b.leaf_size, b.max_leaf_size, b.max_depth,
+                int(o.bvh_order));
+  // The octree's and the BSP tree's own options (the BSP tree's costs and limits are the kd-tree's).
+  char more[160];
+  std::snprintf(more, sizeof more, "|%d|%d|%d|%d|%.9g|%.9g|%d|%d", o.octree.leaf_size, o.octree.max_depth,
+                int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i), double(o.bsp.t_t),
+                o.bsp.max_depth, o.bsp.leaf_size);
+  return std::string(buf) + more;
 }
 
 }  // namespace raystep

@@ -28,6 +28,21 @@
 
 namespace raystep {
 
+namespace {
+
+// A report computed once per key for the whole process (each call site its own table: `make` is its lambda).
+template <class T, class Make>
+std::shared_ptr<const T> memoised(const std::string& key, Make make) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const T>> memo;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = memo[key];
+  if (!slot) slot = std::make_shared<const T>(make());
+  return slot;
+}
+
+}  // namespace
+
 struct LessonFacts::Impl {
   const StepWorld& w;
   const LessonState& s;
@@ -154,38 +169,28 @@ struct LessonFacts::Impl {
   // The reports, kept for the process: keyed by everything they depend on.
   std::string report_key() const {
     return s.scene + "|" + file_content_hash(s.scene) + "|" + std::to_string(w.width) + "x" +
-           std::to_string(w.height) + "|" + to_string(aa()) + "|" + s.accel;
+           std::to_string(w.height) + "|" + to_string(aa()) + "|" + structure_key(s.accel, s.structure);
   }
   const CostReport& cost_report() {
-    if (cost) return *cost;
-    static std::mutex mutex;
-    static std::map<std::string, std::shared_ptr<const CostReport>> memo;
-    std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = memo[report_key()];
-    if (!slot) {
-      CostReportOptions o;
-      o.width = w.width;
-      o.height = w.height;
-      o.aa = aa();
-      o.build = s.structure;
-      slot = std::make_shared<CostReport>(run_cost_report(*w.scene, o));
-    }
-    cost = slot;
+    if (!cost)
+      cost = memoised<CostReport>(report_key(), [&] {
+        CostReportOptions o;
+        o.width = w.width;
+        o.height = w.height;
+        o.aa = aa();
+        o.build = s.structure;
+        return run_cost_report(*w.scene, o);
+      });
     return *cost;
   }
   const AaReport& aa_rep() {
-    if (aa_report) return *aa_report;
-    static std::mutex mutex;
-    static std::map<std::string, std::shared_ptr<const AaReport>> memo;
-    std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = memo[report_key()];
-    if (!slot) {
-      AaReportOptions o;
-      o.width = w.width;
-      o.height = w.height;
-      slot = std::make_shared<AaReport>(run_aa_report(*w.scene, *w.accel, o));
-    }
-    aa_report = slot;
+    if (!aa_report)
+      aa_report = memoised<AaReport>(report_key(), [&] {
+        AaReportOptions o;
+        o.width = w.width;
+        o.height = w.height;
+        return run_aa_report(*w.scene, *w.accel, o);
+      });
     return *aa_report;
   }
   const CostRow& cost_row(const std::string& which) {
@@ -209,18 +214,12 @@ struct LessonFacts::Impl {
     fail("the cost report has no technique '" + which + "' (techniques: " + names + ")");
   }
   const BvolReportRow& bvol_row(const std::string& kind) {
-    if (!bvol) {
-      static std::mutex mutex;
-      static std::map<std::string, std::shared_ptr<const std::vector<BvolReportRow>>> memo;
-      std::lock_guard<std::mutex> lock(mutex);
-      auto& slot = memo[s.scene + "|" + file_content_hash(s.scene)];
-      if (!slot) {
+    if (!bvol)
+      bvol = memoised<std::vector<BvolReportRow>>(s.scene + "|" + file_content_hash(s.scene), [&] {
         BvolReportOptions o;
         o.reps = 1;  // the counts do not depend on the timing passes
-        slot = std::make_shared<std::vector<BvolReportRow>>(run_bvol_report(*w.scene, o));
-      }
-      bvol = slot;
-    }
+        return run_bvol_report(*w.scene, o);
+      });
     std::string kinds;
     for (const BvolReportRow& row : *bvol) {
       if (row.kind == kind) return row;

@@ -27,4 +27,7 @@ struct StructureOptions {
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const StructureOptions& options);
 
+// Every build option of the named structure, as text: equal keys build equal structures (caches key on it).
+std::string structure_key(const std::string& accel, const StructureOptions& options);
+
 }  // namespace raystep
