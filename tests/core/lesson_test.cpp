@@ -324,7 +324,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("translucent: \n")), f + "7: translucent '': expected on or off");
   EXPECT_EQ(error_of(lesson_with("zoom: 65\n")), f + "7: zoom '65': expected a number in [0, 64] (0: fit)");
   EXPECT_EQ(error_of(lesson_with("show: movie\n")),
-            f + "7: show 'movie': expected window, 3d, chart, picture or report");
+            f + "7: show 'movie': expected window, 3d, tree, chart, picture or report");
   EXPECT_EQ(
       error_of(lesson_with("ask: guess\n")),
       f + "7: ask 'guess': expected one of next-cell, dda-axis, first-child, next-pop, sah-plane, subdivide");

@@ -5,6 +5,8 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QImage>
+#include <QLayout>
+#include <QPainter>
 #include <QTemporaryDir>
 #include <QThread>
 
@@ -14,10 +16,18 @@
 #include "image_view.h"
 #include "lesson_pane.h"
 #include "main_window.h"
+#include "pixel_inspector.h"
 #include "presenter.h"
+#include "raystep/lesson/lesson_figure.h"
 #include "raystep/util/error.h"
 #include "sah_chart.h"
 #include "scene_view.h"
+#include "session.h"
+#include "state_panel.h"
+#include "kd_tree_model.h"
+#include "replay.h"
+#include "tree_diagram.h"
+#include "tree_view.h"
 
 namespace raystep::viz {
 namespace {
@@ -30,11 +40,57 @@ QString esc(const std::string& s) {
   return QString::fromStdString(s).toHtmlEscaped();
 }
 
-// The figure the step's `show:` names, drawn as the window shows it now; `report`: the first report window
-// the step opens (the window, when it opens none).
-QImage figureOf(MainWindow& w, const LessonState& state) {
-  const std::string& show = state.show;
-  if (show == "report") {
+// Images side by side, top-aligned, on white: a figure and the panel that gives its numbers.
+QImage besideEachOther(const std::vector<QImage>& parts) {
+  int width = 0, height = 0;
+  const int gap = 8;
+  for (const QImage& p : parts) {
+    width += p.width() + (width ? gap : 0);
+    height = std::max(height, p.height());
+  }
+  QImage out(std::max(width, 1), std::max(height, 1), QImage::Format_RGB32);
+  out.fill(Qt::white);
+  QPainter painter(&out);
+  int x = 0;
+  for (const QImage& p : parts) {
+    painter.drawImage(x, 0, p);
+    x += p.width() + gap;
+  }
+  return out;
+}
+
+// The state panel's text (the figure's numbers), all of it, without the scroll area around it.
+QImage statePanelImage(MainWindow& w) {
+  QWidget* panel = w.statePanel();
+  // Every group's layout again at the panel's width, so that a label whose text just grew gets its lines.
+  for (QLayout* l : panel->findChildren<QLayout*>()) l->invalidate();
+  for (QWidget* c : panel->findChildren<QWidget*>())
+    if (c->layout()) c->layout()->activate();
+  if (panel->layout()) panel->layout()->activate();
+  for (int i = 0; i < 3; ++i) QApplication::processEvents();
+  return panel->grab().toImage();
+}
+
+// One image above the other, left-aligned, on white: a wide figure and its panel.
+QImage aboveEachOther(const QImage& top, const QImage& bottom) {
+  const int gap = 8;
+  QImage out(std::max(top.width(), bottom.width()), top.height() + gap + bottom.height(), QImage::Format_RGB32);
+  out.fill(Qt::white);
+  QPainter painter(&out);
+  painter.drawImage(0, 0, top);
+  painter.drawImage(0, top.height() + gap, bottom);
+  return out;
+}
+
+// The figure the step is about (lesson_figure.h), drawn as the window shows it now: `show: 3d`, `tree`,
+// `chart`, `picture` that view alone; `show: window` the figure the state names, with the state panel beside
+// the 3D view or the tree when a ray is traced; `report` the first report window the step opens.
+QImage figureOf(MainWindow& w, const LessonState& state, bool* withState) {
+  *withState = false;
+  const LessonFigure figure = lesson_figure(state);
+  const bool named = state.show != "window";
+  const bool ray = w.session()->ray() != nullptr;
+  if (figure == LessonFigure::report) {
     const std::string first = state.report.substr(0, state.report.find(','));
     ReportWindow* v = first == "aa"           ? static_cast<ReportWindow*>(w.aaReportView())
                       : first == "grid-sweep" ? static_cast<ReportWindow*>(w.gridSweepView())
@@ -45,11 +101,43 @@ QImage figureOf(MainWindow& w, const LessonState& state) {
       v->renderNow();
       return v->grab().toImage();
     }
+    if (!ray) return w.imageView()->canvas()->grab().toImage();
+    *withState = true;
+    return besideEachOther({w.sceneView()->grabView(), statePanelImage(w)});
   }
-  if (show == "3d") return w.sceneView()->grabView();
-  if (show == "chart") return w.sahChart()->grabChart();
-  if (show == "picture") return w.imageView()->canvas()->grab().toImage();
-  return w.grab().toImage();
+  switch (figure) {
+    case LessonFigure::view3d:
+      if (named || !ray) return w.sceneView()->grabView();
+      *withState = true;
+      return besideEachOther({w.sceneView()->grabView(), statePanelImage(w)});
+    case LessonFigure::chart:
+      return w.sahChart()->grabChart();
+    case LessonFigure::tree: {
+      // The tree drawn (tree_diagram.h) with the walk's marks, the state panel (its stack) beside it.
+      const StructureData* structure = w.session()->structure();
+      std::unique_ptr<TreeShape> shape = structure ? treeShapeOf(*structure) : nullptr;
+      if (!shape) return w.treeView()->grab().toImage();
+      TreeMarks marks;
+      marks.selected = w.session()->selectedNode();
+      if (const TracedRay* r = w.session()->ray()) {
+        const ReplayState& st = w.session()->state();
+        if (st.nodeEvent >= 0) marks.current = r->events[size_t(st.nodeEvent)].node;
+        for (const StackEntry& e : st.stack) marks.stack.push_back(e.node);
+        marks.visited = st.visitedNodes;
+      }
+      QImage tree = drawTreeDiagram(*shape, marks);
+      if (!ray) return tree;
+      *withState = true;
+      // A wide tree: the panel below it, so that the page keeps the tree's boxes readable.
+      return tree.width() > 1100 ? aboveEachOther(tree, statePanelImage(w)) : besideEachOther({tree, statePanelImage(w)});
+    }
+    case LessonFigure::picture:
+    default: {
+      QImage picture = w.imageView()->canvas()->grab().toImage();
+      if (!w.pixelInspectorVisible()) return picture;
+      return besideEachOther({picture, w.pixelInspector()->grab().toImage()});
+    }
+  }
 }
 
 }  // namespace
@@ -86,7 +174,8 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
     w.sahChart()->renderNow();
     QApplication::processEvents();
     const QString png = QString("step-%1.png").arg(i + 1);
-    QImage figure = figureOf(w, step.state);
+    bool withState = false;
+    QImage figure = figureOf(w, step.state, &withState);
     if (figure.isNull() || !figure.save(tmp.path() + "/" + png, "PNG"))
       fail("cannot write " + (tmp.path() + "/" + png).toStdString());
 
@@ -98,11 +187,8 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
             .arg(png)
             .arg(i + 1)
             .arg(esc(step.title))
-            .arg(QString::fromStdString(step.state.show == "3d"        ? "the 3D view"
-                                        : step.state.show == "chart"   ? "the SAH chart"
-                                        : step.state.show == "picture" ? "the picture"
-                                        : step.state.show == "report"  ? "the report window"
-                                                                       : "the debugger"));
+            .arg(QString::fromUtf8(lesson_figure_name(lesson_figure(step.state))) +
+                 (withState ? QStringLiteral(" and the state panel") : QString()));
     if (step.ask) {
       html += "<div class=\"question\">\n<p><b>Predict:</b> " +
               esc(question_prompt(*step.ask, step.state.accel)) + "</p>\n";

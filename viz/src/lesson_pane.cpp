@@ -7,7 +7,10 @@
 #include <QPushButton>
 #include <QRegularExpression>
 #include <QTextBrowser>
+#include <QTextBlock>
+#include <QTextCursor>
 #include <QTextDocument>
+#include <QFontInfo>
 #include <QVBoxLayout>
 
 #include "quiz_panel.h"
@@ -15,7 +18,11 @@
 
 namespace raystep::viz {
 
-QString markdownToHtmlBody(const QString& markdown) {
+namespace {
+
+// Markdown prose as HTML, the body only.
+QString proseToHtml(const QString& markdown) {
+  if (markdown.trimmed().isEmpty()) return QString();
   QTextDocument doc;
   doc.setMarkdown(markdown);
   QString html = doc.toHtml();
@@ -31,6 +38,56 @@ QString markdownToHtmlBody(const QString& markdown) {
   body.remove(qtOnly);
   body.remove(QRegularExpression(R"( style="\s*")"));
   return body;
+}
+
+// A fence's opening line: ``` or ~~~ (three or more), then the info string.
+bool isFence(const QString& line, QChar* ch, int* length) {
+  const QString t = line.trimmed();
+  if (t.size() < 3 || (t[0] != '`' && t[0] != '~')) return false;
+  int n = 0;
+  while (n < t.size() && t[n] == t[0]) ++n;
+  if (n < 3) return false;
+  *ch = t[0];
+  *length = n;
+  return true;
+}
+
+}  // namespace
+
+QString markdownToHtmlBody(const QString& markdown) {
+  // Fenced code (the lessons' pseudocode) as <pre>, line for line with its indentation; the prose between
+  // the fences through Qt's Markdown reader.
+  QString out, prose, code;
+  QChar fence;
+  int fenceLength = 0;
+  bool inCode = false;
+  for (const QString& line : markdown.split('\n')) {
+    QChar ch;
+    int length = 0;
+    if (!inCode && isFence(line, &ch, &length)) {
+      out += proseToHtml(prose);
+      prose.clear();
+      inCode = true;
+      fence = ch;
+      fenceLength = length;
+      continue;
+    }
+    if (inCode) {
+      if (isFence(line, &ch, &length) && ch == fence && length >= fenceLength &&
+          line.trimmed().size() == length) {
+        out += "\n<pre><code>" + code.toHtmlEscaped() + "</code></pre>\n";
+        code.clear();
+        inCode = false;
+      } else {
+        code += line + "\n";
+      }
+      continue;
+    }
+    prose += line + "\n";
+  }
+  if (inCode) out += "\n<pre><code>" + code.toHtmlEscaped() + "</code></pre>\n";
+  out += proseToHtml(prose);
+  return out.trimmed();
 }
 
 LessonPane::LessonPane(QWidget* parent) : QWidget(parent) {
@@ -52,6 +109,7 @@ LessonPane::LessonPane(QWidget* parent) : QWidget(parent) {
 
   position_ = new QLabel;
   position_->setObjectName("lessonPosition");
+  position_->setWordWrap(true);
   layout->addWidget(position_);
   narration_ = new QTextBrowser;
   narration_->setObjectName("lessonNarration");
@@ -116,6 +174,15 @@ void LessonPane::showStep(const Lesson& lesson, int index) {
   QString text = QString::fromStdString(step.narration);
   if (index == 0 && !lesson.intro.empty()) text = QString::fromStdString(lesson.intro) + "\n\n" + text;
   narration_->setMarkdown(text);
+  // Code (the lessons' pseudocode) keeps its lines: scrolled sideways in a narrow pane, never re-wrapped.
+  for (QTextBlock b = narration_->document()->begin(); b.isValid(); b = b.next()) {
+    QTextBlockFormat f = b.blockFormat();
+    if (f.hasProperty(QTextFormat::BlockCodeFence) || b.charFormat().fontFixedPitch() ||
+        QFontInfo(b.charFormat().font()).fixedPitch()) {
+      f.setNonBreakableLines(true);
+      QTextCursor(b).setBlockFormat(f);
+    }
+  }
   previous_->setEnabled(index > 0);
   next_->setEnabled(index + 1 < int(lesson.steps.size()));
 }
@@ -132,6 +199,12 @@ void LessonPane::setScale(double scale) {
   const int rows = std::max(4, steps_->count());
   steps_->setFixedHeight(rows * steps_->fontMetrics().height() * 13 / 10 + 8);
   quiz_->setScale(scale);
+}
+
+void LessonPane::setClassroom(bool on) {
+  steps_->setVisible(!on);
+  keys_->setVisible(!on);
+  back_->setText(on ? tr("Back to the step") : tr("Back to the lesson"));
 }
 
 QJsonObject LessonPane::dumpState() const {

@@ -30,6 +30,9 @@ class LessonPane : public QWidget {
   // The window no longer shows the step as the lesson set it: offer the way back.
   void setAway(bool away);
   void setScale(double scale);
+  // The lecture hall's pane (classroom_layout.h): the step's title, narration and quiz only; the list of
+  // steps and the keys' help give their room to the narration.
+  void setClassroom(bool on);
   QuizPanel* quiz() const { return quiz_; }
   // What the pane shows, for the scripted mode's --dump-state.
   QJsonObject dumpState() const;

@@ -26,6 +26,7 @@
 
 #include "aa_report_view.h"
 #include "bvol_report_view.h"
+#include "classroom_layout.h"
 #include "compare_window.h"
 #include "event_list.h"
 #include "grid_sweep_view.h"
@@ -39,6 +40,7 @@
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/lesson_figure.h"
 #include "raystep/lesson/lesson_runner.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/trace/multi_trace.h"
@@ -86,7 +88,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   right->addWidget(statePanel_->mailboxWidget());
   right->addWidget(eventList_);
   right->setSizes({440, 110, 180});
-  auto* columns = new QSplitter(Qt::Horizontal);
+  auto* columns = columns_ = new QSplitter(Qt::Horizontal);
   columns->addWidget(left);
   columns->addWidget(sceneView_);
   columns->addWidget(right);
@@ -105,7 +107,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   // kd-tree: the nodes and the SAH inspector, in a dock below (shown when a kd-tree is built).
   treeView_ = new TreeView(session_);
   sahChart_ = new SahChart;
-  auto* kdSplit = new QSplitter(Qt::Horizontal);
+  auto* kdSplit = kdSplit_ = new QSplitter(Qt::Horizontal);
   kdSplit->addWidget(treeView_);
   kdSplit->addWidget(sahChart_);
   kdSplit->setStretchFactor(0, 0);
@@ -280,6 +282,13 @@ void MainWindow::buildMenus() {
                      : s == 1.5 ? tr("1.5 (lecture room)")
                                 : QString::number(s),
                      this, [this, s] { setPresenterScale(s); });
+  // The instructor's laptop shows the narration, the projector the debugger.
+  QAction* narration = view->addAction(tr("&Narration in its own window"));
+  narration->setCheckable(true);
+  narration->setObjectName("narrationWindowAction");
+  connect(narration, &QAction::toggled, this, [this](bool on) {
+    if (classroom_) classroom_->setNarrationWindow(on);
+  });
   // The reports on the current scene: opened (and run, the first time) in windows of their own.
   QMenu* reports = menuBar()->addMenu(tr("&Reports"));
   reports->addAction(tr("&Anti-aliasing: error against rays..."), this, [this] {
@@ -345,6 +354,17 @@ Presenter* MainWindow::openLesson(const Lesson& lesson) {
     setCorner(Qt::TopRightCorner, Qt::RightDockWidgetArea);
     setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
     addDockWidget(Qt::RightDockWidgetArea, lessonDock_);
+    ClassroomParts parts;
+    parts.picture = leftSplit_;
+    parts.structure = structure_;
+    parts.view3d = sceneView_;
+    parts.state = rightSplit_;
+    parts.columns = columns_;
+    parts.treeDock = kdDock_;
+    parts.treeSplit = kdSplit_;
+    parts.pixelDock = pixelDock_;
+    parts.lessonDock = lessonDock_;
+    classroom_ = std::make_unique<ClassroomLayout>(*this, parts);
   }
   delete presenter_;
   presenter_ = new Presenter(*this, lessonPane_, lesson);
@@ -358,8 +378,20 @@ Presenter* MainWindow::openLesson(const Lesson& lesson) {
   return presenter_;
 }
 
+void MainWindow::arrangeForStep(const LessonState& step) {
+  if (!classroom_ || scale_ <= 1.0) return;
+  // The mailbox table when the current event is a primitive's test (the table lists the ray's tests).
+  bool tested = false;
+  if (const TracedRay* r = session_->ray(); r && session_->step() >= 0 && session_->step() < int(r->events.size())) {
+    const EventType t = r->events[size_t(session_->step())].type;
+    tested = t == EventType::prim_test || t == EventType::mailbox_hit || t == EventType::hit_deferred;
+  }
+  classroom_->arrange(lesson_figure(step), session_->ray() != nullptr, tested, !step.panel.empty() && step.panel != "none");
+}
+
 void MainWindow::fitLessonPane() {
   if (!lessonDock_) return;
+  if (scale_ > 1.0) return;  // the classroom layout keeps the window within the screen
   // The pane's width comes on top of the debugger's: the central widget keeps the width the window had. The
   // pane is held at its width while the window grows (else the central widget would take the growth).
   // Where the screen has no room for both, the window stays within it and the pane takes its width from the
@@ -378,7 +410,7 @@ void MainWindow::fitLessonPane() {
 }
 
 void MainWindow::releaseLessonPaneWidth() {
-  if (!lessonPane_) return;
+  if (!lessonPane_ || scale_ > 1.0) return;
   lessonPane_->setMinimumWidth(200);
   lessonPane_->setMaximumWidth(QWIDGETSIZE_MAX);
 }
@@ -412,6 +444,12 @@ void MainWindow::setPresenterScale(double scale) {
   if (scale > 1.0)
     leftSplit_->setSizes({structure_->sizeHint().height(), 10000});  // the picture takes the rest
   if (lessonPane_) lessonPane_->setScale(scale);
+  if (presenter_ && presenter_->current() >= 0) {
+    if (scale > 1.0)
+      arrangeForStep(presenter_->lesson().steps[size_t(presenter_->current())].state);
+    else if (classroom_)
+      classroom_->release();
+  }
 }
 
 void MainWindow::showKdPanel() {

@@ -23,6 +23,7 @@ class QSplitter;
 namespace raystep {
 struct Trace;
 struct Lesson;
+struct LessonState;
 }  // namespace raystep
 
 namespace raystep::viz {
@@ -45,6 +46,7 @@ class GridSweepView;
 class BvolReportView;
 class PixelInspector;
 class CompareWindow;
+class ClassroomLayout;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -118,6 +120,10 @@ class MainWindow : public QMainWindow {
   void fitLessonPane();
   // Lets the user resize the pane (scripted runs keep it at the width fitLessonPane gave it).
   void releaseLessonPaneWidth();
+  // A lesson at a presenter scale above 1: the step's figure takes the room (classroom_layout.h), the window
+  // within the screen; at scale 1 (or without a lesson) the debugger's own layout.
+  ClassroomLayout* classroom() const { return classroom_.get(); }
+  void arrangeForStep(const LessonState& step);
   // Fonts, line widths and the 3D view's markers times `scale` (a lecture room wants 1.5).
   void setPresenterScale(double scale);
   double presenterScale() const { return scale_; }
@@ -177,9 +183,11 @@ class MainWindow : public QMainWindow {
   QDockWidget* kdDock_;
   PixelInspector* pixelInspector_;
   QDockWidget* pixelDock_;
-  QSplitter* rightSplit_ = nullptr;
-  QSplitter* leftSplit_ =
-      nullptr;  // the structure panel, the image  // the state panel, the mailbox table, the event list
+  QSplitter* rightSplit_ = nullptr;  // the state panel, the mailbox table, the event list
+  QSplitter* leftSplit_ = nullptr;   // the structure panel, the image
+  QSplitter* columns_ = nullptr;     // left, the 3D view, right
+  QSplitter* kdSplit_ = nullptr;     // the tree | the SAH chart
+  std::unique_ptr<ClassroomLayout> classroom_;
   QDockWidget* lessonDock_ = nullptr;
   LessonPane* lessonPane_ = nullptr;
   Presenter* presenter_ = nullptr;

@@ -141,6 +141,7 @@ void Presenter::goTo(int index) {
   const bool walkQuestion =
       step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide;
   concealWalk(walkQuestion);
+  window_.arrangeForStep(step.state);
   if (step.ask) {
     Session* s = window_.session();
     QuestionContext c;

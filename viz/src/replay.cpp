@@ -11,6 +11,7 @@
 #include "raystep/geometry/exact.h"
 #include "raystep/geometry/triangle.h"
 #include "raystep/geometry/triangle_moller.h"
+#include "raystep/lesson/tree_nodes.h"
 
 namespace raystep::viz {
 
@@ -562,6 +563,19 @@ std::string explainPrimTest(const Trace* trace, const TracedRay& ray, const Even
   return text;
 }
 
+// The mailbox's mechanism (mailbox.h), for a skip: each ray takes the next number as it is cast, a test writes
+// it into the primitive's mailbox, a mailbox that already holds the ray's own number means "tested": skip.
+// Here the rays are numbered in the order the pixel cast them.
+std::string mailboxStamp(const Trace* trace, const TracedRay& ray, int32_t prim) {
+  size_t number = 1;
+  if (trace)
+    for (size_t i = 0; i < trace->rays.size(); ++i)
+      if (&trace->rays[i] == &ray) number = i + 1;
+  return "\nPrimitive " + std::to_string(prim) + "'s mailbox holds ray number " + std::to_string(number) +
+         ", this ray's own: each ray takes the next number as it is cast and writes it into the mailbox of "
+         "every primitive it tests. The next ray's number matches no mailbox: nothing is cleared between rays.";
+}
+
 std::string explainGridRule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
   const Event* cell = s.cellEvent >= 0 ? &ray.events[size_t(s.cellEvent)] : nullptr;
@@ -611,8 +625,10 @@ std::string explainGridRule(const Trace* trace, const TracedRay& ray, const Repl
           return "Primitive " + std::to_string(e.prim) + " was already tested in cell (" +
                  std::to_string(m.cell[0]) + "," + std::to_string(m.cell[1]) + "," +
                  std::to_string(m.cell[2]) +
-                 ") for this ray (it spans several cells): the mailbox skips the test.";
-      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
+                 ") for this ray (it spans several cells): the mailbox skips the test." +
+                 mailboxStamp(trace, ray, e.prim);
+      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped." +
+             mailboxStamp(trace, ray, e.prim);
     }
     default:
       return "";
@@ -623,8 +639,11 @@ std::string side(bool below) {
   return below ? "below the plane" : "above the plane";
 }
 
-std::string nodeName(int32_t id) {
-  return id >= 0 ? "node " + std::to_string(id) : std::string("the child");
+// "node 2 (LL)": the id the trace uses and the path in the slides' notation (none for a wide BVH's node).
+std::string nodeName(const Trace* trace, int32_t id) {
+  if (id < 0) return "the child";
+  const std::string path = trace ? trace_node_path_text(*trace, id) : "";
+  return "node " + std::to_string(id) + (path.empty() ? "" : " (" + path + ")");
 }
 
 std::string vec(const glm::vec3& v) {
@@ -633,13 +652,13 @@ std::string vec(const glm::vec3& v) {
 
 // A general BSP node's plane and decision, in the lecture's words: the same walk as the kd-tree's with
 // t* = (d - n.o) / (n.dir) instead of (split - o.a) / d.a.
-std::string explainBspNode(const NodeCrossing& c) {
+std::string explainBspNode(const Trace* trace, const NodeCrossing& c) {
   std::string head =
-      "Inner node " + std::to_string(c.node) + ", plane n.p = d with n = " + vec(c.normal) +
+      "Inner " + nodeName(trace, c.node) + ", plane n.p = d with n = " + vec(c.normal) +
       ", d = " + num(c.offset) + ".\nThe origin's signed distance n.o - d = " + num(float(c.originSide)) +
       " (" + (c.originSide < 0 ? "below" : "above") + " the plane); n.dir = " + num(float(c.nDotDir)) + ".\n";
-  std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
-  std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
+  std::string nearName = nodeName(trace, c.nearChild) + " (" + side(c.nearIsBelow) + ")";
+  std::string farName = nodeName(trace, c.farChild) + " (" + side(!c.nearIsBelow) + ")";
   if (c.crossing == Crossing::inPlane)
     return head +
            "n.dir is 0 within rounding and the ray lies on the plane, or too near it to tell: t* is "
@@ -800,9 +819,10 @@ std::string explainOctreeRule(const Trace* trace, const TracedRay& ray, const Re
       for (const MailboxEntry& m : s.mailbox)
         if (m.prim == e.prim && m.leaf >= 0)
           return "Mailbox hit: primitive " + std::to_string(e.prim) + " was already tested in cell " +
-                 std::to_string(m.leaf) + " for this ray (it overlaps several cells): skip the test.";
-      return "Mailbox hit: primitive " + std::to_string(e.prim) +
-             " was already tested for this ray: skipped.";
+                 std::to_string(m.leaf) + " for this ray (it overlaps several cells): skip the test." +
+                 mailboxStamp(trace, ray, e.prim);
+      return "Mailbox hit: primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped." +
+             mailboxStamp(trace, ray, e.prim);
     case EventType::hit_deferred:
       return "The hit t = " + num(e.t) + " lies beyond this cell's exit, t_exit = " + num(e.t_exit) +
              ": a later cell may hold a nearer hit. Keep it and go on: traverse until tmin(cell) > "
@@ -845,13 +865,13 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       if (after && after->type == EventType::leaf)
         return "Node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") is a leaf.";
       NodeCrossing c = trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};
-      if (!c.valid) return "Inner node " + std::to_string(e.node) + ": the walk goes on in its children.";
+      if (!c.valid) return "Inner " + nodeName(trace, e.node) + ": the walk goes on in its children.";
       std::string a = axisName(c.axis);
-      std::string head = "Inner node " + std::to_string(c.node) + " splits " + a + " at " + num(c.split) +
+      std::string head = "Inner " + nodeName(trace, c.node) + " splits " + a + " at " + num(c.split) +
                          ". t* = (split - o." + a + ") / d." + a + " = " + num(c.tStar) + ".\n";
-      if (c.general) return explainBspNode(c);
-      std::string nearName = nodeName(c.nearChild) + " (" + side(c.nearIsBelow) + ")";
-      std::string farName = nodeName(c.farChild) + " (" + side(!c.nearIsBelow) + ")";
+      if (c.general) return explainBspNode(trace, c);
+      std::string nearName = nodeName(trace, c.nearChild) + " (" + side(c.nearIsBelow) + ")";
+      std::string farName = nodeName(trace, c.farChild) + " (" + side(!c.nearIsBelow) + ")";
       switch (c.crossing) {
         case Crossing::nearOnly:
           if (std::isinf(c.tStar))
@@ -896,7 +916,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
       NodeCrossing c =
           trace ? nodeCrossing(*trace, ray, s) : NodeCrossing{};  // of the inner node being split
       bool inPlane = c.valid && c.crossing == Crossing::inPlane;
-      return "Push the far child, node " + std::to_string(e.node) +
+      return "Push the far child, " + nodeName(trace, e.node) +
              (inPlane ? ", with the whole interval [t_min, t_max] = ["
                       : ", with its part of the ray [t*, t_max] = [") +
              num(e.t_min_node) + ", " + num(e.t_max_node) +
@@ -912,7 +932,7 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
              " against the ray (the mailbox skips any tested before).";
     }
     case EventType::pop: {
-      std::string head = "Pop node " + std::to_string(e.node) + " with [t_min, t_max] = [" +
+      std::string head = "Pop " + nodeName(trace, e.node) + " with [t_min, t_max] = [" +
                          num(e.t_min_node) + ", " + num(e.t_max_node) + "]. ";
       bool visited = after && after->type == EventType::node && after->node == e.node;
       if (visited) {
@@ -948,8 +968,10 @@ std::string explainTreeRule(const Trace* trace, const TracedRay& ray, const Repl
         if (m.prim == e.prim && m.leaf >= 0)
           return "Primitive " + std::to_string(e.prim) + " was already tested in leaf " +
                  std::to_string(m.leaf) +
-                 " for this ray (it lies in several leaves): the mailbox skips the test.";
-      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped.";
+                 " for this ray (it lies in several leaves): the mailbox skips the test." +
+                 mailboxStamp(trace, ray, e.prim);
+      return "Primitive " + std::to_string(e.prim) + " was already tested for this ray: skipped." +
+             mailboxStamp(trace, ray, e.prim);
     case EventType::hit_accepted: {
       if (e.reason == AcceptReason::any_hit)
         return "Shadow ray: any hit will do  =>  stop at t = " + num(e.t) + ".";
@@ -1042,7 +1064,7 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
       if (after && after->type == EventType::leaf)
         return "Node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") is a leaf.";
       BvhChoice c = bvhChoice(ray, s);
-      return "Inner node " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) +
+      return "Inner " + nodeName(trace, e.node) + " (depth " + std::to_string(e.depth) +
              "), its box entered over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "].\nTest its " +
              std::to_string(c.tests.size()) +
              " children's boxes (slab test). Each box is tight around its own primitives and may overlap its "
@@ -1084,7 +1106,7 @@ std::string explainBvhRule(const Trace* trace, const TracedRay& ray, const Repla
              "overlaps).";
     }
     case EventType::pop: {
-      std::string head = "Pop node " + std::to_string(e.node) + " with t_near = " + num(e.t_min_node) + ". ";
+      std::string head = "Pop " + nodeName(trace, e.node) + " with t_near = " + num(e.t_min_node) + ". ";
       if (after && after->type == EventType::skip) return head + "Is its box beyond the nearest hit?";
       if (s.nearestPrim < 0) return head + "No hit yet: visit it.";
       return head + "The nearest hit so far, t = " + num(s.nearestT) +

@@ -69,9 +69,8 @@ QString fmt(double v) {
 void bottomTitle(vtkChartXY* chart, bool bsp) {
   chart->GetAxis(vtkAxis::BOTTOM)
       ->SetTitle(
-          bsp ? "plane position across the cell along its normal (0 = the cell's lowest point, 1 = its "
-                "highest)"
-              : "split position across the node (0 = box min, 1 = box max)");
+          bsp ? "plane position along its normal (0: the cell's lowest point, 1: its highest)"
+              : "split position across the node (0: box min, 1: box max)");
 }
 
 // A BSP candidate's orientation group: 0 the axes, 1 the face diagonals, 2 the body diagonals, 3 own planes.
@@ -205,7 +204,7 @@ SahChart::SahChart(QWidget* parent) : QWidget(parent), d_(new Impl) {
   d.chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
   d.chart->GetLegend()->GetLabelProperties()->SetFontSize(11);
   vtkAxis* bottom = d.chart->GetAxis(vtkAxis::BOTTOM);
-  bottom->SetTitle("split position across the node (0 = box min, 1 = box max)");
+  bottomTitle(d.chart, false);
   bottom->SetBehavior(vtkAxis::FIXED);
   bottom->SetRange(-0.02, 1.02);
   d.chart->GetAxis(vtkAxis::LEFT)->SetTitle("SAH cost C");

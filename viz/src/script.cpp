@@ -30,6 +30,7 @@
 #include "image_view.h"
 #include "kd_tree_model.h"
 #include "lesson_enter.h"
+#include "classroom_layout.h"
 #include "main_window.h"
 #include "pixel_inspector.h"
 #include "presenter.h"
@@ -140,6 +141,7 @@ QJsonObject dumpState(MainWindow& w) {
     o["tree"] = tree;
   }
   o["window"] = QJsonArray{w.width(), w.height()};
+  if (w.classroom() && w.classroom()->active()) o["classroom"] = w.classroom()->dumpState();
   // The picture's zoom and the pixel the view is centred on. A centred pixel puts the canvas's middle near
   // its own middle (x + 0.5), a fitted picture near a pixel corner; a canvas one screen pixel taller moves it
   // by half a screen pixel. A quarter pixel's nudge keeps both away from the edges of the pixel squares.
@@ -271,6 +273,9 @@ void defineOptions(QCommandLineParser& p) {
   opt("screenshot", "Write a PNG of the window.", "FILE");
   opt("screenshot-3d", "Write a PNG of the 3D view.", "FILE");
   opt("dump-state", "Write what the panels and the 3D view show (JSON).", "FILE");
+  opt("narration-window",
+      "lesson: the narration (the lesson pane) in a window of its own, on the second screen when there is "
+      "one (the instructor's laptop); the projector keeps the debugger.");
   opt("scale", "Presenter scale for fonts, line widths and markers (default 1; a lecture room wants 1.5).",
       "S");
   opt("lesson", "Present a lesson (lessons/*.md): the lesson pane beside the debugger.", "FILE");
@@ -546,6 +551,7 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
   // A damaged lesson is reported with its file and line before anything is shown.
   Lesson lesson = lesson_with_numbers(parse_lesson(p.value("lesson").toStdString()));
   Presenter* presenter = window.openLesson(lesson);
+  if (p.isSet("narration-window")) window.classroom()->setNarrationWindow(true);
   if (!anyScript) {
     // Presenting: the whole screen (a projector's), unless --window says otherwise.
     if (!p.isSet("window"))

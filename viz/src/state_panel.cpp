@@ -14,6 +14,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include "raystep/lesson/tree_nodes.h"
 #include "replay.h"
 #include "session.h"
 
@@ -132,6 +133,7 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   crossingTitle_ = new QLabel(tr("t*"));
   treeForm->addRow(crossingTitle_, crossing_);
   stackTitle_ = new QLabel(tr("stack (top first; pushed far children)"));
+  stackTitle_->setWordWrap(true);
   treeForm->addRow(stackTitle_);
   treeForm->addRow(stack_);
   treeBox_->hide();
@@ -148,7 +150,7 @@ StatePanel::StatePanel(Session* session, QWidget* parent) : QWidget(parent), ses
   counterLayout->addWidget(counters_);
   layout->addWidget(counterBox);
 
-  auto* mailBox = mailBoxGroup_ = new QGroupBox(tr("Mailbox: primitives tested for this ray"));
+  auto* mailBox = mailBoxGroup_ = new QGroupBox(tr("Mailbox: this ray's tests"));
   mailboxBox_ = mailBox;
   auto* mailLayout = new QVBoxLayout(mailBox);
   mailLayout->setContentsMargins(2, 2, 2, 2);
@@ -196,8 +198,8 @@ void StatePanel::refresh() {
     const bool bvh = session_->structure() && isBvhKind(session_->structure()->kind);
     treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
     crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
-    mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
-                                : tr("Mailbox: primitives tested for this ray"));
+    mailBoxGroup_->setTitle(bvh ? tr("Tests (each in one leaf)")
+                                : tr("Mailbox: this ray's tests"));
     treeBox_->setVisible(tree);
     gridBox_->setVisible(!tree);
     return;
@@ -208,14 +210,14 @@ void StatePanel::refresh() {
   treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
   const bool octree = isOctreeRay(session_->trace(), *r);
   treeBox_->setTitle(bvh      ? tr("BVH: stack traversal")
-                     : octree ? tr("Octree: parametric traversal (Revelles)")
+                     : octree ? tr("Octree: Revelles' traversal")
                               : tr("Tree: stack traversal"));
   crossingTitle_->setText(bvh || octree ? tr("children") : tr("t*"));
   // The octree's stack holds the cells whose children are being walked, not far children.
   stackTitle_->setText(octree ? tr("stack (top first; cells being walked)")
                               : tr("stack (top first; pushed far children)"));
-  mailBoxGroup_->setTitle(bvh ? tr("Primitives tested (each in one leaf)")
-                              : tr("Mailbox: primitives tested for this ray"));
+  mailBoxGroup_->setTitle(bvh ? tr("Tests (each in one leaf)")
+                              : tr("Mailbox: this ray's tests"));
   gridBox_->setVisible(!tree || s.cellEvent >= 0);
   if (tree || bvh) refreshTree(*r, s);
   ray_->setText(
@@ -259,7 +261,7 @@ void StatePanel::refresh() {
                           .arg(s.accepted ? tr("(accepted)") : s.deferred ? tr("(deferred: beyond the cell's exit)")
                                                                           : tr("(candidate)")));
   else nearest_->setText(s.ended ? tr("none: a miss") : tr("none yet"));
-  rule_->setText(conceal_ ? tr("Hidden until the quiz's answer is revealed: it says what the walk does next.")
+  rule_->setText(conceal_ ? tr("Shown with the answer.")
                           : QString::fromStdString(explainRule(session_->trace(), *r, s)));
   const RayCounters& k = s.counters;
   QString walk = bvh ? tr("nodes %1 &nbsp; box tests %2 &nbsp; pushes %3 &nbsp; pops %4 &nbsp; skips %5")
@@ -295,12 +297,14 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                              .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
                    : octree ? tr("inner cell, 8 children")
                             : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
-    node_->setText(tr("<b>%1</b> (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
+    const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), n.node) : "";
+    node_->setText(tr("<b>%1</b>%7 (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)
                        .arg(n.depth)
                        .arg(num(n.t_min_node), num(n.t_max_node))
-                       .arg(n.type == EventType::pop ? tr(" <i>popped</i>") : QString()));
+                       .arg(n.type == EventType::pop ? tr(" <i>popped</i>") : QString())
+                       .arg(path.empty() ? QString() : QString(" <b>%1</b>").arg(QString::fromStdString(path))));
   } else {
     node_->setText(tr("<i>not in the tree yet</i>"));
   }
@@ -355,7 +359,7 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                              .arg(c.nearIsBelow ? tr("below") : tr("above"))
                              .arg(which));
   } else {
-    crossing_->setText(tr("<i>- (the current node is not an inner node being split)</i>"));
+    crossing_->setText(tr("<i>none: not an inner node</i>"));
   }
   // The stack, top first; the entry just pushed in bold.
   int rows = int(s.stack.size());
@@ -364,7 +368,11 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   stack_->setFixedHeight(stack_->horizontalHeader()->height() + rowHeight_ * std::clamp(rows, 1, 8) + 4);
   for (int row = 0; row < rows; ++row) {
     const StackEntry& e = s.stack[size_t(rows - 1 - row)];
-    QString cells[4] = {QString::number(e.node), QString::number(e.depth), num(e.tMin), num(e.tMax)};
+    // The node by id and by its path in the slides' notation (LLR: below, below, above).
+    const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), e.node) : "";
+    QString cells[4] = {path.empty() ? QString::number(e.node)
+                                     : QString("%1 %2").arg(e.node).arg(QString::fromStdString(path)),
+                        QString::number(e.depth), num(e.tMin), num(e.tMax)};
     bool justPushed = e.pushEvent == s.step;
     for (int col = 0; col < 4; ++col) {
       auto* item = stack_->item(row, col);
@@ -474,6 +482,7 @@ void StatePanel::setScale(double scale) {
   rowHeight_ = int(std::lround(18 * scale));
   stack_->verticalHeader()->setDefaultSectionSize(rowHeight_);
   stack_->setMinimumHeight(stack_->horizontalHeader()->sizeHint().height() + 5 * rowHeight_ + 4);
+  mailboxView_->verticalHeader()->setDefaultSectionSize(rowHeight_);
   refresh();
 }
 

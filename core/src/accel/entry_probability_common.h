@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "raystep/accel/kdtree_entry_probability.h"
+#include "raystep/accel/random_lines.h"
 #include "raystep/render/sampler.h"
 
 namespace raystep::entry_probability {
@@ -68,18 +69,9 @@ std::vector<KdNodeEntry> measure(const View& tree, const Accel& accel, size_t li
   Pcg32 rng(seed, 0);
   size_t kept = 0, cast = 0;
   for (size_t attempts = 0; kept < lines && attempts < 64 * lines; ++attempts) {
-    // An isotropic direction, and an offset uniform on the disc of the bounding sphere perpendicular to it
-    // (the same lines for every tree for the same seed and root box).
-    float z = 1.f - 2.f * rng.uniform(), phi = 6.2831853f * rng.uniform();
-    float s = std::sqrt(std::max(0.f, 1.f - z * z));
-    glm::vec3 d(s * std::cos(phi), s * std::sin(phi), z);
-    glm::vec3 axis = std::fabs(d.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-    glm::vec3 u = glm::normalize(glm::cross(d, axis));
-    glm::vec3 v = glm::cross(d, u);
-    float r = radius * std::sqrt(rng.uniform()), a = 6.2831853f * rng.uniform();
-    Ray ray;
-    ray.origin = centre + r * (std::cos(a) * u + std::sin(a) * v) - 2.f * radius * d;
-    ray.direction = d;
+    // Crofton's lines (random_lines.h) through the bounding sphere (the same lines for every tree for the
+    // same seed and root box).
+    const Ray ray = random_line(rng, centre, radius);
     SlabRay line(ray);
     if (!intersect_slabs(root, line, nullptr, nullptr)) continue;
     ++kept;

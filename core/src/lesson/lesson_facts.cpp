@@ -16,8 +16,10 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
+#include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/octree.h"
+#include "raystep/accel/random_lines.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/reference.h"
 #include "raystep/report/aa_report.h"
@@ -51,6 +53,7 @@ struct LessonFacts::Impl {
   std::shared_ptr<const CostReport> cost;
   std::shared_ptr<const AaReport> aa_report;
   std::shared_ptr<const std::vector<BvolReportRow>> bvol;
+  std::shared_ptr<const std::vector<KdNodeEntry>> entries;
   Impl(const StepWorld& world, const LessonState& state) : w(world), s(state) {}
 
   [[noreturn]] static void fail(const std::string& what) { throw InputError("", 0, what); }
@@ -226,6 +229,25 @@ struct LessonFacts::Impl {
       kinds += (kinds.empty() ? "" : ", ") + row.kind;
     }
     fail("the bounding-volume report has no kind '" + kind + "' (kinds: " + kinds + ")");
+  }
+  // Crofton's theorem on the kd-tree (`raystep kdtree-stats`): its node at a path, its predicted entry
+  // probability S_node / S_root, and the fractions of 100,000 random lines through the root that cross it
+  // and, cast as rays, enter it.
+  const KdTree& kd() const {
+    const auto* kd = dynamic_cast<const KdTree*>(w.accel.get());
+    if (!kd) fail("the structure is not a kd-tree (accel: kd)");
+    return *kd;
+  }
+  uint32_t kd_node(const std::string& path) const {
+    return kd_node_by_path(kd().data(), path == "root" ? std::string() : path);
+  }
+  const KdNodeEntry& entry(const std::string& path) {
+    const uint32_t id = kd_node(path);
+    if (!entries)
+      entries = memoised<std::vector<KdNodeEntry>>(report_key() + "|entry", [&] {
+        return measure_entry_probability(kd(), 100000, 1);
+      });
+    return (*entries)[id];
   }
   const AaReportRow& aa_row(const std::string& spec) {
     const AaReport& r = aa_rep();
@@ -429,6 +451,20 @@ const std::vector<Fact>& facts() {
          [](I& i, const std::string& a) { return i.cost_factor(a).cut(); }),
       fn("cost.before", true, "a technique's measure without it", [](I& i, const std::string& a) { return i.cost_factor(a).before; }),
       fn("cost.after", true, "a technique's measure with it", [](I& i, const std::string& a) { return i.cost_factor(a).after; }),
+      // Crofton's theorem: random lines (random_lines.h) against the kd-tree's root box and its nodes.
+      fact("crofton.box_predicted", "(S/4) / (pi R^2): the share of random lines through the root box's bounding sphere that meet the box, by Cauchy-Crofton",
+           [](I& i) { return lines_meeting_box(i.kd().data().bounds, 0, 1).predicted; }),
+      costly("crofton.box_lines", "the share of 100,000 random lines through the root box's bounding sphere that meet the box, measured",
+             [](I& i) { return lines_meeting_box(i.kd().data().bounds, 100000, 1).measured; }),
+      fn("crofton.predicted", false, "S_node / S_root of the kd node at a path: crofton.predicted(\"L\")",
+         [](I& i, const std::string& a) {
+           const KdTreeData& d = i.kd().data();
+           return double(d.info[i.kd_node(a)].box.surface_area()) / nonzero(d.bounds.surface_area(), "the root's area");
+         }),
+      fn("crofton.lines", true, "the share of 100,000 random lines through the root that cross the node at a path",
+         [](I& i, const std::string& a) { return i.entry(a).lines; }),
+      fn("crofton.rays", true, "the share of the same lines, cast as rays, whose walk entered the node at a path",
+         [](I& i, const std::string& a) { return i.entry(a).rays; }),
       // The bounding-volume report (`raystep bvol-report`, one ray per pixel of the scene's camera).
       fn("bvol.objects", true, "objects (one volume each): bvol.objects(\"bvol\")",
          [](I& i, const std::string& a) { return double(i.bvol_row(a).objects); }),

@@ -382,8 +382,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                                         const std::string&) { s.sample_overlay = parse_on_off(k, v); }},
                   {"show",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
-                     if (v != "window" && v != "3d" && v != "chart" && v != "picture" && v != "report")
-                       bad(k, v, "window, 3d, chart, picture or report");
+                     if (v != "window" && v != "3d" && v != "tree" && v != "chart" && v != "picture" && v != "report")
+                       bad(k, v, "window, 3d, tree, chart, picture or report");
                      s.show = v;
                    }},
                   {"report",

@@ -479,6 +479,12 @@ std::string bsp_plane_text(const TraceNode& n) {
 }
 
 // The Why of a BSP node's first child, with the kernel's own crossing (bsp_crossing).
+// "node 2 (LL)": the trace's id and the path in the slides' notation (none for a wide BVH's node).
+std::string node_named(const Trace* trace, int32_t id) {
+  const std::string path = trace ? trace_node_path_text(*trace, id) : "";
+  return "node " + std::to_string(id) + (path.empty() ? "" : " (" + path + ")");
+}
+
 std::string bsp_first_child_why(const TracedRay& r, const Event& e, const TraceNode& n) {
   const BspPlane plane{n.normal, n.offset};
   const glm::vec3 o = r.ray.origin, d = r.ray.direction;
@@ -593,7 +599,7 @@ Answer first_child_answer(const QuestionContext& c) {
   const bool on_plane = o == n->split || near_below != origin_below;
   const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
   const std::string head =
-      "Node " + std::to_string(e.node) + " splits " + an + " at " + num(n->split) + "; the ray starts at o." +
+      "Node " + node_named(c.trace, e.node).substr(5) + " splits " + an + " at " + num(n->split) + "; the ray starts at o." +
       an + " = " + num(o) +
       (on_plane ? std::string(o == n->split ? ", on the plane" : ", on the plane within rounding") +
                       ", and moves " + (near_below ? "up" : "down") + " (d." + an + " = " + num(d) + ")"
@@ -695,7 +701,7 @@ Answer next_pop_answer(const QuestionContext& c) {
   const std::string hit = hit_prim >= 0 ? "the nearest hit so far, t = " + num(hit_t) + " (primitive " +
                                               std::to_string(hit_prim) + ")"
                                         : "no hit yet";
-  const std::string leaf_name = "Leaf " + std::to_string(ev[size_t(leaf)].node);
+  const std::string leaf_name = "Leaf " + node_named(c.trace, ev[size_t(leaf)].node).substr(5);
   if (any_hit) {
     a.why = leaf_name + ": a shadow ray stops at its first hit, t = " + num(hit_t) + ".";
   } else if (walks_bsp(c) && !stack.empty()) {
@@ -707,14 +713,14 @@ Answer next_pop_answer(const QuestionContext& c) {
     for (size_t i = after; i < ev.size() && ev[i].type == EventType::pop; ++i) {
       const Event& k = ev[i];
       if (!a.stops && k.node == a.node) break;
-      w += "Pop node " + std::to_string(k.node) + ": it starts at t_min = " + num(k.t_min_node) +
+      w += "Pop " + node_named(c.trace, k.node) + ": it starts at t_min = " + num(k.t_min_node) +
            " > t(hit) = " + num(hit_t) + " (beyond the margin " + num(margin) +
            "), so nothing in it can be nearer: drop it. ";
     }
     if (a.stops)
       w += "The stack is empty: the walk stops with " + hit + ".";
     else
-      w += "Pop node " + std::to_string(a.node) + " with [t_min, t_max] = [" + num(stack.back()->t_min_node) +
+      w += "Pop " + node_named(c.trace, a.node) + " with [t_min, t_max] = [" + num(stack.back()->t_min_node) +
            ", " + num(stack.back()->t_max_node) + "]" +
            (hit_prim < 0 ? ": no hit yet, visit it."
                          : ": t(hit) = " + num(hit_t) +
@@ -727,12 +733,12 @@ Answer next_pop_answer(const QuestionContext& c) {
     std::string w = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
                     (stack.size() == 1 ? " node" : " nodes") + ". ";
     for (const Event* k : skipped)
-      w += "Pop node " + std::to_string(k->node) + ": its box starts at t_near = " + num(k->t_min_node) +
+      w += "Pop " + node_named(c.trace, k->node) + ": its box starts at t_near = " + num(k->t_min_node) +
            " > t(hit) = " + num(hit_t) + ", so nothing in it can be nearer: skip it. ";
     if (a.stops)
       w += "The stack is empty: the walk stops with " + hit + ".";
     else
-      w += "Pop node " + std::to_string(a.node) + " and visit it: " +
+      w += "Pop " + node_named(c.trace, a.node) + " and visit it: " +
            (hit_prim < 0 ? std::string("no hit yet") : "its box may hold a hit nearer than t = " + num(hit_t)) +
            ". (Unlike the kd-tree's, a BVH's stack is not sorted by distance: boxes overlap, so an entry beyond "
            "the hit is skipped and the walk goes on.)";
@@ -745,22 +751,22 @@ Answer next_pop_answer(const QuestionContext& c) {
     const Event& top = *stack.back();
     const float margin = tree_margin(r);
     std::string head = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
-                       (stack.size() == 1 ? " node" : " nodes") + "; its top is node " +
-                       std::to_string(top.node) + " with [t_min, t_max] = [" + num(top.t_min_node) + ", " +
+                       (stack.size() == 1 ? " node" : " nodes") + "; its top is " +
+                       node_named(c.trace, top.node) + " with [t_min, t_max] = [" + num(top.t_min_node) + ", " +
                        num(top.t_max_node) + "]. ";
     if (hit_prim < 0)
-      a.why = head + "No hit yet: pop node " + std::to_string(top.node) + " and visit it.";
+      a.why = head + "No hit yet: pop " + node_named(c.trace, top.node) + " and visit it.";
     else if (hit_t < top.t_min_node - margin)
       a.why = head + "t(hit) = " + num(hit_t) + " < t_min = " + num(top.t_min_node) +
               ": the node starts beyond the hit, and every node under it later still. Stop: the hit is final "
               "(traverse until tmin(next node) > tmax(ray)).";
     else if (hit_t < top.t_min_node)
       a.why = head + "t(hit) = " + num(hit_t) + " lies before t_min = " + num(top.t_min_node) +
-              ", but within the walk's rounding margin " + num(margin) + ": pop node " +
-              std::to_string(top.node) + " and visit it, so that no hit is lost to rounding.";
+              ", but within the walk's rounding margin " + num(margin) + ": pop " +
+              node_named(c.trace, top.node) + " and visit it, so that no hit is lost to rounding.";
     else
       a.why = head + "t(hit) = " + num(hit_t) + " >= t_min = " + num(top.t_min_node) +
-              ": a nearer hit may lie in it. Pop node " + std::to_string(top.node) + " and visit it.";
+              ": a nearer hit may lie in it. Pop " + node_named(c.trace, top.node) + " and visit it.";
   }
   if (!a.stops && c.trace) a.node_path = trace_node_path_text(*c.trace, a.node);
   a.text = a.stops ? "the walk stops here"

@@ -44,7 +44,7 @@ struct LessonState {
   NodeSpec node;
   bool follow = false, translucent = false;
   std::optional<double> zoom;   // none: the window's default; 0: fit
-  std::string show = "window";  // the handout's figure: window | 3d | chart | picture | report
+  std::string show = "window";  // the step's figure: window | 3d | tree | chart | picture | report (lesson_figure.h)
   // The report windows the step opens and runs on the scene: "aa", "grid-sweep", "bvol" (the kinds of
   // bounding volumes), comma-separated; "": none. Not carried over: the next step closes them unless it names
   // them.

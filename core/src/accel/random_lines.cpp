@@ -1,0 +1,41 @@
+#include "raystep/accel/random_lines.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace raystep {
+
+Ray random_line(Pcg32& rng, const glm::vec3& centre, float radius) {
+  // An isotropic direction (z uniform in [-1, 1], the azimuth uniform), then a point uniform on the disc.
+  const float z = 1.f - 2.f * rng.uniform(), phi = 6.2831853f * rng.uniform();
+  const float s = std::sqrt(std::max(0.f, 1.f - z * z));
+  const glm::vec3 d(s * std::cos(phi), s * std::sin(phi), z);
+  const glm::vec3 axis = std::fabs(d.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 u = glm::normalize(glm::cross(d, axis));
+  const glm::vec3 v = glm::cross(d, u);
+  const float r = radius * std::sqrt(rng.uniform()), a = 6.2831853f * rng.uniform();
+  Ray ray;
+  ray.origin = centre + r * (std::cos(a) * u + std::sin(a) * v) - 2.f * radius * d;
+  ray.direction = d;
+  return ray;
+}
+
+LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t seed) {
+  LinesMeetingBox out;
+  if (box.empty()) return out;
+  const glm::vec3 centre = box.center();
+  const float radius = 0.5f * glm::length(box.extent());
+  if (!(radius > 0.f)) return out;
+  out.predicted = double(box.surface_area()) / 4.0 / (M_PI * double(radius) * double(radius));
+  if (lines == 0) return out;
+  Pcg32 rng(seed, 0);
+  size_t met = 0;
+  for (size_t i = 0; i < lines; ++i)
+    met += intersect_slabs(box, SlabRay(random_line(rng, centre, radius)), nullptr, nullptr);
+  out.measured = double(met) / double(lines);
+  return out;
+}
+
+}  // namespace raystep
