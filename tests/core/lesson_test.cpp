@@ -327,7 +327,7 @@ TEST(Lesson, ErrorsNameFileAndLine) {
             f + "7: show 'movie': expected window, 3d, tree, chart, picture or report");
   EXPECT_EQ(
       error_of(lesson_with("ask: guess\n")),
-      f + "7: ask 'guess': expected one of next-cell, dda-axis, first-child, next-pop, sah-plane, subdivide");
+      f + "7: ask 'guess': expected one of next-cell, dda-axis, first-child, next-pop, sah-plane, subdivide, bvol-kind");
   EXPECT_EQ(error_of(lesson_with("ask: dda-axis\nask: next-cell\n")), f + "8: a second ask in step 'S'");
   EXPECT_EQ(error_of(lesson_with("just words\n")), f + "7: 'just words': expected key: value");
   EXPECT_EQ(error_of("# T\n## S\n```raystep\nscene: ../scenes/nowhere.json\n```\n"),

@@ -19,6 +19,7 @@
 #include "raystep/lesson/question.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
+#include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/scene_loader.h"
 #include "raystep/trace/record_trace.h"
@@ -337,9 +338,50 @@ TEST(QuestionAcceptance, SubdivideIsTheContrastRule) {
   EXPECT_GE(no, 500);
 }
 
+// bvol-kind: the kind with the fewest false positives per ray in the bounding-volume report of the same
+// scene, every kind's numbers in the Why; the lecture's words accepted, a wrong kind answered with feedback.
+TEST(QuestionAcceptance, BvolKindIsTheReportsFewestInVain) {
+  for (const char* file : {"cornell.json", "moire.json"}) {
+    Scene scene = load_scene(kSource + "/scenes/" + file);
+    QuestionContext c;
+    c.scene = &scene;
+    const Answer a = answer_question(QuestionKind::bvol_kind, c);
+    BvolReportOptions o;
+    o.reps = 1;
+    const std::vector<BvolReportRow> rows = run_bvol_report(scene, o);
+    ASSERT_EQ(rows.size(), 4u);
+    const BvolReportRow* best = &rows[0];
+    for (const BvolReportRow& r : rows)
+      if (r.false_positives_per_ray < best->false_positives_per_ray) best = &r;
+    ASSERT_FALSE(a.volumes.empty()) << file;
+    EXPECT_EQ(a.volumes.front(), best->kind) << file << ": " << a.why;
+    for (const char* words : {"the box", "the sphere", "the 14-DOP", "the oriented box"})
+      EXPECT_NE(a.why.find(words), std::string::npos) << a.why;
+    const std::string typed = best->kind == "bvol"          ? "Box"
+                              : best->kind == "bvol-sphere" ? "sphere"
+                              : best->kind == "bvol-kdop"   ? "14-DOP"
+                                                            : "oriented box";
+    EXPECT_TRUE(prediction_matches(a, typed)) << file;
+    EXPECT_EQ(prediction_feedback(a, typed), "");
+    const std::string wrong = best->kind == "bvol-sphere" ? "box" : "sphere";
+    EXPECT_FALSE(prediction_matches(a, wrong));
+    EXPECT_NE(prediction_feedback(a, wrong), "");
+    EXPECT_THROW(prediction_matches(a, "cone"), InputError);
+  }
+  // The lesson's two scenes: the 14-DOP on the Cornell box (the turned box's corners), the oriented box on
+  // the slanted strips.
+  Scene cornell = load_scene(kSource + "/scenes/cornell.json"), strips = load_scene(kSource + "/scenes/moire.json");
+  QuestionContext c;
+  c.scene = &cornell;
+  EXPECT_EQ(answer_question(QuestionKind::bvol_kind, c).volumes, std::vector<std::string>{"bvol-kdop"});
+  c.scene = &strips;
+  EXPECT_EQ(answer_question(QuestionKind::bvol_kind, c).volumes, std::vector<std::string>{"bvol-obb"});
+}
+
 TEST(Question, NamesAndForms) {
   QuestionKind k;
-  for (const char* name : {"next-cell", "dda-axis", "first-child", "next-pop", "sah-plane", "subdivide"}) {
+  for (const char* name :
+       {"next-cell", "dda-axis", "first-child", "next-pop", "sah-plane", "subdivide", "bvol-kind"}) {
     ASSERT_TRUE(parse_question_kind(name, &k));
     EXPECT_STREQ(question_kind_name(k), name);
     EXPECT_STRNE(question_prompt(k), "");

@@ -74,11 +74,13 @@ void ClassroomLayout::arrange(LessonFigure figure, bool ray, bool mailbox, bool 
   parts_.picture->setVisible(picture);
   parts_.view3d->setVisible(!picture && !chart);
   parts_.state->widget(1)->setVisible(mailbox);  // the mailbox table
-  // The tree without a ray: the 3D view shows the structure, the state panel would say "no ray yet".
-  const bool state = ray || !tree;
+  // Without a traced ray the state panel would only say "no ray yet", and with the pixel inspector open the
+  // inspector gives the pixel's numbers: the figure takes its room.
+  const bool inspector = parts_.pixelDock->isVisible();
+  const bool state = ray && !(picture && inspector);
   parts_.state->setVisible(state);
-  parts_.columns->setSizes({picture ? figureWidth : 0, picture ? 0 : figureWidth + (state ? 0 : stateWidth),
-                            state ? stateWidth : 0});
+  const int figureRoom = figureWidth + (state ? 0 : stateWidth);
+  parts_.columns->setSizes({picture ? figureRoom : 0, picture ? 0 : figureRoom, state ? stateWidth : 0});
 
   // The tree with a ray: the tree below, the state panel above it in the 3D view's place
   // (its stack holds nodes of that tree). Else the dock below, the whole height for the chart.
@@ -104,8 +106,21 @@ void ClassroomLayout::arrange(LessonFigure figure, bool ray, bool mailbox, bool 
       view->header()->resizeSections(QHeaderView::ResizeToContents);
     }
   }
-  if (parts_.pixelDock->isVisible())
-    window_.resizeDocks({parts_.pixelDock}, {int(height * 0.42)}, Qt::Vertical);
+  if (inspector) {
+    const int dockHeight = int(height * 0.5);
+    window_.resizeDocks({parts_.pixelDock}, {dockHeight}, Qt::Vertical);
+    // The samples drawn as large as the dock is tall, the rows of its tables as tall as the text.
+    if (auto* split = parts_.pixelDock->widget()->findChild<QSplitter*>()) {
+      // The adaptive squares (a third column) take the larger share: their Why gives the numbers.
+      const int rest = std::max(0, width - pane - dockHeight);
+      const bool squares = split->count() > 2 && split->widget(2)->isVisibleTo(split);
+      const int middle = squares ? rest * 2 / 5 : rest;
+      split->setSizes({dockHeight, middle, rest - middle});
+    }
+    const int row = QFontMetrics(QApplication::font()).height() + 6;
+    for (QTableView* t : parts_.pixelDock->widget()->findChildren<QTableView*>())
+      t->verticalHeader()->setDefaultSectionSize(row);
+  }
   window_.resize(width, height);
   settle();
   // The structure line as tall as its text at the column's width (it wraps to more lines after a build).

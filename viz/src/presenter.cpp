@@ -139,7 +139,8 @@ void Presenter::goTo(int index) {
   }
   // A question about the walk's next move: the panels that say it wait for Reveal.
   const bool walkQuestion =
-      step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide;
+      step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide &&
+      *step.ask != QuestionKind::bvol_kind;
   concealWalk(walkQuestion);
   window_.arrangeForStep(step.state);
   if (step.ask) {

@@ -32,6 +32,8 @@ QString placeholderOf(QuestionKind kind, const std::string& walk) {
                          "or leaf; or click the chart");
     case QuestionKind::subdivide:
       return QObject::tr("yes or no");
+    case QuestionKind::bvol_kind:
+      return QObject::tr("box, sphere, 14-DOP or oriented box");
   }
   return {};
 }
@@ -101,6 +103,8 @@ QuizPanel::QuizPanel(QWidget* parent) : QWidget(parent) {
 
   yesNo_ = answerButtons({"yes", "no"}, "quiz_");
   layout->addWidget(yesNo_);
+  volumes_ = answerButtons({"box", "sphere", "14-DOP", "oriented box"}, "quiz_");
+  layout->addWidget(volumes_);
 
   result_ = new QLabel;
   result_->setObjectName("quizResult");
@@ -175,6 +179,7 @@ void QuizPanel::updateInputs() {
   // An octree's first child is a cell of eight, not a side of a plane: typed (octant or id).
   childInputs_->setVisible(asking && *kind_ == QuestionKind::first_child && walk_ != "octree");
   yesNo_->setVisible(asking && *kind_ == QuestionKind::subdivide);
+  volumes_->setVisible(asking && *kind_ == QuestionKind::bvol_kind);
   predictStep_->setVisible(predicting);
   result_->setVisible(!result_->text().isEmpty());
 }

@@ -63,6 +63,7 @@ class QuizPanel : public QWidget {
   QRadioButton* above_;
   QCheckBox* farPushed_;
   QWidget* yesNo_;
+  QWidget* volumes_ = nullptr;  // bvol-kind: the four kinds
   QPushButton* reveal_;
   QLabel* result_;
   QLabel* score_;

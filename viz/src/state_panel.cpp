@@ -298,13 +298,13 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                    : octree ? tr("inner cell, 8 children")
                             : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
     const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), n.node) : "";
-    node_->setText(tr("<b>%1</b>%7 (%2), depth %3, [t_min, t_max] = [%4, %5]%6")
+    node_->setText(tr("<b>%1</b> (%2), depth %3%7, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
                        .arg(what)
                        .arg(n.depth)
                        .arg(num(n.t_min_node), num(n.t_max_node))
                        .arg(n.type == EventType::pop ? tr(" <i>popped</i>") : QString())
-                       .arg(path.empty() ? QString() : QString(" <b>%1</b>").arg(QString::fromStdString(path))));
+                       .arg(path.empty() ? QString() : QString(", path <b>%1</b>").arg(QString::fromStdString(path))));
   } else {
     node_->setText(tr("<i>not in the tree yet</i>"));
   }
@@ -359,7 +359,7 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
                              .arg(c.nearIsBelow ? tr("below") : tr("above"))
                              .arg(which));
   } else {
-    crossing_->setText(tr("<i>none: not an inner node</i>"));
+    crossing_->setText(tr("<i>none: no split at this event</i>"));
   }
   // The stack, top first; the entry just pushed in bold.
   int rows = int(s.stack.size());
@@ -371,7 +371,7 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
     // The node by id and by its path in the slides' notation (LLR: below, below, above).
     const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), e.node) : "";
     QString cells[4] = {path.empty() ? QString::number(e.node)
-                                     : QString("%1 %2").arg(e.node).arg(QString::fromStdString(path)),
+                                     : QString("%1 (%2)").arg(e.node).arg(QString::fromStdString(path)),
                         QString::number(e.depth), num(e.tMin), num(e.tMax)};
     bool justPushed = e.pushEvent == s.step;
     for (int col = 0; col < 4; ++col) {

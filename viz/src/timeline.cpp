@@ -1,6 +1,10 @@
 #include "timeline.h"
 
+#include <algorithm>
+
+#include <QApplication>
 #include <QComboBox>
+#include <QFontMetrics>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QToolButton>
@@ -54,7 +58,7 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   speed_->setSuffix(tr(" ev/s"));
   row->addWidget(speed_);
   row->addSpacing(16);
-  // Jump to and Ray: one group, on the first row, or on the slider's row when the timeline is compact.
+  // Jump to: on the first row, or on the slider's row when the timeline is compact.
   jumpBox_ = new QWidget;
   auto* jumpRow = new QHBoxLayout(jumpBox_);
   jumpRow->setContentsMargins(0, 0, 0, 0);
@@ -77,6 +81,12 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
   kind_->setFocusPolicy(Qt::NoFocus);
   row->addWidget(kind_);
   QToolButton* nextKind = button(tr("next >"), tr("Next event of this kind"));
+  // The ray's picker stays on the first row: on the slider's row it would squeeze the slider out.
+  auto* rayBox = new QWidget;
+  auto* rayRow = new QHBoxLayout(rayBox);
+  rayRow->setContentsMargins(0, 0, 0, 0);
+  buttons->addWidget(rayBox);
+  row = rayRow;
   row->addSpacing(16);
   row->addWidget(new QLabel(tr("Ray")));
   ray_ = new QComboBox;
@@ -176,7 +186,11 @@ void Timeline::setCompact(bool on) {
   row1->removeWidget(jumpBox_);
   row2_->removeWidget(jumpBox_);
   if (on) row2_->insertWidget(0, jumpBox_);
-  else row1->insertWidget(row1->count() - 1, jumpBox_);  // before the stretch
+  else row1->insertWidget(row1->count() - 2, jumpBox_);  // before the ray's picker and the stretch
+  // Room for the longest position at the application's font (the presenter scale's): never cut off.
+  QFont bold = QApplication::font();
+  bold.setBold(true);
+  position_->setMinimumWidth(std::max(230, QFontMetrics(bold).horizontalAdvance("event 000 / 000: hit_deferred")));
 }
 
 void Timeline::setLessonKeys(bool on) {

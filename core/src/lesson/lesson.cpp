@@ -58,7 +58,7 @@ std::string join_trimmed(const std::vector<std::string>& lines) {
 std::string question_kinds_list() {
   std::string s;
   for (QuestionKind k : {QuestionKind::next_cell, QuestionKind::dda_axis, QuestionKind::first_child,
-                         QuestionKind::next_pop, QuestionKind::sah_plane, QuestionKind::subdivide})
+                         QuestionKind::next_pop, QuestionKind::sah_plane, QuestionKind::subdivide, QuestionKind::bvol_kind})
     s += (s.empty() ? "" : ", ") + std::string(question_kind_name(k));
   return s;
 }

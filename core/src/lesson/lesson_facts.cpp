@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
@@ -107,7 +108,13 @@ struct LessonFacts::Impl {
   struct TreeShape {
     double nodes = 0, leaves = 0, empty_leaves = 0, depth = 0, references = 0, sah_cost = NAN;
   };
-  TreeShape tree() const {
+  // The tree's shape, measured once per step however many tree.* facts the step writes.
+  const TreeShape& tree() {
+    if (!shape) shape = measureTree();
+    return *shape;
+  }
+  std::optional<TreeShape> shape;
+  TreeShape measureTree() const {
     TreeShape t;
     const Accelerator* a = w.accel.get();
     if (const auto* kd = dynamic_cast<const KdTree*>(a)) {

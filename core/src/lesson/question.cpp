@@ -18,6 +18,7 @@
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
+#include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
 
@@ -42,6 +43,9 @@ constexpr KindInfo kKinds[] = {
      "Which plane does the SAH choose for this node (axis and position), or a leaf?"},
     {QuestionKind::subdivide, "subdivide",
      "Does adaptive sampling subdivide this pixel (more than its 5 first samples)?"},
+    {QuestionKind::bvol_kind, "bvol-kind",
+     "Which kind of bounding volume do the rays enter in vain least often: the box, the sphere, the 14-DOP or "
+     "the oriented box?"},
 };
 
 [[noreturn]] void fail(const std::string& what) {
@@ -881,6 +885,50 @@ Answer subdivide_answer(const QuestionContext& c) {
   return a;
 }
 
+// ---- The bounding volumes: bvol-kind, from the bounding-volume report on the scene's camera rays.
+
+// A kind in the lecture's words, and the report's name for it.
+struct VolumeKind {
+  const char* report;
+  const char* words;
+};
+constexpr VolumeKind kVolumes[] = {{"bvol", "the box"},
+                                   {"bvol-sphere", "the sphere"},
+                                   {"bvol-kdop", "the 14-DOP"},
+                                   {"bvol-obb", "the oriented box"}};
+const char* volume_words(const std::string& report) {
+  for (const VolumeKind& v : kVolumes)
+    if (report == v.report) return v.words;
+  return "?";
+}
+
+Answer bvol_kind_answer(const QuestionContext& c) {
+  if (!c.scene) fail("bvol-kind: no scene");
+  BvolReportOptions o;
+  o.reps = 1;  // the counts do not depend on the timing passes
+  const std::vector<BvolReportRow> rows = run_bvol_report(*c.scene, o);
+  if (rows.empty()) fail("bvol-kind: the bounding-volume report measured nothing");
+  double fewest = rows.front().false_positives_per_ray;
+  for (const BvolReportRow& r : rows) fewest = std::min(fewest, r.false_positives_per_ray);
+  Answer a;
+  a.kind = QuestionKind::bvol_kind;
+  std::string per;
+  for (const BvolReportRow& r : rows) {
+    // A tie within the report's rounding (two kinds fit the same objects alike) accepts both.
+    if (r.false_positives_per_ray <= fewest + 1e-9 * std::max(1.0, fewest)) a.volumes.push_back(r.kind);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s %.3g in vain of %.3g entered (%.1f%%)", volume_words(r.kind),
+                  r.false_positives_per_ray, r.entered_per_ray, 100.0 * r.false_positive_rate);
+    per += (per.empty() ? "" : "; ") + std::string(buf);
+  }
+  for (const std::string& v : a.volumes) a.text += (a.text.empty() ? "" : " and ") + std::string(volume_words(v));
+  a.text += a.volumes.size() == 1 ? ": it is entered in vain least often" : ": they tie";
+  a.why = "Per ray, over " + std::to_string(rows.front().rays) + " camera rays (one per pixel): " + per +
+          ". A volume is entered in vain when the ray enters it but misses the object inside: the emptier "
+          "the space a kind encloses around the objects, the more often.";
+  return a;
+}
+
 std::string normalised(const std::string& s) {
   std::string out;
   for (char ch : s)
@@ -942,6 +990,8 @@ Answer answer_question(QuestionKind kind, const QuestionContext& context) {
       return sah_plane_answer(context);
     case QuestionKind::subdivide:
       return subdivide_answer(context);
+    case QuestionKind::bvol_kind:
+      return bvol_kind_answer(context);
   }
   fail("unknown question");
 }
@@ -1042,6 +1092,16 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
       if (p == "yes") return answer.subdivided;
       if (p == "no") return !answer.subdivided;
       return bad("yes or no");
+    case QuestionKind::bvol_kind: {
+      const std::string kind = p == "box" || p == "aabb" || p == "bvol" ? "bvol"
+                               : p == "sphere" || p == "bvol-sphere"   ? "bvol-sphere"
+                               : p == "14-dop" || p == "kdop" || p == "k-dop" || p == "dop" || p == "bvol-kdop"
+                                   ? "bvol-kdop"
+                               : p == "orientedbox" || p == "obb" || p == "oriented" || p == "bvol-obb" ? "bvol-obb"
+                                                                                                       : "";
+      if (kind.empty()) return bad("box, sphere, 14-dop or oriented box");
+      return std::find(answer.volumes.begin(), answer.volumes.end(), kind) != answer.volumes.end();
+    }
   }
   return false;
 }
@@ -1109,6 +1169,14 @@ std::string prediction_feedback(const Answer& answer, const std::string& predict
                "some channel: the samples disagree, so the pixel is split.";
       return "The five first samples agree within the threshold: the contrast (max - min) / (max + min) "
              "stays below it, and the pixel keeps its 5 samples, even if a feature hides between them.";
+    case QuestionKind::bvol_kind:
+      if (p == "sphere" || p == "bvol-sphere")
+        return "The smallest sphere around a flat or a long object is mostly empty: a ray that enters it "
+               "usually passes beside the object. A sphere fits only round objects well.";
+      return "Picture the empty space between each kind of volume and the object it encloses: the axis-aligned "
+             "box fits walls in the axis planes exactly but not a turned or slanted object; more slabs (the "
+             "14-DOP's diagonals) cut corners off; a box turned with the object (the oriented box) fits long "
+             "slanted shapes.";
   }
   return "";
 }

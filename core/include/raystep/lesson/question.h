@@ -1,13 +1,15 @@
 // The quiz: "predict, then step". A question's answer is computed from the recorded walk or the build when the
 // step is entered, never stored in the lesson, so it follows the kernels: the next cell and the 3D-DDA's axis
 // from the grid's cell events, the first child and the push from the tree's node/push events, the next pop or
-// the stop from the walk, the SAH's plane from the built node, the adaptive subdivision from the sampler.
+// the stop from the walk, the SAH's plane from the built node, the adaptive subdivision from the sampler, the
+// bounding volume entered in vain least often from the bounding-volume report on the scene.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/scene/scene.h"
@@ -15,7 +17,7 @@
 
 namespace raystep {
 
-enum class QuestionKind { next_cell, dda_axis, first_child, next_pop, sah_plane, subdivide };
+enum class QuestionKind { next_cell, dda_axis, first_child, next_pop, sah_plane, subdivide, bvol_kind };
 
 const char* question_kind_name(QuestionKind kind);  // "next-cell", ...
 bool parse_question_kind(const std::string& name, QuestionKind* kind);
@@ -62,6 +64,9 @@ struct Answer {
   // subdivide
   bool subdivided = false;
   uint32_t samples = 0;  // the pixel's samples under the settings
+  // bvol-kind: the kinds of bounding volume (bvol, bvol-sphere, bvol-kdop, bvol-obb) entered in vain least
+  // often per ray on the scene's camera rays (the bounding-volume report; more than one on a tie)
+  std::vector<std::string> volumes;
   // The octree (walk "octree"): next-cell and first-child name a cell, node and first_child its id, octant
   // its place in its parent (bit 0: upper x, bit 1: upper y, bit 2: upper z; -1: unknown).
   std::string walk;  // "octree", "bsp" where the answer is in that structure's terms; else ""
@@ -81,7 +86,7 @@ Answer answer_question(QuestionKind kind, const QuestionContext& context);
 //   or "z" then optionally ",POSITION" in world units (within 1e-4 of the node's extent) or ",PERCENT%" across
 //   the node as the SAH chart's axis reads (0% the node's minimum, 100% its maximum; within 2%), or "leaf";
 //   subdivide: "yes" or
-//   "no". An octree's next-cell and first-child: a node id or an octant "x+y-z+" (next-cell also "stop").
+//   "no"; bvol-kind: "box", "sphere", "14-dop" (or "kdop") or "oriented box" (or "obb"). An octree's next-cell and first-child: a node id or an octant "x+y-z+" (next-cell also "stop").
 // Throws InputError("", 0, "what") for a form the kind does not accept.
 bool prediction_matches(const Answer& answer, const std::string& prediction);
 
