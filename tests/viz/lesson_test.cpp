@@ -398,6 +398,44 @@ TEST(Lesson, HandoutHasAFigurePerStepAndFoldedAnswers) {
   }
 }
 
+// Lesson 12's handout: each figure is the one its step names, never the window. The stack's step draws the
+// tree (the current node yellow, the node waiting on the stack pink, the root visited blue) with the state
+// panel beside it; the walk's steps show the 3D view with the state panel; the pseudocode stays code.
+TEST(Lesson, Lesson12HandoutDrawsTheTreeAndTheWalk) {
+  const std::string lesson = kSourceDir + "/lessons/12-kdtree-traversal.md";
+  if (!fs::exists(lesson)) GTEST_SKIP() << "no lessons/ yet";
+  const raystep::Lesson parsed = raystep::parse_lesson(lesson);
+  const std::string dir = kOut + "/handout12";
+  fs::remove_all(dir);
+  GuiRun r = gui("--lesson " + quote(lesson) + " --export-handout " + quote(dir) + " --quit", "lesson_handout12");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string html = slurp(dir + "/index.html");
+  EXPECT_NE(html.find("<pre><code>Intersect(node, tmin, tmax):\n  if node is a leaf"), std::string::npos)
+      << "the pseudocode keeps its lines and indentation";
+  int trees = 0;
+  for (size_t i = 0; i < parsed.steps.size(); ++i) {
+    const std::string n = std::to_string(i + 1);
+    const auto at = html.find("<figcaption>Step " + n + ": ");
+    ASSERT_NE(at, std::string::npos) << n;
+    const std::string caption = html.substr(at, html.find("</figcaption>", at) - at);
+    EXPECT_EQ(caption.find("the debugger"), std::string::npos) << caption;
+    const raystep::Rgb8Image img = raystep::read_png_rgb8(dir + "/step-" + n + ".png");
+    EXPECT_LT(img.width, 3000) << n;
+    if (parsed.steps[i].state.show == "tree") {
+      ++trees;
+      EXPECT_NE(caption.find("the tree and the state panel"), std::string::npos) << caption;
+      // The boxes of the tree drawing: at least one current node, one on the stack, one visited.
+      const json yellow = {255, 214, 0}, pink = {255, 130, 170}, blue = {90, 140, 255};
+      EXPECT_GT(countColor(img, yellow, 0, 0, img.width, img.height, 2), 400) << n;
+      EXPECT_GT(countColor(img, pink, 0, 0, img.width, img.height, 2), 400) << n;
+      EXPECT_GT(countColor(img, blue, 0, 0, img.width, img.height, 2), 400) << n;
+    } else {
+      EXPECT_NE(caption.find("the 3D view"), std::string::npos) << caption;
+    }
+  }
+  EXPECT_GE(trees, 1) << "lesson 12 draws the tree where its stack holds nodes";
+}
+
 // The classroom layout: lessons 09, 11, 12 and 16 presented at scale 2 on a 1920 x 1080 projector. In every
 // step the window fits the screen, the step's figure (the 3D view, the picture, the tree or the chart) takes at
 // least half of its width (the tree, below the state panel, the width of the debugger), the text is about

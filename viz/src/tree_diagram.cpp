@@ -71,24 +71,33 @@ QImage drawTreeDiagram(const TreeShape& tree, const TreeMarks& marks, int whole)
   };
   place(0, 0, -1);
 
-  const int width = std::max(2 * kMargin + slots * kSlot, 560);
+  // As wide as the tree, or as its legend line.
+  QFont legendFont;
+  legendFont.setPixelSize(14);
+  const QFontMetrics lm(legendFont);
+  const QString title = n <= whole ? QObject::tr("%1: %2 nodes").arg(tree.name()).arg(n)
+                                   : QObject::tr("%1: %2 nodes; the branches off the marked nodes folded").arg(tree.name()).arg(n);
+  const QString legendText[] = {QObject::tr("current node"), QObject::tr("on the stack"), QObject::tr("visited"),
+                                QObject::tr("selected")};
+  int legendWidth = kMargin + lm.horizontalAdvance(title) + kMargin;
+  for (const QString& t : legendText) legendWidth += 22 + lm.horizontalAdvance(t) + 18;
+  const int width = std::max(2 * kMargin + slots * kSlot, legendWidth);
   const int height = kLegend + 2 * kMargin + depthMax * kLevel + kBoxH + 16;
   QImage image(width, height, QImage::Format_RGB32);
   image.fill(Qt::white);
   QPainter p(&image);
   p.setRenderHint(QPainter::Antialiasing);
-  QFont font = p.font();
-  font.setPixelSize(14);
+  QFont font = legendFont;
   p.setFont(font);
   auto centre = [&](const Placed& e) {
     return QPointF(kMargin + e.x * kSlot + kSlot / 2.0, kLegend + kMargin + e.depth * kLevel + kBoxH / 2.0);
   };
 
   // The legend: the colours' meanings, and whether the tree is drawn whole.
-  const std::pair<QColor, QString> legend[] = {{palette::currentCell, QObject::tr("current node")},
-                                               {palette::stackNode, QObject::tr("on the stack")},
-                                               {palette::visitedCell, QObject::tr("visited")},
-                                               {palette::selectedNode, QObject::tr("selected")}};
+  const std::pair<QColor, QString> legend[] = {{palette::currentCell, legendText[0]},
+                                               {palette::stackNode, legendText[1]},
+                                               {palette::visitedCell, legendText[2]},
+                                               {palette::selectedNode, legendText[3]}};
   int lx = kMargin;
   for (const auto& [colour, text] : legend) {
     p.fillRect(QRect(lx, 10, 16, 16), colour);
@@ -97,8 +106,7 @@ QImage drawTreeDiagram(const TreeShape& tree, const TreeMarks& marks, int whole)
     p.drawText(lx + 22, 23, text);
     lx += 22 + QFontMetrics(font).horizontalAdvance(text) + 18;
   }
-  p.drawText(lx, 23, n <= whole ? QObject::tr("%1: %2 nodes").arg(tree.name()).arg(n)
-                                : QObject::tr("%1: %2 nodes, drawn along the walk").arg(tree.name()).arg(n));
+  p.drawText(lx, 23, title);
 
   // Edges first, each labelled by its side (L / R, an octant).
   QFont small = font;
