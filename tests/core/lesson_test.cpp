@@ -77,7 +77,7 @@ TEST(Lesson, EveryKeyCarriesOver) {
   ASSERT_EQ(l.steps.size(), 2u);
   EXPECT_EQ(l.steps[0].changes.size(), 34u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 38u);  // + step, node, sample (below) and report (not carried over)
+  EXPECT_EQ(lesson_setting_keys().size(), 39u);  // + step, node, sample (below) and report (not carried over)
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");

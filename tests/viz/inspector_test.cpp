@@ -177,6 +177,37 @@ TEST(Inspector, SelectedNodeIsHighlightedWhereItsBoxProjects) {
             0);
 }
 
+// The build split by split (--build-planes): the 3D view draws the plane of every inner node made before the
+// selected one (the depth-first build order is the node ids'), in the built planes' colour, and none when off.
+TEST(Inspector, BuildPlanesAreTheNodesSplitBeforeTheSelectedOne) {
+  raystep::KdTreeData tree = raystep::build_kdtree(cornell(), KdOptions{});
+  // The built planes' colour in the 3D view of a state (the scene's own pixels may come near it).
+  auto planePixels = [](const json& view, const std::string& tag) {
+    raystep::Rgb8Image img = raystep::read_png_rgb8(kOut + "/" + tag + ".png");
+    const json& vp = view["viewport"];
+    const double vx0 = vp[0], vy0 = vp[1];
+    return countColor(img, view["colors"]["built_plane"], vx0, vy0, vx0 + vp[2].get<double>() - 1,
+                      vy0 + vp[3].get<double>() - 1, 6);
+  };
+  const int node3 = 3;
+  json off = inspect("--node " + std::to_string(node3), "inspector_build_planes_off");
+  EXPECT_FALSE(off["view"].contains("build_planes"));
+  const int background = planePixels(off["view"], "inspector_build_planes_off");
+  for (int node : {0, node3, int(tree.nodes[0].above_child())}) {
+    int inner = 0;
+    for (int id = 0; id < node; ++id) inner += !tree.nodes[size_t(id)].is_leaf();
+    const std::string tag = "inspector_build_planes" + std::to_string(node);
+    json state = inspect("--node " + std::to_string(node) + " --build-planes", tag);
+    const json& view = state["view"];
+    ASSERT_TRUE(view.contains("build_planes")) << node;
+    EXPECT_EQ(view["build_planes"].get<int>(), inner) << "node " << node;
+    if (node == node3) {
+      ASSERT_GT(inner, 0);
+      EXPECT_GT(planePixels(view, tag), background + 30) << "the planes made before node 3 are drawn";
+    }
+  }
+}
+
 TEST(Inspector, ClickIn3DViewSelectsTheLeafHoldingThePoint) {
   // Where the 3D view is: from a first run; then click its centre (the back wall of the Cornell box).
   json first = inspect("--panel sah", "inspector_pick_layout");

@@ -107,6 +107,7 @@ TEST(Palette, WalkColoursStayApartForColourBlindViewers) {
                 {"nearest hit so far", rgb(hitCandidate)},
                 {"stack", rgb(stackNode)},
                 {"selected node", rgb(selectedNode)},
+                {"built plane", rgb(builtPlane)},
                 {"BVH first child", rgb(bvhChildFirst)},
                 {"BVH other child", rgb(bvhChildOther)},
                 {"BVH overlap", rgb(bvhOverlap)},

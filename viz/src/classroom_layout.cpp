@@ -94,9 +94,9 @@ void ClassroomLayout::arrange(LessonFigure figure, bool ray, bool mailbox, bool 
   if (dock) {
     // The chart: the selected node's text beside it, the tree out of the way (the node is named).
     parts_.treeSplit->widget(0)->setVisible(!chart);
-    // The tree figure: the tree alone, the whole width (the chart is a figure of its own).
-    parts_.treeSplit->widget(1)->setVisible(!tree);
-    const int treeShare = chart ? 0 : tree ? width - pane : (width - pane) / 2;
+    // The tree alone, the whole width, unless the chart is the figure (it is a figure of its own).
+    parts_.treeSplit->widget(1)->setVisible(chart);
+    const int treeShare = chart ? 0 : width - pane;
     parts_.treeSplit->setSizes({treeShare, width - pane - treeShare});
     window_.resizeDocks({parts_.treeDock},
                         {chart ? height : int(height * (treeWithRay ? 0.29 : tree ? 0.5 : 0.36))}, Qt::Vertical);

@@ -234,6 +234,7 @@ void enterState(MainWindow& w, const LessonState& st) {
   for (int i = 0; i < 3; ++i) QApplication::processEvents();
   view->setUpdatesEnabled(true);
   if (view->translucent() != st.translucent) view->setTranslucent(st.translucent);
+  if (view->buildPlanes() != st.build_planes) view->setBuildPlanes(st.build_planes);
   if (view->followCell()) view->setFollowCell(false);
   view->restoreHomeCamera();
   if (st.follow) view->setFollowCell(true);

@@ -25,6 +25,7 @@ inline const QColor primTesting{255, 255, 255};   // being tested now: white out
 inline const QColor primHit{40, 220, 60};         // tested: hit
 inline const QColor primMissed{70, 80, 110};      // tested: missed: dark slate
 inline const QColor primSkipped{170, 90, 255};    // skipped: already tested (mailbox)
+inline const QColor builtPlane{195, 240, 180};    // kd-tree: planes split before the selected node: pale green
 inline const QColor selectedNode{0, 158, 115};    // kd-tree: the node chosen in the tree view / inspector: teal
 inline const QColor background{28, 30, 36};
 // BVH: the current inner node's children's boxes, translucent so that where they overlap ("bounding volumes

@@ -79,6 +79,23 @@ void addBoxEdges(vtkPoints* pts, vtkCellArray* lines, const glm::vec3& lo, const
   }
 }
 
+// The outline of an axis-aligned plane (axis, position) across a box: its four edges.
+void addPlaneEdges(vtkPoints* pts, vtkCellArray* lines, const Bounds3& box, int axis, float at) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  const vtkIdType base = pts->GetNumberOfPoints();
+  for (int c = 0; c < 4; ++c) {
+    glm::vec3 p;
+    p[axis] = at;
+    p[u] = c == 1 || c == 2 ? box.hi[u] : box.lo[u];
+    p[v] = c >= 2 ? box.hi[v] : box.lo[v];
+    pts->InsertNextPoint(p.x, p.y, p.z);
+  }
+  for (int c = 0; c < 4; ++c) {
+    vtkIdType ids[2] = {base + c, base + (c + 1) % 4};
+    lines->InsertNextCell(2, ids);
+  }
+}
+
 // A convex cell's edges (each face's outline), shrunk towards its centre by `inset` of its size.
 void addCellEdges(vtkPoints* pts, vtkCellArray* lines, const ConvexCell& cell, float inset) {
   glm::dvec3 centre(0.0);
@@ -218,6 +235,11 @@ struct SceneView::Impl {
   vtkNew<vtkPolyData> selectedData;
   vtkSmartPointer<vtkActor> selectedActor;
   int selectedDrawn = -1;
+  // The kd-tree's build so far (setBuildPlanes): the planes of the inner nodes made before the selected one.
+  vtkNew<vtkPolyData> builtData;
+  vtkSmartPointer<vtkActor> builtActor;
+  bool buildPlanes = false;
+  int builtPlanes = 0;  // drawn, for the dump
   glm::vec3 selectedLo{0.f}, selectedHi{0.f};
   int selectedCellFaces = 0;  // a BSP node: its convex cell's faces as drawn (0: its box)
   vtkNew<vtkCellPicker> picker;
@@ -441,6 +463,8 @@ SceneView::SceneView(Session* session, QWidget* parent) : QWidget(parent), d_(ne
   d.planes->AddActor(d.splitActor);
   d.selectedActor = unlitActor(d.selectedData, palette::selectedNode, 3.f);
   d.overlay->AddActor(d.selectedActor);
+  d.builtActor = unlitActor(d.builtData, palette::builtPlane, 1.5f);
+  d.overlay->AddActor(d.builtActor);
   d.childFacesActor = cellColoredActor(d.childFacesData, 1.f);
   d.childFacesActor->GetProperty()->SetOpacity(0.22);
   d.planes->AddActor(d.childFacesActor);
@@ -650,6 +674,8 @@ void SceneView::rebuildGeometry() {
                       swatch(palette::splitPlane, tr("its split plane")) + swatch(palette::stackNode, tr("on the stack")) +
                       swatch(palette::visitedCell, tr("visited")) + hits +
                       (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
+                      (d.buildPlanes ? swatch(palette::builtPlane, tr("planes split before it (the build so far)"))
+                                     : QString()) +
                       "<br>" + tr("Primitives of the current leaf: ") +
                       primStates);
   else
@@ -697,9 +723,39 @@ void SceneView::updateSelected() {
       addBoxEdges(pts, lines, d.selectedLo, d.selectedHi);
     }
   }
+  // The build so far: the builder works depth first, so the nodes made before the selected one are those with
+  // smaller ids. Their planes pale green, the selected node's own plane in its colour.
+  vtkNew<vtkPoints> bpts;
+  vtkNew<vtkCellArray> blines;
+  d.builtPlanes = 0;
+  const KdTree* kd = session_->structure() ? session_->structure()->kdTree() : nullptr;
+  if (d.buildPlanes && kd && n >= 0 && size_t(n) < kd->data().nodes.size()) {
+    const KdTreeData& t = kd->data();
+    for (int id = 0; id <= n; ++id) {
+      const KdNode& node = t.nodes[size_t(id)];
+      if (node.is_leaf()) continue;
+      addPlaneEdges(id == n ? pts.Get() : bpts.Get(), id == n ? lines.Get() : blines.Get(), t.info[size_t(id)].box,
+                    node.axis(), node.split);
+      d.builtPlanes += id < n;
+    }
+  }
+  d.builtData->SetPoints(bpts);
+  d.builtData->SetLines(blines);
+  d.builtData->Modified();
   d.selectedData->SetPoints(pts);
   d.selectedData->SetLines(lines);
   d.selectedData->Modified();
+}
+
+void SceneView::setBuildPlanes(bool on) {
+  if (d_->buildPlanes == on) return;
+  d_->buildPlanes = on;
+  rebuildGeometry();  // the legend names them
+  updateStep();
+}
+
+bool SceneView::buildPlanes() const {
+  return d_->buildPlanes;
 }
 
 bool SceneView::eventFilter(QObject* watched, QEvent* event) {
@@ -1165,7 +1221,7 @@ void SceneView::setScale(double scale) {
   if (d.lineWidths.empty())
     for (vtkActor* a : {d.outlineActor.Get(), d.latticeActor.Get(), d.visitedActor.Get(), d.testingActor.Get(), d.rayActor.Get(),
                         d.aheadActor.Get(), d.segmentActor.Get(), d.cellActor.Get(), d.stackActor.Get(),
-                        d.splitActor.Get(), d.selectedActor.Get()})
+                        d.splitActor.Get(), d.selectedActor.Get(), d.builtActor.Get()})
       d.lineWidths.push_back({a, a->GetProperty()->GetLineWidth()});
   d.scale = scale;
   for (auto& [actor, width] : d.lineWidths) actor->GetProperty()->SetLineWidth(float(width * scale));
@@ -1216,6 +1272,7 @@ QJsonObject SceneView::dumpState() const {
                             {"stack_node", jsonColor(palette::stackNode)},
                             {"split_plane", jsonColor(palette::splitPlane)},
                             {"selected_node", jsonColor(palette::selectedNode)},
+                            {"built_plane", jsonColor(palette::builtPlane)},
                             {"bvh_child_first", jsonColor(palette::bvhChildFirst)},
                             {"bvh_child_other", jsonColor(palette::bvhChildOther)},
                             {"bvh_overlap", jsonColor(palette::bvhOverlap)},
@@ -1251,6 +1308,7 @@ QJsonObject SceneView::dumpState() const {
                                      {"max", QJsonArray{d.selectedHi.x, d.selectedHi.y, d.selectedHi.z}},
                                      {"projected_corners", projectBox(d.selectedLo, d.selectedHi)},
                                      {"cell_faces", d.selectedCellFaces}};
+  if (d.buildPlanes) o["build_planes"] = d.builtPlanes;
   if (d.havePicked) o["picked_point"] = QJsonArray{d.picked.x, d.picked.y, d.picked.z};
   if (d.havePicked) o["picked_primitive"] = d.pickedPrim;
   if (const TraceNode* n = d.haveTree ? d.node(d.currentNode) : nullptr) {

@@ -25,6 +25,10 @@ class SceneView : public QWidget {
   static void prepareSurfaceFormat();
 
   void setTranslucent(bool on);
+  // kd-tree: the build so far, the split planes of every node made before the selected one (pale green) and
+  // the selected node's own plane (a lecture's kd build, split by split, as the selected node steps on).
+  void setBuildPlanes(bool on);
+  bool buildPlanes() const;
   void setFollowCell(bool on);
   // A lesson's question about the walk's next move: the drawing that gives the answer away waits for Reveal
   // (an octree cell's children are outlined in one colour, not in the order the ray crosses them).

@@ -245,6 +245,9 @@ void defineOptions(QCommandLineParser& p) {
       "LIST");
   opt("zoom", "Image zoom: screen pixels per picture pixel, centred on the traced pixel (0: fit, the whole picture).", "Z");
   opt("translucent", "Draw the scene translucent.");
+  opt("build-planes",
+      "kd-tree: the build so far in the 3D view, the split planes of every node made before the selected one "
+      "(the builder's depth-first order is the node ids').");
   opt("follow", "Let the 3D camera follow the current cell.");
   opt("window", "Window size (default 1280x800).", "WxH");
   opt("panel",
@@ -344,7 +347,8 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   }
   if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
   if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
-  static const QStringList flags = {"secondary", "follow", "translucent", "inspect", "sample-overlay"};
+  static const QStringList flags = {"secondary", "follow", "translucent", "build-planes", "inspect",
+                                    "sample-overlay"};
   for (const std::string& key : lesson_setting_keys()) {
     const QString name = QString::fromStdString(key);
     // --report: the report options' own (report_script.cpp), run and waited for after the state is entered.
@@ -759,6 +763,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       if (st.size) window.setImageSize((*st.size)[0], (*st.size)[1]);
       window.imageView()->setSecondaryRays(st.secondary);
       if (st.translucent) window.sceneView()->setTranslucent(true);
+      if (st.build_planes) window.sceneView()->setBuildPlanes(true);
       if (st.follow) window.sceneView()->setFollowCell(true);
       window.show();
       if (!st.scene.empty()) window.openFileReportingErrors(QString::fromStdString(st.scene));

@@ -367,6 +367,8 @@ const std::vector<Fact>& facts() {
       fact("event.node", "node, push, pop, leaf event: the node id", [](I& i) { return double(i.event().node); }),
       fact("event.depth", "node event: the node's depth", [](I& i) { return double(i.event().depth); }),
       // The selected kd-tree node's split (the SAH inspector's numbers).
+      fact("node.id", "the selected node's id (a kd-tree's: its place in the depth-first build order)",
+           [](I& i) { return double(i.node_curve().node); }),
       fact("node.prims", "primitives in the node (N)", [](I& i) { return double(i.node_curve().n_prims); }),
       fact("node.depth", "the node's depth", [](I& i) { return double(i.node_curve().info.depth); }),
       fact("node.candidates", "candidate planes evaluated", [](I& i) { return double(i.node_curve().candidates.size()); }),

@@ -371,6 +371,8 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                                 const std::string&) { s.follow = parse_on_off(k, v); }},
                   {"translucent", [](LessonState& s, const std::string& k, const std::string& v,
                                      const std::string&) { s.translucent = parse_on_off(k, v); }},
+                  {"build-planes", [](LessonState& s, const std::string& k, const std::string& v,
+                                      const std::string&) { s.build_planes = parse_on_off(k, v); }},
                   {"zoom",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      double z;
@@ -483,6 +485,7 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (square) opt("square", std::to_string(*square));
   if (follow) a.push_back("--follow");
   if (translucent) a.push_back("--translucent");
+  if (build_planes) a.push_back("--build-planes");
   if (zoom) opt("zoom", double_text(*zoom));
   if (sample_overlay) a.push_back("--sample-overlay");
   if (!report.empty()) opt("report", report);

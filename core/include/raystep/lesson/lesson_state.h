@@ -43,6 +43,8 @@ struct LessonState {
   std::string panel;  // "", "sah" or "kd"
   NodeSpec node;
   bool follow = false, translucent = false;
+  // The kd-tree's build so far in the 3D view: the split planes of the nodes made before the selected one.
+  bool build_planes = false;
   std::optional<double> zoom;   // none: the window's default; 0: fit
   std::string show = "window";  // the step's figure: window | 3d | tree | chart | picture | report (lesson_figure.h)
   // The report windows the step opens and runs on the scene: "aa", "grid-sweep", "bvol" (the kinds of
