@@ -15,6 +15,7 @@
 
 #include "quiz_panel.h"
 #include "raystep/lesson/lesson.h"
+#include "raystep/lesson/markdown_fence.h"
 
 namespace raystep::viz {
 
@@ -40,41 +41,24 @@ QString proseToHtml(const QString& markdown) {
   return body;
 }
 
-// A fence's opening line: ``` or ~~~ (three or more), then the info string.
-bool isFence(const QString& line, QChar* ch, int* length) {
-  const QString t = line.trimmed();
-  if (t.size() < 3 || (t[0] != '`' && t[0] != '~')) return false;
-  int n = 0;
-  while (n < t.size() && t[n] == t[0]) ++n;
-  if (n < 3) return false;
-  *ch = t[0];
-  *length = n;
-  return true;
-}
-
 }  // namespace
 
 QString markdownToHtmlBody(const QString& markdown) {
   // Fenced code (the lessons' pseudocode) as <pre>, line for line with its indentation; the prose between
   // the fences through Qt's Markdown reader.
   QString out, prose, code;
-  QChar fence;
-  int fenceLength = 0;
+  Fence open;
   bool inCode = false;
   for (const QString& line : markdown.split('\n')) {
-    QChar ch;
-    int length = 0;
-    if (!inCode && isFence(line, &ch, &length)) {
+    const std::string text = line.toStdString();
+    if (!inCode && fence_of(text, &open)) {
       out += proseToHtml(prose);
       prose.clear();
       inCode = true;
-      fence = ch;
-      fenceLength = length;
       continue;
     }
     if (inCode) {
-      if (isFence(line, &ch, &length) && ch == fence && length >= fenceLength &&
-          line.trimmed().size() == length) {
+      if (fence_closes(open, text)) {
         out += "\n<pre><code>" + code.toHtmlEscaped() + "</code></pre>\n";
         code.clear();
         inCode = false;

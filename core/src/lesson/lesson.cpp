@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "markdown_fence.h"
+#include "raystep/lesson/markdown_fence.h"
 #include "raystep/lesson/lesson_numbers.h"
 #include "raystep/util/error.h"
 

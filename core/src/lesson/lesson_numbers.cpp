@@ -12,7 +12,7 @@
 #include <map>
 #include <regex>
 
-#include "markdown_fence.h"
+#include "raystep/lesson/markdown_fence.h"
 #include "raystep/lesson/lesson_facts.h"
 #include "raystep/util/error.h"
 

@@ -1,5 +1,5 @@
-// Code fences as CommonMark reads them, for the lesson parser and the numbers' scanner (a fence closes only
-// with the same character, at least as long, and no info string).
+// Code fences as CommonMark reads them, for the lesson parser, the numbers' scanner and the handout's HTML (a
+// fence closes only with the same character, at least as long, and no info string).
 #pragma once
 
 #include <string>
