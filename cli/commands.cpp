@@ -401,7 +401,7 @@ int run_trace(const TraceArgs& a) {
     if (aa) {  // with the exact pre-filtered value, where the scene has one (render/reference.h)
       Trace t = record_pixel_trace(scene, *accel, w, h, px, py, *aa, seed, a.secondary, a.scene,
                                    file_content_hash(a.scene));
-      t.pixel->exact = exact_pixel_value(scene, w, h, px, py);
+      t.pixel->exact = exact_pixel_value(scene, w, h, px, py, aa->filter);
       return t;
     }
     std::vector<RayRequest> requests;

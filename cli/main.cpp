@@ -97,7 +97,9 @@ int main(int argc, char** argv) {
                          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox"
                          " | boxes (bvh: bounding-box tests)")
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox", "boxes"}));
-  render_cmd->add_option("--aa", render.aa, "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+  render_cmd->add_option("--aa", render.aa,
+                         "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]; +tent after any but "
+                         "adaptive: the tent filter over the neighbours' samples too");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
       ->capture_default_str();
@@ -263,7 +265,7 @@ int main(int argc, char** argv) {
   cost_cmd->add_option("scene", cost.scene, "scene .json or mesh .obj")->required();
   cost_cmd->add_option("--size", cost.size, "image size WxH (default: the scene's)");
   cost_cmd->add_option("--aa", cost.aa,
-                       "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]");
+                       "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D] (+tent: the tent filter)");
   cost_cmd->add_option("--accel", cost.accel, "comma-separated structures (default: all but brute)");
   cost_cmd->add_option("--threads", cost.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
   cost_cmd->add_option("-o,--output", cost.output,

@@ -38,6 +38,8 @@ std::string method_colour(const std::string& method) {
 }
 
 std::string theory_text(const std::string& method) {
+  if (const size_t plus = method.find("+tent"); plus != std::string::npos)
+    return "as " + method.substr(0, plus) + " (the tent weighs the same samples), against the tent's reference";
   if (method == "jitter") return "-3/4 (stratified samples on an edge)";
   if (method == "regular")
     return "-1/2 for edges along the grid (the estimate moves in steps of 1/k); about -1 for slanted edges "
@@ -221,6 +223,13 @@ void write_markdown(const std::string& path, const AaReport& r, const std::strin
           << "estimated at " << fmt(r.reference_rmse, 3)
           << " (half the RMS difference of the two), so errors much below that are not resolved";
     out << " (" << fmt(r.reference_seconds, 3) << " s). Images: `images/` (PFM, linear).\n\n";
+    for (size_t i = 1; i < r.references.size(); ++i)
+      out << "The methods with the tent filter (`+tent`: sampling and pre-filtering combined, each sample "
+             "weighed by (1 - |dx|)(1 - |dy|) from the pixel's centre, the neighbours' samples too) are "
+             "measured against the scene pre-filtered by the same tent: **"
+          << r.references[i].kind << "**"
+          << (r.references[i].rmse > 0.0 ? ", its own RMSE estimated at " + fmt(r.references[i].rmse, 3) : "")
+          << " (" << fmt(r.references[i].seconds, 3) << " s).\n\n";
     out << "RMSE over the three channels of every pixel, against the reference; for jitter and random the "
            "mean "
            "over seeds 1..N with its spread (min..max). Max error: the largest pixel error (mean over "
@@ -474,6 +483,8 @@ int run_aa_report(const AaReportArgs& a) {
   std::printf("aa-report: %s, %dx%d, reference %s", report.scene_path.c_str(), report.width, report.height,
               report.reference_kind.c_str());
   if (report.reference_kind != "exact") std::printf(" (its own RMSE about %.3g)", report.reference_rmse);
+  for (size_t i = 1; i < report.references.size(); ++i)
+    std::printf("; +tent against %s", report.references[i].kind.c_str());
   std::printf("\n%-18s %10s %10s %12s %10s\n", "method", "rays/px", "seconds", "rmse", "max err");
   for (const AaReportRow& row : report.rows)
     std::printf("%-18s %10.3f %10.4f %12.6f %10.4f\n", row.spec.c_str(), row.rays_per_pixel, row.seconds,

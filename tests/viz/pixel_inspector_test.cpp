@@ -11,6 +11,7 @@
 #include "raystep/accel/structure_options.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/pixel_samples.h"
+#include "raystep/render/reference.h"
 #include "raystep/render/render.h"
 #include "raystep/render/whitted.h"
 #include "raystep/scene/antialiasing_spec.h"
@@ -107,6 +108,48 @@ TEST(PixelInspector, PositionsAndColoursAreTheSamplersAndTheRenderers) {
     // Every sample's ray is in the trace (without anti-aliasing: the centre ray).
     EXPECT_EQ(st["trace_rays"].get<size_t>(), want.samples.size());
   }
+}
+
+// Sampling and pre-filtering combined: the tent pixel's own samples, its neighbours' that the tent reaches,
+// the weighted value (the renderer's) and the exact tent value (core's), and a canvas that shows the tent's
+// square with the neighbours' samples inside it.
+TEST(PixelInspector, TentFilterWeighsTheNeighboursSamplesAsTheRendererDoes) {
+  const CoreSide core(kAliasing);
+  const std::string aa = "jitter:3+tent";
+  const json st = inspect("'" + kAliasing + "' --aa " + aa + " --pixel 30,38 --inspect", "pixel-inspector-tent");
+  const json& in = st["inspector"];
+  ASSERT_TRUE(in.value("visible", false));
+  EXPECT_EQ(in["filter"], "tent");
+  PixelSampling want = core.sample(aa, kX, kY);
+  const glm::vec3 box = want.value;
+  {
+    const int w = core.scene.render.width, h = core.scene.render.height;
+    const ProjectiveCamera camera(core.scene.camera, w, h);
+    const WhittedTracer tracer(core.scene, *core.accel);
+    RayCounts counts;
+    apply_pixel_filter(want, core.scene.render.seed, w,
+                       [&](float px, float py) { return tracer.trace_primary(camera.generate(px, py), &counts); });
+  }
+  EXPECT_EQ(in["samples"].size(), 9u);
+  EXPECT_EQ(in["neighbours"].get<size_t>(), want.neighbours.size());
+  EXPECT_GT(want.neighbours.size(), 0u);
+  const glm::vec3 rendered = core.rendered(aa, kX, kY);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(in["value"][size_t(c)].get<float>(), rendered[c]);
+    EXPECT_EQ(in["box_value"][size_t(c)].get<float>(), box[c]);
+  }
+  // The edge crosses the pixel: the tent's value is not the box's.
+  EXPECT_NE(rendered, box);
+  ASSERT_TRUE(in.contains("exact"));
+  const std::optional<glm::vec3> exact =
+      exact_pixel_value(core.scene, core.scene.render.width, core.scene.render.height, kX, kY,
+                        AntiAliasing::Filter::tent);
+  ASSERT_TRUE(exact);
+  EXPECT_EQ(in["exact"][0].get<float>(), exact->x);
+  EXPECT_NE(in["values"].get<std::string>().find("the tent over the area covered"), std::string::npos);
+  EXPECT_NE(in["legend"].get<std::string>().find("scene under the tent"), std::string::npos);
+  // Only the pixel's own samples have rays in the trace.
+  EXPECT_EQ(st["trace_rays"].get<size_t>(), 9u);
 }
 
 TEST(PixelInspector, AdaptiveSteppingVisitsTheSquaresInOrderWithCoresOutcomes) {

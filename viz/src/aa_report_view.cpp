@@ -46,7 +46,8 @@ namespace raystep::viz {
 namespace {
 
 // The method families in the order of the legend; "none" is one point of its own.
-const char* const kFamilies[] = {"regular", "jitter", "random", "adaptive"};
+const char* const kFamilies[] = {"regular", "jitter", "random", "adaptive", "regular+tent", "jitter+tent",
+                                 "random+tent"};
 
 // Without a Size, the report renders the scene at most this many pixels on its long side.
 constexpr int kDefaultSide = 128;
@@ -56,6 +57,9 @@ const QColor& familyColor(const std::string& family) {
                                                        {"jitter", chartcolor::vermillion},
                                                        {"random", chartcolor::green},
                                                        {"adaptive", chartcolor::purple},
+                                                       {"regular+tent", chartcolor::skyBlue},
+                                                       {"jitter+tent", chartcolor::orange},
+                                                       {"random+tent", chartcolor::grey},
                                                        {"none", chartcolor::black}};
   auto it = colors.find(family);
   return it != colors.end() ? it->second : chartcolor::grey;
@@ -67,6 +71,8 @@ QString familyLabel(const std::string& family) {
   if (family == "random") return QObject::tr("random N");
   if (family == "adaptive") return QObject::tr("adaptive (thresholds)");
   if (family == "none") return QObject::tr("none (1 ray, centre)");
+  if (const size_t plus = family.find("+tent"); plus != std::string::npos)
+    return familyLabel(family.substr(0, plus)) + QObject::tr(", tent filter");
   return QString::fromStdString(family);
 }
 
@@ -109,7 +115,8 @@ AaReportView::AaReportView(Session* session, QWidget* parent)
   options->addWidget(new QLabel(tr("Methods:")));
   methods_ = new QLineEdit;
   methods_->setObjectName("aaReportMethods");
-  methods_->setPlaceholderText(tr("default: none, regular:2..8, jitter:2..8, random:4..64, adaptive"));
+  methods_->setPlaceholderText(
+      tr("default: none, regular:2..8, jitter:2..8, random:4..64, adaptive, +tent at regular:4, jitter:2..8"));
   methods_->setToolTip(
       tr("Comma-separated anti-aliasing specs, e.g. none,regular:4,jitter:4,random:16,adaptive:0.1:3"));
   options->addWidget(methods_, 1);
@@ -246,6 +253,10 @@ void AaReportView::updateHeader() {
                     "drawn as the dotted floor (errors near it are not measured).")
                      .arg(QString::fromStdString(report_.reference_kind))
                      .arg(num(report_.reference_rmse));
+    for (size_t i = 1; i < report_.references.size(); ++i)
+      t += tr(" The tent-filtered methods are measured against the scene pre-filtered by the same tent "
+              "(<b>%1</b>).")
+               .arg(QString::fromStdString(report_.references[i].kind));
     if (!now.isEmpty() && now != sceneName_) t += tr(" <i>The window now shows %1: Run again.</i>").arg(now);
   } else {
     t = scene ? tr("<b>%1</b>: Run measures each anti-aliasing method on this scene.").arg(now)
@@ -334,6 +345,7 @@ QString AaReportView::start() {
 
 void AaReportView::addRow(const AaReport& soFar, const AaReportRow& row) {
   report_.reference_kind = soFar.reference_kind;
+  report_.references = soFar.references;
   report_.reference_rmse = soFar.reference_rmse;
   report_.reference_seconds = soFar.reference_seconds;
   if (soFar.width > 0) report_.width = soFar.width, report_.height = soFar.height;
@@ -389,10 +401,11 @@ void AaReportView::done(const AaReport& report, const QString& state, const QStr
     QStringList slopes;
     for (const auto& [method, slope] : report_.slopes) {
       if (!std::isfinite(slope)) continue;
-      const QString theory = method == "jitter"     ? "-3/4"
-                             : method == "regular"  ? "-1/2 along the pixel grid, -1 at slanted edges"
-                             : method == "adaptive" ? QString()
-                                                    : "-1/2";
+      const std::string base = method.substr(0, method.find('+'));  // "+tent": the same samples' theory
+      const QString theory = base == "jitter"     ? "-3/4"
+                             : base == "regular"  ? "-1/2 along the pixel grid, -1 at slanted edges"
+                             : base == "adaptive" ? QString()
+                                                  : "-1/2";
       slopes << (theory.isEmpty() ? tr("%1 %2").arg(QString::fromStdString(method)).arg(slope, 0, 'f', 2)
                                   : tr("%1 %2 (theory %3)")
                                         .arg(QString::fromStdString(method))
@@ -573,7 +586,7 @@ QJsonObject AaReportView::dumpState() const {
   for (int n : d.pointsAfterRow) filled.append(n);
   o["points_after_each_row"] = filled;  // the chart as it filled in while the report ran
   QJsonObject colors;
-  for (const char* f : {"regular", "jitter", "random", "adaptive", "none"}) {
+  for (const char* f : {"regular", "jitter", "random", "adaptive", "none", "regular+tent", "jitter+tent"}) {
     const QColor& c = familyColor(f);
     colors[f] = QJsonArray{c.red(), c.green(), c.blue()};
   }

@@ -276,8 +276,10 @@ ImageView::ImageView(Session* session, QWidget* parent) : QWidget(parent), sessi
   aa_ = new QComboBox;
   aa_->setObjectName("aaCombo");
   aa_->setEditable(true);
-  aa_->addItems({"scene", "none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1"});
-  aa_->setToolTip(tr("scene (the scene file's) | none | regular:K | jitter:K | random:N | adaptive:T[:D]"));
+  aa_->addItems(
+      {"scene", "none", "regular:2", "regular:4", "jitter:4", "random:16", "adaptive:0.1", "regular:4+tent"});
+  aa_->setToolTip(tr("scene (the scene file's) | none | regular:K | jitter:K | random:N | adaptive:T[:D]; "
+                     "+tent after any but adaptive: the tent filter over the neighbours' samples too"));
   row1->addWidget(aa_);
   auto* render = new QPushButton(tr("Render"));
   row1->addWidget(render);

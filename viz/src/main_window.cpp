@@ -1094,8 +1094,8 @@ void MainWindow::tracePixel(int x, int y) {
   if (!trace->pixel) centre = std::make_shared<const TracePixel>(centrePixel(*grid, w, h, x, y));
   // The scene inside the pixel, beneath the samples: 4096 more rays, cast only while the inspector is open (a
   // lesson step that does not show it stays as fast as before); before the trace, whose legend mentions it.
-  pixelInspector_->canvas()->setBackdrop(pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y)
-                                                                 : QImage());
+  pixelInspector_->canvas()->setBackdrop(
+      pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y, 64, PixelCanvas::viewReach(aa)) : QImage());
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
 }
 
@@ -1105,7 +1105,8 @@ void MainWindow::drawPixelBackdrop() {
   if (!grid || !px || !session_->scene() || pixelInspector_->canvas()->hasBackdrop()) return;
   const int w = session_->imageWidth(), h = session_->imageHeight();
   if (px->sampling.x >= w || px->sampling.y >= h) return;
-  pixelInspector_->setBackdrop(pixelBackdrop(*grid, w, h, px->sampling.x, px->sampling.y));
+  pixelInspector_->setBackdrop(
+      pixelBackdrop(*grid, w, h, px->sampling.x, px->sampling.y, 64, PixelCanvas::viewReach(px->sampling.aa)));
 }
 
 void MainWindow::showPixelInspector() {

@@ -9,6 +9,7 @@
 #include <QLabel>
 #include <QMouseEvent>
 #include <QPainter>
+#include <QScrollArea>
 #include <QShortcut>
 #include <QSplitter>
 #include <QTableWidget>
@@ -19,6 +20,7 @@
 #include "palette.h"
 #include "raystep/io/image_io.h"
 #include "raystep/render/image.h"
+#include "raystep/render/pixel_filter.h"
 #include "raystep/render/pixel_samples.h"
 #include "raystep/trace/trace_file.h"
 #include "session.h"
@@ -93,7 +95,9 @@ double spacing(const AntiAliasing& aa, double side) {
 
 }  // namespace
 
-std::string describeAntiAliasing(const AntiAliasing& aa) {
+namespace {
+
+std::string describePattern(const AntiAliasing& aa) {
   const std::string k = std::to_string(aa.k);
   switch (aa.mode) {
     case AntiAliasing::Mode::none:
@@ -111,6 +115,13 @@ std::string describeAntiAliasing(const AntiAliasing& aa) {
              ", depth limit " + std::to_string(aa.max_depth);
   }
   return "?";
+}
+
+}  // namespace
+
+std::string describeAntiAliasing(const AntiAliasing& aa) {
+  return describePattern(aa) +
+         (aa.filter == AntiAliasing::Filter::tent ? ", weighed by the tent filter over 3 x 3 pixels" : "");
 }
 
 std::string explainSquare(const TracePixel& pixel, int index) {
@@ -190,17 +201,35 @@ void PixelCanvas::setBackdrop(const QImage& image) {
   update();
 }
 
+double PixelCanvas::viewReach(const AntiAliasing& aa) {
+  return 0.5 * filter_reach(aa.filter);
+}
+
 QRectF PixelCanvas::pixelRect() const {
-  const double side = std::max(20, std::min(width(), height()) - 28);  // room for the rings at the edges
+  const TracePixel* p = session_->pixel();
+  const double reach = p ? viewReach(p->sampling.aa) : 0.0;
+  const double view = std::max(20, std::min(width(), height()) - 28);  // room for the rings at the edges
+  const double side = view / (1.0 + 2.0 * reach);
   return QRectF((width() - side) / 2.0, (height() - side) / 2.0, side, side);
+}
+
+QPointF PixelCanvas::toCanvas(const PixelSample& ps) const {
+  const TracePixel* p = session_->pixel();
+  const QRectF r = pixelRect();
+  const QPointF f = inPixel(p->sampling, ps);
+  return QPointF(r.left() + f.x() * r.width(), r.top() + f.y() * r.height());
 }
 
 QPointF PixelCanvas::samplePos(int i) const {
   const TracePixel* p = session_->pixel();
   if (!p || i < 0 || i >= int(p->sampling.samples.size())) return {-1, -1};
-  const QRectF r = pixelRect();
-  const QPointF f = inPixel(p->sampling, p->sampling.samples[size_t(i)]);
-  return QPointF(r.left() + f.x() * r.width(), r.top() + f.y() * r.height());
+  return toCanvas(p->sampling.samples[size_t(i)]);
+}
+
+QPointF PixelCanvas::neighbourPos(int i) const {
+  const TracePixel* p = session_->pixel();
+  if (!p || i < 0 || i >= int(p->sampling.neighbours.size())) return {-1, -1};
+  return toCanvas(p->sampling.neighbours[size_t(i)]);
 }
 
 void PixelCanvas::paintEvent(QPaintEvent*) {
@@ -217,14 +246,33 @@ void PixelCanvas::paintEvent(QPaintEvent*) {
   const PixelSampling& s = px->sampling;
   const QRectF r = pixelRect();
   const double side = r.width();
-  // The pixel's area, neutral grey, so that black and white samples both show; over it, faintly, the scene
-  // inside the pixel.
-  p.fillRect(r, QColor(96, 96, 104));
+  const bool tent = s.aa.filter == AntiAliasing::Filter::tent;
+  const double reach = viewReach(s.aa);
+  const QRectF view = r.adjusted(-reach * side, -reach * side, reach * side, reach * side);
+  // The area the filter weighs, neutral grey, so that black and white samples both show; over it, faintly,
+  // the scene there.
+  p.fillRect(view, QColor(96, 96, 104));
   if (!backdrop_.isNull()) {
     p.setOpacity(0.45);
     p.setRenderHint(QPainter::SmoothPixmapTransform, true);  // an edge reads as a line, not a staircase
-    p.drawImage(r, backdrop_);
+    p.drawImage(view, backdrop_);
     p.setOpacity(1.0);
+  }
+  if (tent) {
+    // The tent's weight as light: full at the centre, falling to nothing at the view's edges (the
+    // neighbours' centres); the neighbouring pixels' borders dashed.
+    const int n = 64;
+    QImage shade(n, n, QImage::Format_ARGB32);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const float u = 2.f * (float(i) + 0.5f) / float(n) - 1.f, v = 2.f * (float(j) + 0.5f) / float(n) - 1.f;
+        shade.setPixel(i, j, qRgba(0, 0, 0, int(std::lround(170.0 * (1.0 - tent_weight(u, v))))));
+      }
+    p.setRenderHint(QPainter::SmoothPixmapTransform, true);
+    p.drawImage(view, shade);
+    p.setPen(QPen(QColor(200, 200, 210), 1, Qt::DashLine));
+    p.setBrush(Qt::NoBrush);
+    p.drawRect(view);
   }
 
   auto toScreen = [&](double fx, double fy) { return QPointF(r.left() + fx * side, r.top() + fy * side); };
@@ -266,17 +314,28 @@ void PixelCanvas::paintEvent(QPaintEvent*) {
   }
 
   const double radius = std::clamp(spacing(s.aa, side) * 0.28, 4.0, 11.0);
+  // With the tent, a disc's area is its weight: the centre's samples large, the far ones small.
+  auto radiusOf = [&](const PixelSample& ps) {
+    return tent ? std::max(2.0, radius * std::sqrt(double(ps.weight))) : radius;
+  };
+  for (size_t i = 0; i < s.neighbours.size(); ++i) {
+    const QColor fill = toQColor(s.neighbours[i].colour);
+    p.setPen(QPen(outlineFor(fill), 1.0, Qt::DotLine));
+    p.setBrush(fill);
+    p.drawEllipse(neighbourPos(int(i)), radiusOf(s.neighbours[i]), radiusOf(s.neighbours[i]));
+  }
   for (size_t i = 0; i < s.samples.size(); ++i) {
     const QPointF c = samplePos(int(i));
+    const double rs = radiusOf(s.samples[i]);
     const QColor fill = toQColor(s.samples[i].colour);
     if (std::find(squareSamples.begin(), squareSamples.end(), int(i)) != squareSamples.end()) {
       p.setPen(QPen(palette::currentCell, 3));
       p.setBrush(Qt::NoBrush);
-      p.drawEllipse(c, radius + 4, radius + 4);
+      p.drawEllipse(c, rs + 4, rs + 4);
     }
     p.setPen(QPen(outlineFor(fill), 1.5));
     p.setBrush(fill);
-    p.drawEllipse(c, radius, radius);
+    p.drawEllipse(c, rs, rs);
   }
   if (const int cur = session_->currentSample(); cur >= 0 && cur < int(s.samples.size())) {
     const QPointF c = samplePos(cur);
@@ -353,7 +412,16 @@ PixelInspector::PixelInspector(Session* session, QWidget* parent) : QWidget(pare
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   mid->addWidget(table_, 1);
-  split->addWidget(middle);
+  // At presenter scale the numbers and the legend may need more height than the dock has: they scroll as one
+  // column rather than squeeze each other off (a wrapped label keeps the height its width needs).
+  table_->setMinimumHeight(4 * table_->verticalHeader()->defaultSectionSize() + 24);
+  auto* middleScroll = new QScrollArea;
+  middleScroll->setObjectName("pixelNumbers");
+  middleScroll->setWidgetResizable(true);
+  middleScroll->setFrameShape(QFrame::NoFrame);
+  middleScroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  middleScroll->setWidget(middle);
+  split->addWidget(middleScroll);
 
   // Adaptive sampling: the squares as a tree, stepped through; the Why.
   adaptiveBox_ = new QWidget;
@@ -460,19 +528,38 @@ void PixelInspector::refresh() {
                       .arg(s.samples.size() == 1 ? tr("1 sample") : tr("%1 samples").arg(s.samples.size())));
   const QColor avg = toQColor(s.value);
   swatch_->setStyleSheet(QString("background: %1; border: 1px solid #ddd;").arg(avg.name()));
-  QString v = (s.samples.size() == 1 ? tr("value (the one sample): <b>%1</b>")
-                                     : tr("average (box filter): <b>%1</b>"))
-                  .arg(rgbText(s.value));
+  const bool tent = s.aa.filter == AntiAliasing::Filter::tent;
+  QString v;
+  if (tent) {
+    double own = 0, all = 0;
+    for (const PixelSample& p : s.samples) own += p.weight;
+    all = own;
+    for (const PixelSample& p : s.neighbours) all += p.weight;
+    v = tr("tent filter: <b>%1</b> (its own samples' average, the box's: %5)<br>its %2 samples and %3 of "
+           "its neighbours', weighed by (1 - |dx|)(1 - |dy|); its own hold %4% of the weight")
+            .arg(rgbText(s.value))
+            .arg(s.samples.size())
+            .arg(s.neighbours.size())
+            .arg(all > 0 ? num(100.0 * own / all, 0) : QString("0"))
+            .arg(rgbText(s.box_value));
+  } else {
+    v = (s.samples.size() == 1 ? tr("value (the one sample): <b>%1</b>") : tr("average (box filter): <b>%1</b>"))
+            .arg(rgbText(s.value));
+  }
   if (s.aa.mode == AntiAliasing::Mode::adaptive) v += tr("<br>(the leaf squares' values, weighted by area)");
   if (px->exact) {
     const glm::vec3 e = glm::abs(s.value - *px->exact);
     // The error per channel only where the channels differ (a grey scene has one number).
     const bool grey = e.r == e.g && e.g == e.b;
-    v += tr("<br>exact (area coverage): <b>%1</b><br>error of the %4: <b>%2</b>%3")
-             .arg(rgbText(*px->exact))
-             .arg(num(std::max({e.r, e.g, e.b}), 4))
-             .arg(grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4)))
-             .arg(s.samples.size() == 1 ? tr("value") : tr("average"));
+    const QString error = num(std::max({e.r, e.g, e.b}), 4);
+    const QString channels = grey ? QString() : tr(" (largest channel of %1)").arg(rgbText(e, 4));
+    if (tent)
+      v += tr("<br>exact (the tent over the area covered): <b>%1</b>, error <b>%2</b>%3")
+               .arg(rgbText(*px->exact), error, channels);
+    else
+      v += tr("<br>exact (area coverage): <b>%1</b><br>error of the %4: <b>%2</b>%3")
+               .arg(rgbText(*px->exact), error, channels)
+               .arg(s.samples.size() == 1 ? tr("value") : tr("average"));
   } else {
     v += session_->scene()
              ? tr("<br><i>no exact value for this scene: exact area coverage needs flat-coloured triangles "
@@ -500,10 +587,14 @@ void PixelInspector::refresh() {
     legend += tr("; <span style='color:%1'>yellow</span>: the current square and its five samples.")
                   .arg(palette::currentCell.name());
   }
-  if (s.aa.mode == AntiAliasing::Mode::none)
+  if (s.aa.mode == AntiAliasing::Mode::none && !tent)
     legend += tr(" Without anti-aliasing the pixel is its centre ray.");
+  if (tent)
+    legend += tr(" Tent filter: the pixel (solid) and half of each neighbour (dashed), darker where the weight "
+                 "falls; a disc's area is its weight; dotted: the neighbours' samples.");
   if (canvas_->hasBackdrop())
-    legend += tr(" Faint beneath: the scene inside the pixel (64 x 64 extra rays, for reference only).");
+    legend += tent ? tr(" Faint beneath: the scene under the tent (64 x 64 extra rays, for reference only).")
+                   : tr(" Faint beneath: the scene inside the pixel (64 x 64 extra rays, for reference only).");
   legend_->setText(legend + "</span>");
 
   table_->setRowCount(int(s.samples.size()));
@@ -516,6 +607,7 @@ void PixelInspector::refresh() {
     QString where = ps.stratum[0] >= 0   ? QString("stratum (%1, %2)").arg(ps.stratum[0]).arg(ps.stratum[1])
                     : ps.lattice[0] >= 0 ? QString("lattice (%1, %2)").arg(ps.lattice[0]).arg(ps.lattice[1])
                                          : QString("-");
+    if (tent) where += QString(", weight %1").arg(num(ps.weight, 3));
     table_->setItem(int(i), 0, pos);
     table_->setItem(int(i), 1, col);
     table_->setItem(int(i), 2, new QTableWidgetItem(where));
@@ -617,6 +709,9 @@ QJsonObject PixelInspector::dumpState() const {
         QJsonArray{double(p.px), double(p.py), double(p.colour.r), double(p.colour.g), double(p.colour.b)});
   o["samples"] = samples;
   o["value"] = rgb(s.value);
+  o["filter"] = s.aa.filter == AntiAliasing::Filter::tent ? "tent" : "box";
+  o["box_value"] = rgb(s.box_value);
+  o["neighbours"] = int(s.neighbours.size());
   if (px->exact) o["exact"] = rgb(*px->exact);
   QJsonArray squares;
   for (const AdaptiveSquare& q : s.squares)

@@ -23,6 +23,7 @@ class QShortcut;
 namespace raystep {
 struct TracePixel;
 struct AdaptiveSquare;
+struct PixelSample;
 struct AntiAliasing;
 }  // namespace raystep
 
@@ -36,11 +37,16 @@ std::string describeAntiAliasing(const AntiAliasing& aa);
 // > threshold 0.1, so this square is split into four").
 std::string explainSquare(const TracePixel& pixel, int square);
 
-// The enlarged pixel: a square canvas.
+// The enlarged pixel: a square canvas. With the tent filter it shows the tent's whole square, the pixel and
+// half of each neighbour, with the weight shading away from the centre and the neighbours' samples too.
 class PixelCanvas : public QWidget {
   Q_OBJECT
  public:
   explicit PixelCanvas(Session* session, QWidget* parent = nullptr);
+  // How far beyond the pixel, in pixels, the canvas shows for these settings: 0, or 0.5 for the tent.
+  static double viewReach(const AntiAliasing& aa);
+  // Where neighbour sample i's centre is drawn (tent filter), as samplePos.
+  QPointF neighbourPos(int i) const;
   // Where sample i's centre is drawn (widget coordinates), for scripted clicks and tests.
   QPointF samplePos(int i) const;
   // The scene inside the pixel, drawn faintly under the samples (null: none, as for a trace without its
@@ -60,7 +66,8 @@ class PixelCanvas : public QWidget {
   void mouseReleaseEvent(QMouseEvent*) override;
 
  private:
-  QRectF pixelRect() const;
+  QRectF pixelRect() const;   // the pixel's own square on the canvas
+  QPointF toCanvas(const PixelSample& p) const;
   Session* session_;
   QImage backdrop_;
 };

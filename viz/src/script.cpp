@@ -213,7 +213,7 @@ void defineOptions(QCommandLineParser& p) {
   opt("grid-res", "Explicit grid resolution.", "NX,NY,NZ");
   opt("grid-density", "Grid density d: max(nx,ny,nz) = d*cbrt(n).", "D");
   opt("grid-insert", "Grid insertion: exact or bbox.", "MODE");
-  opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D].", "SPEC");
+  opt("aa", "Anti-aliasing of the picture: none|regular:K|jitter:K|random:N|adaptive:T[:D], +tent for the tent filter.", "SPEC");
   opt("heat",
       "Heat map overlay: cells (cells or nodes visited), tests, mailbox, boxes (BVH: bounding-box tests), "
       "samples (the anti-aliasing's rays per pixel) or error (against the exact reference, where the scene "

@@ -97,8 +97,10 @@ HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& a
   if (q == HeatQuantity::samples) {
     h = samples_heatmap(renderWith(s, aaSpec, width, height).samples, width, height);
   } else if (q == HeatQuantity::error) {
-    // Against the exact pre-filtered picture (render_exact_coverage throws, with the reason, without one).
-    const Image reference = render_exact_coverage(s.scene->scene, width, height);
+    // Against the exact picture pre-filtered by the method's own filter (render_exact_coverage throws, with the
+    // reason, without one).
+    const Image reference =
+        render_exact_coverage(s.scene->scene, width, height, antiAliasingOf(s.scene->scene, aaSpec).filter);
     h = error_heatmap(pixel_errors(renderWith(s, aaSpec, width, height).image, reference), width, height);
   } else {
     h = compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
@@ -115,16 +117,22 @@ PixelSampling samplePixel(const StructureData& s, const AntiAliasing& aa, int wi
                           int py, bool positionsOnly) {
   const Scene& scene = s.scene->scene;
   Pcg32 rng = pixel_rng(scene.render.seed, px, py, width);
-  if (positionsOnly && aa.mode != AntiAliasing::Mode::adaptive)
+  if (positionsOnly && aa.mode != AntiAliasing::Mode::adaptive) {
+    // Where the pixel's own samples fall (the overlay draws every pixel's: no neighbours needed).
     return sample_pixel(aa, px, py, rng, [](float, float) { return glm::vec3(0.f); });
+  }
   const ProjectiveCamera camera(scene.camera, width, height);
   const WhittedTracer tracer(scene, *s.accel);
   RayCounts counts;
-  return sample_pixel(aa, px, py, rng,
-                      [&](float x, float y) { return tracer.trace_primary(camera.generate(x, y), &counts); });
+  const RadianceFn radiance = [&](float x, float y) {
+    return tracer.trace_primary(camera.generate(x, y), &counts);
+  };
+  PixelSampling p = sample_pixel(aa, px, py, rng, radiance);
+  apply_pixel_filter(p, scene.render.seed, width, radiance);
+  return p;
 }
 
-QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n) {
+QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n, double reach) {
   const Scene& scene = s.scene->scene;
   const ProjectiveCamera camera(scene.camera, width, height);
   const WhittedTracer tracer(scene, *s.accel);
@@ -133,8 +141,9 @@ QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int 
   for (int j = 0; j < n; ++j) {
     uchar* row = img.scanLine(j);
     for (int i = 0; i < n; ++i) {
+      const float span = float(1.0 + 2.0 * reach), x0 = float(px - reach), y0 = float(py - reach);
       const glm::vec3 c = tracer.trace_primary(
-          camera.generate(float(px) + (float(i) + 0.5f) / float(n), float(py) + (float(j) + 0.5f) / float(n)),
+          camera.generate(x0 + span * (float(i) + 0.5f) / float(n), y0 + span * (float(j) + 0.5f) / float(n)),
           &counts);
       row[3 * i] = srgb_encode8(c.r);
       row[3 * i + 1] = srgb_encode8(c.g);
@@ -164,7 +173,7 @@ Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int 
   // The same trace as `raystep trace --pixel X,Y --aa SPEC` records, with the exact value where there is one.
   Trace trace = record_pixel_trace(sd.scene, *s.accel, width, height, px, py, aa, sd.scene.render.seed,
                                    secondary, sd.path, sd.hash);
-  if (trace.pixel) trace.pixel->exact = exact_pixel_value(sd.scene, width, height, px, py);
+  if (trace.pixel) trace.pixel->exact = exact_pixel_value(sd.scene, width, height, px, py, aa.filter);
   return trace;
 }
 

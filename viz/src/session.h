@@ -82,9 +82,11 @@ PixelSampling samplePixel(const StructureData& s, const AntiAliasing& aa, int wi
 // samples, the adaptive squares, the value and the exact value where the scene has one).
 Trace tracePixel(const StructureData& s, const AntiAliasing& aa, int width, int height, int px, int py,
                  bool secondary);
-// What the scene shows inside pixel (px, py): n x n rays through the centres of an n x n lattice, as an sRGB
-// image (the pixel inspector's faint background, so that a student sees the edge the samples straddle).
-QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n = 64);
+// What the scene shows inside pixel (px, py) and `reach` pixels beyond it on every side (the tent filter's
+// 0.5: the square its weights cover): n x n rays through the centres of an n x n lattice, as an sRGB image
+// (the pixel inspector's faint background, so that a student sees the edge the samples straddle).
+QImage pixelBackdrop(const StructureData& s, int width, int height, int px, int py, int n = 64,
+                     double reach = 0.0);
 // The pixel section for a picture without anti-aliasing: one sample at the centre (the inspector shows it;
 // the trace keeps version 1).
 TracePixel centrePixel(const StructureData& s, int width, int height, int px, int py);

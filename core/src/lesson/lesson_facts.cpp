@@ -76,10 +76,14 @@ struct LessonFacts::Impl {
     return *w.trace->pixel;
   }
   // The pixel's exact value, as the inspector shows it (render/reference.h).
-  double exact() const {
+  double exact() const { return exact(aa().filter); }
+  double exact(AntiAliasing::Filter filter) const {
     if (!w.pixel) fail("no traced pixel (pixel: X,Y)");
-    const std::optional<glm::vec3> v = exact_pixel_value(*w.scene, w.width, w.height, (*w.pixel)[0], (*w.pixel)[1]);
-    if (!v) fail("the scene has no exact reference (" + exact_coverage_unavailable(*w.scene, w.width, w.height) + ")");
+    const std::optional<glm::vec3> v =
+        exact_pixel_value(*w.scene, w.width, w.height, (*w.pixel)[0], (*w.pixel)[1], filter);
+    if (!v)
+      fail("the scene has no exact reference (" +
+           exact_coverage_unavailable(*w.scene, w.width, w.height, filter) + ")");
     return double(v->x);
   }
   const AdaptiveSquare& square() const {
@@ -311,14 +315,29 @@ const std::vector<Fact>& facts() {
            [](I& i) { return double(i.pixel().sampling.squares.size()); }),
       fact("pixel.value", "the pixel's value (red channel; grey scenes: the grey)",
            [](I& i) { return double(i.pixel().sampling.value.x); }),
+      fact("pixel.box_value", "the mean of the pixel's own samples (red channel): its value with the box filter",
+           [](I& i) { return double(i.pixel().sampling.box_value.x); }),
+      fact("pixel.neighbour_samples", "tent filter: the neighbours' samples that the pixel's tent reaches",
+           [](I& i) { return double(i.pixel().sampling.neighbours.size()); }),
+      fact("pixel.own_weight", "tent filter: the share of the weight on the pixel's own samples",
+           [](I& i) {
+             const PixelSampling& s = i.pixel().sampling;
+             double own = 0, all = 0;
+             for (const PixelSample& p : s.samples) own += p.weight;
+             all = own;
+             for (const PixelSample& p : s.neighbours) all += p.weight;
+             return all > 0 ? own / all : 0.0;
+           }),
       fact("pixel.lit", "samples whose value is above one half (red channel)",
            [](I& i) {
              double n = 0;
              for (const PixelSample& p : i.pixel().sampling.samples) n += p.colour.x > 0.5f;
              return n;
            }),
-      fact("pixel.exact", "the exact pre-filtered value (red channel), where the scene has one",
+      fact("pixel.exact", "the exact pre-filtered value with the step's filter (red channel), where there is one",
            [](I& i) { return i.exact(); }),
+      fact("pixel.area", "the pixel's exact area coverage, the box pre-filter's value (red channel), whatever the filter",
+           [](I& i) { return i.exact(AntiAliasing::Filter::box); }),
       fact("pixel.error", "|value - exact| (red channel)",
            [](I& i) { return std::abs(double(i.pixel().sampling.value.x) - i.exact()); }),
       fact("square.depth", "adaptive: the selected square's depth (0: the whole pixel)",
@@ -487,6 +506,8 @@ const std::vector<Fact>& facts() {
       // The anti-aliasing report (`raystep aa-report` on the step's scene and size).
       fn("aa.rmse", true, "a method's RMSE against the reference: aa.rmse(\"jitter:4\")",
          [](I& i, const std::string& a) { return i.aa_row(a).rmse; }),
+      fn("aa.max_error", true, "a method's largest pixel error against the reference: aa.max_error(\"jitter:4\")",
+         [](I& i, const std::string& a) { return i.aa_row(a).max_error; }),
       fn("aa.rays", true, "a method's primary rays per pixel", [](I& i, const std::string& a) { return i.aa_row(a).rays_per_pixel; }),
       fn("aa.slope", true, "a method's fitted slope of log RMSE against log rays: aa.slope(\"jitter\")",
          [](I& i, const std::string& a) {

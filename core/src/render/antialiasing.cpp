@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raystep/render/pixel_filter.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -280,6 +281,17 @@ class PixelSamplingRecorder {
   std::vector<int> open_;  // the squares entered and not yet left, innermost last
 };
 
+// Tells every sample to a function (render_image's tent filter and sample_pixel's neighbours).
+class SampleFnRecorder : public NullPixelRecorder {
+ public:
+  static constexpr bool enabled = true;
+  explicit SampleFnRecorder(const SampleFn& fn) : fn_(fn) {}
+  void sample(float px, float py, const glm::vec3& colour, int, int, int, int) { fn_(px, py, colour); }
+
+ private:
+  const SampleFn& fn_;
+};
+
 }  // namespace
 
 void validate(const AntiAliasing& aa) {
@@ -299,6 +311,8 @@ void validate(const AntiAliasing& aa) {
       if (!(aa.threshold >= 0.f)) throw InputError("", 0, "anti-aliasing adaptive: threshold must be >= 0");
       break;
   }
+  if (aa.mode == AntiAliasing::Mode::adaptive && aa.filter == AntiAliasing::Filter::tent)
+    throw InputError("", 0, "anti-aliasing adaptive: the tent filter needs samples spread evenly over the pixel");
   if (samples > kMaxSamplesPerPixel)
     throw InputError("", 0, "anti-aliasing " + mode + ": " + std::to_string(samples) +
                                 " samples per pixel, at most " + std::to_string(kMaxSamplesPerPixel) +
@@ -338,6 +352,12 @@ PixelEstimate estimate_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, c
   return estimate_pixel_with(aa, x, y, rng, radiance, none);
 }
 
+uint32_t cast_pixel_samples(const AntiAliasing& aa, int x, int y, Pcg32& rng, const RadianceFn& radiance,
+                            const SampleFn& sample) {
+  SampleFnRecorder recorder(sample);
+  return estimate_pixel_with(aa, x, y, rng, radiance, recorder).samples;
+}
+
 PixelSampling sample_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, const RadianceFn& radiance) {
   validate(aa);
   PixelSampling out;
@@ -346,7 +366,42 @@ PixelSampling sample_pixel(const AntiAliasing& aa, int x, int y, Pcg32& rng, con
   out.y = y;
   PixelSamplingRecorder recorder(out);
   out.value = estimate_pixel_with(aa, x, y, rng, radiance, recorder).value;
+  out.box_value = out.value;
   return out;
+}
+
+void apply_pixel_filter(PixelSampling& s, uint64_t seed, int width, const RadianceFn& radiance) {
+  if (s.aa.filter == AntiAliasing::Filter::box) return;
+  const float cx = float(s.x) + 0.5f, cy = float(s.y) + 0.5f;
+  FilterSum rows[3];  // the source rows y - 1, y, y + 1 (pixel_filter.h: the order render_image adds in)
+  s.neighbours.clear();
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      FilterSum& row = rows[dy + 1];
+      if (dx == 0 && dy == 0) {
+        for (PixelSample& p : s.samples) {
+          p.weight = tent_weight(p.px - cx, p.py - cy);
+          row.add(p.weight, p.colour);
+        }
+        continue;
+      }
+      Pcg32 rng = pixel_rng(seed, s.x + dx, s.y + dy, width);
+      cast_pixel_samples(s.aa, s.x + dx, s.y + dy, rng, radiance, [&](float px, float py, const glm::vec3& c) {
+        const float w = tent_weight(px - cx, py - cy);
+        if (!(w > 0.f)) return;
+        PixelSample p;
+        p.px = px;
+        p.py = py;
+        p.colour = c;
+        p.weight = w;
+        s.neighbours.push_back(p);
+        row.add(w, c);
+      });
+    }
+  FilterSum sum = rows[0];
+  sum.add(rows[1]);
+  sum.add(rows[2]);
+  s.value = sum.value();
 }
 
 }  // namespace raystep

@@ -44,4 +44,35 @@ double pixel_coverage(const std::vector<glm::dvec2>& polygon, int x, int y) {
   return std::fabs(signed_area(clip_to_box(polygon, lo, hi)));
 }
 
+double pixel_tent_coverage(const std::vector<glm::dvec2>& polygon, int x, int y) {
+  const glm::dvec2 c(x + 0.5, y + 0.5);
+  double total = 0.0;
+  for (int sy = -1; sy <= 1; sy += 2)
+    for (int sx = -1; sx <= 1; sx += 2) {
+      const glm::dvec2 lo(sx < 0 ? c.x - 1.0 : c.x, sy < 0 ? c.y - 1.0 : c.y);
+      const std::vector<glm::dvec2> q = clip_to_box(polygon, lo, lo + glm::dvec2(1.0));
+      if (q.size() < 3) continue;
+      // Moments of the clipped polygon about the centre, by its edges: c_i = u_i v_(i+1) - u_(i+1) v_i,
+      // area = sum c_i / 2, int u = sum (u_i + u_(i+1)) c_i / 6, likewise v, and
+      // int uv = sum (u_i v_(i+1) + 2 u_i v_i + 2 u_(i+1) v_(i+1) + u_(i+1) v_i) c_i / 24.
+      double a = 0.0, mu = 0.0, mv = 0.0, muv = 0.0;
+      for (size_t i = 0, n = q.size(); i < n; ++i) {
+        const glm::dvec2 p = q[i] - c, r = q[(i + 1) % n] - c;
+        const double ci = p.x * r.y - r.x * p.y;
+        a += ci;
+        mu += (p.x + r.x) * ci;
+        mv += (p.y + r.y) * ci;
+        muv += (p.x * r.y + 2.0 * p.x * p.y + 2.0 * r.x * r.y + r.x * p.y) * ci;
+      }
+      a /= 2.0;
+      mu /= 6.0;
+      mv /= 6.0;
+      muv /= 24.0;
+      // In this quadrant |u| = sx u and |v| = sy v; a clockwise polygon has every moment negated.
+      const double w = a - sx * mu - sy * mv + sx * sy * muv;
+      total += a < 0.0 ? -w : w;
+    }
+  return total;
+}
+
 }  // namespace raystep

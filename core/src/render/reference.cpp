@@ -6,6 +6,7 @@
 
 #include "raystep/render/camera.h"
 #include "raystep/render/coverage.h"
+#include "raystep/render/pixel_filter.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
@@ -43,12 +44,12 @@ std::vector<glm::dvec2> clip_half_plane(const std::vector<glm::dvec2>& in, const
   return out;
 }
 
-// Area of the intersection of two counter-clockwise triangles inside the image (convex clipping, one edge of
-// b at a time, then the image's rectangle: an overlap off screen changes no pixel).
-double overlap_area(const FlatTriangle& a, const FlatTriangle& b, const glm::dvec2& image) {
+// Area of the intersection of two counter-clockwise triangles inside [lo, hi] (convex clipping, one edge of
+// b at a time, then the rectangle the filters reach: an overlap beyond it changes no pixel).
+double overlap_area(const FlatTriangle& a, const FlatTriangle& b, const glm::dvec2& lo, const glm::dvec2& hi) {
   std::vector<glm::dvec2> p = a.polygon;
   for (int k = 0; k < 3 && p.size() >= 3; ++k) p = clip_half_plane(p, b.polygon[k], b.polygon[(k + 1) % 3]);
-  if (p.size() >= 3) p = clip_to_box(p, glm::dvec2(0.0), image);
+  if (p.size() >= 3) p = clip_to_box(p, lo, hi);
   return p.size() >= 3 ? std::fabs(signed_area(p)) : 0.0;
 }
 
@@ -70,7 +71,8 @@ std::string flat_colour(const Scene& scene, const Material& m, glm::vec3* colour
 }
 
 // The scene's triangles on screen, or the reason the exact reference does not apply.
-std::string flat_triangles(const Scene& scene, int width, int height, std::vector<FlatTriangle>* out) {
+std::string flat_triangles(const Scene& scene, int width, int height, AntiAliasing::Filter filter,
+                           std::vector<FlatTriangle>* out) {
   if (scene.camera.type != CameraType::orthographic)
     return "the camera is a pinhole (exact coverage needs an orthographic camera)";
   if (!scene.geometry.all_triangles()) return "the scene has spheres (exact coverage needs triangles only)";
@@ -106,22 +108,25 @@ std::string flat_triangles(const Scene& scene, int width, int height, std::vecto
     for (size_t j = i + 1; j < order.size() && (*out)[order[j]].lo.x < a.hi.x; ++j) {
       const FlatTriangle& b = (*out)[order[j]];
       if (b.lo.y >= a.hi.y || a.lo.y >= b.hi.y) continue;
-      if (overlap_area(a, b, glm::dvec2(width, height)) > kOverlapTolerance)
+      const double reach = filter_reach(filter);
+      if (overlap_area(a, b, glm::dvec2(-reach), glm::dvec2(width + reach, height + reach)) > kOverlapTolerance)
         return "two triangles overlap on screen";
     }
   }
   return "";
 }
 
-std::vector<FlatTriangle> flat_triangles_or_throw(const Scene& scene, int width, int height) {
+std::vector<FlatTriangle> flat_triangles_or_throw(const Scene& scene, int width, int height,
+                                                  AntiAliasing::Filter filter) {
   std::vector<FlatTriangle> triangles;
   if (width <= 0 || height <= 0) throw InputError("", 0, "image size must be positive");
-  if (std::string why = flat_triangles(scene, width, height, &triangles); !why.empty())
+  if (std::string why = flat_triangles(scene, width, height, filter, &triangles); !why.empty())
     throw InputError("", 0, "no exact reference: " + why);
   return triangles;
 }
 
-// Pixel (x, y) given the coverage of each triangle: background * (1 - sum coverage) + sum coverage * colour.
+// Pixel (x, y) given the coverage of each triangle, weighed by the filter (which integrates to 1):
+// background * (1 - sum coverage) + sum coverage * colour.
 struct PixelSum {
   glm::dvec3 colour{0.0};
   double coverage = 0.0;
@@ -141,25 +146,32 @@ void check_sizes(const Image& a, const Image& b) {
                                 std::to_string(b.height));
 }
 
-}  // namespace
-
-std::string exact_coverage_unavailable(const Scene& scene, int width, int height) {
-  if (width <= 0 || height <= 0) return "the image size is not positive";
-  std::vector<FlatTriangle> triangles;
-  return flat_triangles(scene, width, height, &triangles);
+double filtered_coverage(const FlatTriangle& t, int x, int y, AntiAliasing::Filter filter) {
+  return filter == AntiAliasing::Filter::tent ? pixel_tent_coverage(t.polygon, x, y)
+                                              : pixel_coverage(t.polygon, x, y);
 }
 
-Image render_exact_coverage(const Scene& scene, int width, int height) {
-  const std::vector<FlatTriangle> triangles = flat_triangles_or_throw(scene, width, height);
+}  // namespace
+
+std::string exact_coverage_unavailable(const Scene& scene, int width, int height, AntiAliasing::Filter filter) {
+  if (width <= 0 || height <= 0) return "the image size is not positive";
+  std::vector<FlatTriangle> triangles;
+  return flat_triangles(scene, width, height, filter, &triangles);
+}
+
+Image render_exact_coverage(const Scene& scene, int width, int height, AntiAliasing::Filter filter) {
+  const std::vector<FlatTriangle> triangles = flat_triangles_or_throw(scene, width, height, filter);
   std::vector<PixelSum> sums(size_t(width) * size_t(height));
-  // Each triangle touches only the pixels of its bounding box.
+  // Each triangle touches only the pixels whose filters reach its bounding box.
+  const int reach = filter_reach(filter);
   for (const FlatTriangle& t : triangles) {
-    const int x0 = std::max(0, int(std::floor(t.lo.x))), x1 = std::min(width - 1, int(std::ceil(t.hi.x)) - 1);
-    const int y0 = std::max(0, int(std::floor(t.lo.y))),
-              y1 = std::min(height - 1, int(std::ceil(t.hi.y)) - 1);
+    const int x0 = std::max(0, int(std::floor(t.lo.x)) - reach),
+              x1 = std::min(width - 1, int(std::ceil(t.hi.x)) - 1 + reach);
+    const int y0 = std::max(0, int(std::floor(t.lo.y)) - reach),
+              y1 = std::min(height - 1, int(std::ceil(t.hi.y)) - 1 + reach);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x) {
-        const double c = pixel_coverage(t.polygon, x, y);
+        const double c = filtered_coverage(t, x, y, filter);
         if (c > 0.0) sums[size_t(y) * size_t(width) + size_t(x)].add(c, t.colour);
       }
   }
@@ -168,29 +180,34 @@ Image render_exact_coverage(const Scene& scene, int width, int height) {
   return image;
 }
 
-std::optional<glm::vec3> exact_pixel_value(const Scene& scene, int width, int height, int x, int y) {
+std::optional<glm::vec3> exact_pixel_value(const Scene& scene, int width, int height, int x, int y,
+                                           AntiAliasing::Filter filter) {
   std::vector<FlatTriangle> triangles;
-  if (width <= 0 || height <= 0 || !flat_triangles(scene, width, height, &triangles).empty())
+  if (width <= 0 || height <= 0 || !flat_triangles(scene, width, height, filter, &triangles).empty())
     return std::nullopt;
   PixelSum sum;
+  const double reach = filter_reach(filter);
   for (const FlatTriangle& t : triangles)
-    if (t.lo.x < x + 1.0 && t.hi.x > x && t.lo.y < y + 1.0 && t.hi.y > y)
-      sum.add(pixel_coverage(t.polygon, x, y), t.colour);
+    if (t.lo.x < x + 1.0 + reach && t.hi.x > x - reach && t.lo.y < y + 1.0 + reach && t.hi.y > y - reach)
+      sum.add(filtered_coverage(t, x, y, filter), t.colour);
   return sum.value(scene.render.background);
 }
 
 Reference make_reference(const Scene& scene, const Accelerator& accel, int width, int height,
-                         const std::string& spec, int threads, const std::function<void(double)>& progress) {
+                         const std::string& spec, int threads, const std::function<void(double)>& progress,
+                         AntiAliasing::Filter filter) {
   auto report = [&](double f) {
     if (progress) progress(f);
   };
   std::string kind = spec;
-  if (spec == "auto") kind = exact_coverage_unavailable(scene, width, height).empty() ? "exact" : "jitter:16";
+  if (spec == "auto")
+    kind = exact_coverage_unavailable(scene, width, height, filter).empty() ? "exact" : "jitter:16";
+  const std::string suffix = filter == AntiAliasing::Filter::tent ? "+tent" : "";
   Reference ref;
   if (kind == "exact") {
     report(0.0);
-    ref.image = render_exact_coverage(scene, width, height);
-    ref.kind = "exact";
+    ref.image = render_exact_coverage(scene, width, height, filter);
+    ref.kind = "exact" + suffix;
     report(1.0);
     return ref;
   }
@@ -203,7 +220,9 @@ Reference make_reference(const Scene& scene, const Accelerator& accel, int width
       bad = true;
     }
   }
+  if (!bad && aa.filter != AntiAliasing::Filter::box) bad = true;  // the filter is the methods', not the spec's
   if (bad) throw InputError("", 0, "bad reference '" + spec + "': expected exact, jitter:K (K >= 1) or auto");
+  aa.filter = filter;
   // Two independent renders (seeds no report uses): their mean is the reference; the mean's own error is
   // the RMS difference of the two over 2 (each render's is that over sqrt(2), and averaging two independent
   // errors divides it by sqrt(2) again).

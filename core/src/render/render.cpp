@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <memory>
@@ -19,6 +20,7 @@
 
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
+#include "raystep/render/pixel_filter.h"
 #include "raystep/render/pixel_samples.h"
 #include "raystep/render/sampler.h"
 #include "raystep/util/error.h"
@@ -126,6 +128,43 @@ RenderResult render_image(const Scene& scene, const Accelerator& accel, const Re
       progress.advance();
     }
   };
+
+  // The tent filter (render/pixel_filter.h): every pixel of the image, and of the frame one pixel wide around
+  // it that the border pixels' tents reach, casts its samples once; each sample is added to the (at most
+  // four) pixels whose tents reach it, into the sum that belongs to its source row (the row above the pixel,
+  // its own, the row below). No two source rows write the same sum, so the rows run in parallel, and the
+  // three sums are added in order at the end: the same additions in the same order whatever the threads.
+  const bool tent = options.aa.filter == AntiAliasing::Filter::tent;
+  std::vector<FilterSum> by_row[3];
+  if (tent)
+    for (std::vector<FilterSum>& sums : by_row) sums.assign(result.samples.size(), FilterSum{});
+  auto splat_rows = [&](const tbb::blocked_range<int>& rows) {
+    RayCounts& counts = thread_counts.local();
+    const RadianceFn radiance = [&](float px, float py) {
+      return tracer.trace_primary(camera.generate(px, py), &counts);
+    };
+    for (int sy = rows.begin(); sy < rows.end(); ++sy) {
+      for (int sx = -1; sx <= width; ++sx) {
+        Pcg32 rng = pixel_rng(options.seed, sx, sy, width);
+        const uint32_t n = cast_pixel_samples(options.aa, sx, sy, rng, radiance,
+                                              [&](float px, float py, const glm::vec3& c) {
+          const int x0 = int(std::floor(px - 0.5f)), y0 = int(std::floor(py - 0.5f));
+          for (int ty = y0; ty <= y0 + 1; ++ty) {
+            if (ty < 0 || ty >= height) continue;
+            for (int tx = x0; tx <= x0 + 1; ++tx) {
+              if (tx < 0 || tx >= width) continue;
+              const float w = tent_weight(px - (float(tx) + 0.5f), py - (float(ty) + 0.5f));
+              if (w > 0.f) by_row[sy - ty + 1][size_t(ty) * size_t(width) + size_t(tx)].add(w, c);
+            }
+          }
+        });
+        if (sx >= 0 && sx < width && sy >= 0 && sy < height)
+          result.samples[size_t(sy) * size_t(width) + size_t(sx)] = n;
+      }
+      if (sy >= 0 && sy < height) progress.advance();
+    }
+  };
+
   // An explicit thread count is honoured even above the number of cores (TBB caps its workers at the core
   // count unless a global_control raises the cap).
   std::unique_ptr<tbb::global_control> allow;
@@ -133,7 +172,17 @@ RenderResult render_image(const Scene& scene, const Accelerator& accel, const Re
     allow = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                   size_t(options.threads));
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), render_rows); });
+  if (!tent) {
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), render_rows); });
+  } else {
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(-1, height + 1, 1), splat_rows); });
+    for (size_t i = 0; i < result.samples.size(); ++i) {
+      FilterSum sum = by_row[0][i];
+      sum.add(by_row[1][i]);
+      sum.add(by_row[2][i]);
+      result.image.pixels[i] = sum.value();
+    }
+  }
 
   thread_counts.combine_each([&](const RayCounts& c) { result.rays += c; });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -36,6 +36,11 @@ const char* method_name(AntiAliasing::Mode mode) {
   return "?";
 }
 
+// The method's name in the rows and the slopes: the pattern, "+tent" for the tent filter's.
+std::string method_of(const AntiAliasing& aa) {
+  return std::string(method_name(aa.mode)) + (aa.filter == AntiAliasing::Filter::tent ? "+tent" : "");
+}
+
 bool is_random(const AntiAliasing& aa) {
   return aa.mode == AntiAliasing::Mode::jitter || aa.mode == AntiAliasing::Mode::random;
 }
@@ -82,6 +87,8 @@ std::vector<std::string> default_aa_methods() {
   for (const char* s : {"adaptive:0.1:1", "adaptive:0.1:2", "adaptive:0.4:3", "adaptive:0.2:3",
                         "adaptive:0.1:3", "adaptive:0.05:3", "adaptive:0.02:3"})
     m.push_back(s);
+  // Sampling and pre-filtering combined: the same samples weighed by the tent over the neighbours too.
+  for (const char* s : {"regular:4+tent", "jitter:2+tent", "jitter:4+tent", "jitter:8+tent"}) m.push_back(s);
   return m;
 }
 
@@ -156,32 +163,55 @@ AaReport run_aa_report(const Scene& scene, const Accelerator& accel, const AaRep
   } else if (ref_spec == "auto" && !exact_coverage_unavailable(scene, report.width, report.height).empty()) {
     reference_work = 2.0 * 16.0 * 16.0;
   }
-  total_work += reference_work;
+  std::vector<AntiAliasing::Filter> filters;  // the methods' filters, box first
+  for (AntiAliasing::Filter f : {AntiAliasing::Filter::box, AntiAliasing::Filter::tent})
+    for (const AntiAliasing& aa : methods)
+      if (aa.filter == f) {
+        filters.push_back(f);
+        break;
+      }
+  total_work += reference_work * double(filters.size());
   auto progress = [&](double done) {
     if (hooks.progress) hooks.progress(std::min(1.0, done / total_work));
   };
   auto cancelled = [&] { return hooks.cancel && hooks.cancel->load(); };
 
-  // The reference.
-  progress(0.0);
-  const auto ref_start = std::chrono::steady_clock::now();
-  const Reference reference =
-      make_reference(scene, accel, report.width, report.height, ref_spec, options.threads,
-                     [&](double f) { progress(f * reference_work); });
-  report.reference_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
-  report.reference_kind = reference.kind;
-  report.reference_rmse = reference.estimated_rmse;
-  work_done = reference_work;
-  progress(work_done);
-  if (!hooks.image_dir.empty()) write_pfm(hooks.image_dir + "/reference.pfm", reference.image);
+  // The references, one per filter.
+  std::vector<Image> reference_images;
+  for (AntiAliasing::Filter filter : filters) {
+    const double before = work_done;
+    progress(work_done);
+    const auto ref_start = std::chrono::steady_clock::now();
+    Reference reference =
+        make_reference(scene, accel, report.width, report.height, ref_spec, options.threads,
+                       [&](double f) { progress(before + f * reference_work); }, filter);
+    AaReference info;
+    info.kind = reference.kind;
+    info.rmse = reference.estimated_rmse;
+    info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - ref_start).count();
+    report.references.push_back(info);
+    work_done = before + reference_work;
+    progress(work_done);
+    if (!hooks.image_dir.empty())
+      write_pfm(hooks.image_dir + (filter == AntiAliasing::Filter::tent ? "/reference-tent.pfm" : "/reference.pfm"),
+                reference.image);
+    reference_images.push_back(std::move(reference.image));
+  }
+  report.reference_kind = report.references[0].kind;
+  report.reference_rmse = report.references[0].rmse;
+  report.reference_seconds = report.references[0].seconds;
+  auto reference_of = [&](const AntiAliasing& aa) -> size_t {
+    return size_t(std::find(filters.begin(), filters.end(), aa.filter) - filters.begin());
+  };
 
   // Every method over its seeds.
   for (size_t m = 0; m < methods.size() && !cancelled(); ++m) {
     const AntiAliasing& aa = methods[m];
     AaReportRow row;
-    row.method = method_name(aa.mode);
+    row.method = method_of(aa);
     row.spec = to_string(aa);
+    const Image& reference = reference_images[reference_of(aa)];
+    row.reference = report.references[reference_of(aa)].kind;
     const bool random = is_random(aa);
     const int runs = runs_of(aa);
     row.seeds = random ? runs : 1;
@@ -208,8 +238,8 @@ AaReport run_aa_report(const Scene& scene, const Accelerator& accel, const AaRep
       shadow += double(r.rays.shadow);
       reflected += double(r.rays.reflected);
       refracted += double(r.rays.refracted);
-      row.seed_rmse.push_back(rmse(r.image, reference.image));
-      max_errors.push_back(max_abs_error(r.image, reference.image));
+      row.seed_rmse.push_back(rmse(r.image, reference));
+      max_errors.push_back(max_abs_error(r.image, reference));
       if (!hooks.image_dir.empty()) {
         const std::string name =
             file_stem(row.spec) + (random ? "-seed" + std::to_string(o.seed) : "") + ".pfm";

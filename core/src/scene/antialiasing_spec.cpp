@@ -12,7 +12,7 @@ namespace {
 
 const char* kExpected =
     "expected none, regular:K, jitter:K (K 1..64), random:N (N 1..4096) or adaptive:T[:D] "
-    "(T in (0,1], D 1..6)";
+    "(T in (0,1], D 1..6), each but adaptive optionally followed by +tent";
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts(1);
@@ -58,8 +58,15 @@ std::string shortest(float v) {
 }  // namespace
 
 AntiAliasing parse_antialiasing(const std::string& spec) {
-  std::vector<std::string> p = split(spec, ':');
   AntiAliasing aa;
+  std::string pattern = spec;
+  if (const size_t plus = spec.find('+'); plus != std::string::npos) {
+    const std::string filter = spec.substr(plus + 1);
+    pattern = spec.substr(0, plus);
+    if (filter == "tent") aa.filter = AntiAliasing::Filter::tent;
+    else if (filter != "box") throw InputError("", 0, "bad anti-aliasing '" + spec + "': " + kExpected);
+  }
+  std::vector<std::string> p = split(pattern, ':');
   const std::string& mode = p[0];
   bool ok = false;
   if (mode == "none") {
@@ -77,10 +84,17 @@ AntiAliasing parse_antialiasing(const std::string& spec) {
          (p.size() == 2 || parse_int(p[2], 1, 6, &aa.max_depth));
   }
   if (!ok) throw InputError("", 0, "bad anti-aliasing '" + spec + "': " + kExpected);
+  if (aa.mode == AntiAliasing::Mode::adaptive && aa.filter == AntiAliasing::Filter::tent)
+    throw InputError("", 0,
+                     "bad anti-aliasing '" + spec +
+                         "': the tent filter needs samples spread evenly over the pixel (regular, jitter, "
+                         "random), and adaptive sampling crowds them at edges");
   return aa;
 }
 
-std::string to_string(const AntiAliasing& aa) {
+namespace {
+
+std::string pattern_string(const AntiAliasing& aa) {
   switch (aa.mode) {
     case AntiAliasing::Mode::none: return "none";
     case AntiAliasing::Mode::regular: return "regular:" + std::to_string(aa.k);
@@ -90,6 +104,12 @@ std::string to_string(const AntiAliasing& aa) {
       return "adaptive:" + shortest(aa.threshold) + ":" + std::to_string(aa.max_depth);
   }
   return "none";
+}
+
+}  // namespace
+
+std::string to_string(const AntiAliasing& aa) {
+  return pattern_string(aa) + (aa.filter == AntiAliasing::Filter::tent ? "+tent" : "");
 }
 
 }  // namespace raystep

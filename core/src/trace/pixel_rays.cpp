@@ -63,6 +63,9 @@ PixelSampleRays pixel_sample_rays(const Scene& scene, const Accelerator& accel, 
   };
   Pcg32 rng = pixel_rng(seed, px, py, width);
   out.sampling = sample_pixel(aa, px, py, rng, radiance);
+  // The neighbours' samples the tent reaches are weighed in, but their rays are not the pixel's: unheard.
+  tracer.set_listener(nullptr);
+  apply_pixel_filter(out.sampling, seed, width, radiance);
   return out;
 }
 

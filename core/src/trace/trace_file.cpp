@@ -1,5 +1,7 @@
 #include "raystep/trace/trace_file.h"
 
+#include "raystep/render/pixel_filter.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -18,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "raystep/render/pixel_filter.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/json_locate.h"
 #include "raystep/scene/json_tape.h"
@@ -231,6 +234,7 @@ std::string pixel_json(const TracePixel& p) {
   head["aa"] = to_string(s.aa);
   head["value"] = vec(s.value);
   if (p.exact) head["exact"] = vec(*p.exact);
+  const bool tent = s.aa.filter == AntiAliasing::Filter::tent;
   std::string h = head.dump();
   h.pop_back();  // reopen the object to append the samples and squares, one per line
   std::ostringstream out;
@@ -242,9 +246,22 @@ std::string pixel_json(const TracePixel& p) {
     j["colour"] = vec(ps.colour);
     if (ps.stratum[0] >= 0) j["stratum"] = {ps.stratum[0], ps.stratum[1]};
     if (ps.lattice[0] >= 0) j["lattice"] = {ps.lattice[0], ps.lattice[1]};
+    if (tent) j["weight"] = number(ps.weight);
     return j;
   });
   out << (s.samples.empty() ? "],\n" : "\n  ],\n");
+  if (tent) {  // the neighbours' samples the tent reaches, and the pixel's own box-filtered value
+    out << "  \"box_value\": " << vec(s.box_value).dump() << ",\n  \"neighbours\": [";
+    write_rows(out, s.neighbours, [&](const PixelSample& ps) {
+      ordered j;
+      j["px"] = number(ps.px);
+      j["py"] = number(ps.py);
+      j["colour"] = vec(ps.colour);
+      j["weight"] = number(ps.weight);
+      return j;
+    });
+    out << (s.neighbours.empty() ? "],\n" : "\n  ],\n");
+  }
   out << "  \"squares\": [";
   write_rows(out, s.squares, [&](const AdaptiveSquare& q) {
     ordered j;
@@ -739,6 +756,43 @@ TracePixel read_pixel(const Reader& rd, const Value& jp, const Path& pp, Capped 
       rd.fail(ip.key("lattice"), "only adaptive samples lie on the lattice");
     }
     s.samples.push_back(ps);
+  }
+
+  // The tent filter: each sample's weight from its place, and the neighbours' samples it reaches.
+  const bool tent = s.aa.filter == AntiAliasing::Filter::tent;
+  const float cx = float(s.x) + 0.5f, cy = float(s.y) + 0.5f;
+  auto check_weight = [&](PixelSample& ps, const Value& js, const Path& ip) {
+    ps.weight = tent_weight(ps.px - cx, ps.py - cy);
+    if (js.contains("weight") && !(std::fabs(rd.real_at(js, ip, "weight") - ps.weight) <= 1e-6f))
+      rd.fail(ip.key("weight"), "not the tent's weight (1 - |dx|)(1 - |dy|) at the sample, " +
+                                    std::to_string(ps.weight));
+  };
+  if (tent)
+    for (size_t i = 0; i < count; ++i) check_weight(s.samples[i], samples[i], sp.at(i));
+  s.box_value = tent && jp.contains("box_value") ? rd.vec_at(jp, pp, "box_value") : s.value;
+  if (jp.contains("neighbours") && !tent) rd.fail(pp.key("neighbours"), "only the tent filter has neighbours");
+  if (tent) {
+    const Value nb = rd.array_at(jp, pp, "neighbours");
+    const Path np = pp.key("neighbours");
+    if (nb.size() > 8 * expected) rd.fail(np, std::to_string(nb.size()) + " neighbours' samples, but eight "
+                                                  "neighbours of " + spec + " cast at most " +
+                                                  std::to_string(8 * expected));
+    s.neighbours.reserve(capped(nb.size()));
+    for (size_t i = 0; i < nb.size(); ++i) {
+      const Path ip = np.at(i);
+      const Value js = nb[i];
+      PixelSample ps;
+      ps.px = rd.real_at(js, ip, "px");
+      ps.py = rd.real_at(js, ip, "py");
+      ps.colour = rd.vec_at(js, ip, "colour");
+      const bool inside = ps.px >= float(s.x) && ps.px < float(s.x + 1) && ps.py >= float(s.y) &&
+                          ps.py < float(s.y + 1);
+      if (inside || !(tent_weight(ps.px - cx, ps.py - cy) > 0.f))
+        rd.fail(ip, "not a neighbour's sample within the tent's reach (outside the pixel, less than one "
+                    "pixel from its centre on each axis)");
+      check_weight(ps, js, ip);
+      s.neighbours.push_back(ps);
+    }
   }
 
   // Adaptive squares, depth first.

@@ -21,4 +21,11 @@ std::vector<glm::dvec2> clip_to_box(const std::vector<glm::dvec2>& polygon, cons
 // Area of polygon ∩ [x, x+1] x [y, y+1], in [0, 1], whatever the polygon's orientation.
 double pixel_coverage(const std::vector<glm::dvec2>& polygon, int x, int y);
 
+// The tent pre-filter's value for pixel (x, y) of a white polygon on black: the integral over the polygon of
+// (1 - |u|)(1 - |v|), (u, v) the offset from the pixel's centre within [-1, 1]^2 (render/pixel_filter.h), in
+// [0, 1]. Exact up to rounding: in each quadrant around the centre the tent is the polynomial
+// 1 - |u| - |v| + |u||v|, whose integral over the polygon clipped to the quadrant is a sum over its edges
+// (Green's theorem: the polygon's area and its first moments and product moment, from its vertices).
+double pixel_tent_coverage(const std::vector<glm::dvec2>& polygon, int x, int y);
+
 }  // namespace raystep

@@ -1,6 +1,8 @@
 // The render loop: every pixel estimated with the anti-aliasing pattern (render/antialiasing.h) through the
 // Whitted tracer (render/whitted.h), in parallel over rows with TBB. Each pixel draws its random numbers
-// from its own stream (render/sampler.h), so the image is bit-identical whatever the thread count.
+// from its own stream (render/sampler.h), so the image is bit-identical whatever the thread count. With the
+// tent filter (render/pixel_filter.h) each sample is shared among the pixels whose tents reach it, and the
+// pixels of a one-pixel frame around the image cast their samples too, for the border pixels' tents.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +28,7 @@ RenderOptions render_options(const RenderSettings& settings);
 
 struct RenderResult {
   Image image;
-  std::vector<uint32_t> samples;  // primary rays per pixel, row-major like the image
+  std::vector<uint32_t> samples;  // primary rays per pixel (its own samples), row-major like the image
   RayCounts rays;
   double seconds = 0.0;           // wall-clock time of the render
 };

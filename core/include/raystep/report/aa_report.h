@@ -26,7 +26,8 @@ struct AaReportOptions {
 
 // The default methods: none, regular:2..8, jitter:2..8, random:4..64 (powers of two), adaptive at several
 // thresholds (depth 3) and, at threshold 0.1, depths 1 and 2 (on a black-and-white scene every threshold
-// below 1 refines the same pixels: only the depth changes anything there).
+// below 1 refines the same pixels: only the depth changes anything there), and with the tent filter
+// regular:4, jitter:2, jitter:4 and jitter:8.
 std::vector<std::string> default_aa_methods();
 
 // Throws InputError("", 0, "bad method list: ...") naming the first bad entry, or for an empty list.
@@ -47,12 +48,22 @@ struct AaReportRow {
   std::vector<double> seed_rmse;  // one per seed, in seed order
   std::vector<std::string> images;  // when written: the PFM of each seed, file names inside hooks.image_dir
                                     // (e.g. "jitter-4-seed1.pfm", "regular-3.pfm")
+  std::string reference;   // the kind of reference its error is measured against: its filter's (AaReport)
+};
+
+struct AaReference {
+  std::string kind;        // "exact" or "jitter:K", with "+tent" for the tent filter's
+  double rmse = 0.0;       // its own estimated error (0 for exact)
+  double seconds = 0.0;
 };
 
 struct AaReport {
   std::string scene_path;
   int width = 0, height = 0;
-  std::string reference_kind;       // "exact" or "jitter:K"
+  // Each method is measured against the scene pre-filtered by its own filter: one reference per filter the
+  // methods use, the box's first. The three fields below are references[0]'s.
+  std::vector<AaReference> references;
+  std::string reference_kind;       // "exact" or "jitter:K" (the box filter's, if any method uses it)
   double reference_rmse = 0.0;      // the reference's own estimated error (0 for exact)
   double reference_seconds = 0.0;
   std::vector<AaReportRow> rows;
@@ -70,7 +81,8 @@ struct AaReportHooks {
   // When set and true, the report stops after the current render and returns the rows it completed (a
   // method cut short is left out: its seeds would not compare with the others').
   const std::atomic<bool>* cancel = nullptr;
-  // When not empty: each render's image is written here as PFM (the reference as reference.pfm).
+  // When not empty: each render's image is written here as PFM (the references as reference.pfm and, for the
+  // tent filter, reference-tent.pfm).
   std::string image_dir;
 };
 

@@ -44,10 +44,14 @@ struct Material {
   float ior = 1.5f;          // index of refraction (used when transparency > 0)
 };
 
-// Anti-aliasing, all box-filtered over the pixel.
+// Anti-aliasing: where the samples go, and the filter that weighs them into a pixel's value.
 struct AntiAliasing {
   enum class Mode { none, regular, jitter, random, adaptive };
   Mode mode = Mode::none;
+  // box: the mean of the pixel's own samples (every pattern); tent: the samples of the pixel and its eight
+  // neighbours weighted by (1 - |dx|)(1 - |dy|) from the pixel's centre (render/pixel_filter.h; not adaptive).
+  enum class Filter { box, tent };
+  Filter filter = Filter::box;
   int k = 1;                // regular/jitter: k x k samples; random: k samples (N, not a side)
   float threshold = 0.1f;   // adaptive: contrast (max - min) / (max + min) that triggers subdivision
   int max_depth = 3;        // adaptive: subdivision levels

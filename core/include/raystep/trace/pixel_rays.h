@@ -17,7 +17,8 @@ std::vector<RayRequest> pixel_rays(const Scene& scene, const Accelerator& accel,
 
 // An anti-aliased pixel: its sampling recorded (render/pixel_samples.h, the same samples and value as the
 // renderer's with this seed and image width), and every sample's primary ray, with secondary its shadow,
-// reflected and refracted rays too, in the order cast, each with RayRequest::sample set.
+// reflected and refracted rays too, in the order cast, each with RayRequest::sample set. With the tent filter
+// the neighbours' samples are in the sampling, their rays not.
 struct PixelSampleRays {
   PixelSampling sampling;
   std::vector<RayRequest> rays;
