@@ -20,6 +20,7 @@
 #include <QThread>
 
 #include "lesson_pane.h"
+#include "settle.h"
 
 namespace raystep::viz {
 namespace {
@@ -34,10 +35,7 @@ QScreen* screenOf(const QWidget& w) {
 }
 
 void settle() {  // the X server confirms sizes asynchronously
-  for (int i = 0; i < 5; ++i) {
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
+  settleWindowSystem();
 }
 
 int neededHeight(const QWidget* w) {

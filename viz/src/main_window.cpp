@@ -54,6 +54,7 @@
 #include "timeline.h"
 #include "tree_pick.h"
 #include "tree_view.h"
+#include "settle.h"
 
 namespace raystep::viz {
 // A trace names its format in its first key; anything else is a scene or a mesh.
@@ -403,10 +404,7 @@ void MainWindow::fitLessonPane() {
   const int debuggerWidth = std::min(width(), room - pane - separator);
   lessonPane_->setFixedWidth(pane);
   resize(debuggerWidth + pane + separator, height());
-  for (int i = 0; i < 5; ++i) {  // the X server confirms the size asynchronously
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
+  settleWindowSystem();  // the X server confirms the size asynchronously
 }
 
 void MainWindow::releaseLessonPaneWidth() {

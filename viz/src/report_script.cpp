@@ -12,6 +12,7 @@
 #include "main_window.h"
 #include "raystep/util/error.h"
 #include "session.h"
+#include "settle.h"
 
 namespace raystep::viz {
 namespace {
@@ -38,12 +39,8 @@ void saveWindow(QWidget* w, const QString& path) {
     fail("cannot write " + path.toStdString());
 }
 
-void settleWindow(QWidget* w) {
-  for (int i = 0; i < 10; ++i) {
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
-  (void)w;
+void settleWindow(QWidget*) {
+  settleWindowSystem(10);
 }
 
 }  // namespace

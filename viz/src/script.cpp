@@ -50,6 +50,7 @@
 #include "structure_panel.h"
 #include "timeline.h"
 #include "tree_view.h"
+#include "settle.h"
 
 namespace raystep::viz {
 namespace {
@@ -86,10 +87,7 @@ void parseSize(const QString& option, const QString& spec, int* w, int* h) {
 }
 
 void settle(MainWindow& w) {
-  for (int i = 0; i < 5; ++i) {
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
+  settleWindowSystem();
   w.sceneView()->renderNow();
   QApplication::processEvents();
 }
@@ -654,10 +652,7 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
   cw->resize(ww, wh);
   cw->show();
   if (!anyScript) return -1;
-  for (int i = 0; i < 5; ++i) {
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
+  settleWindowSystem();
   if (p.isSet("ray")) {
     bool ok = false;
     const int r = p.value("ray").toInt(&ok);
@@ -697,10 +692,7 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
     for (int k = 1; k <= 10; ++k) send(QEvent::MouseMove, c + d * k / 10, Qt::NoButton, Qt::LeftButton);
     send(QEvent::MouseButtonRelease, c + d, Qt::LeftButton, Qt::NoButton);
   }
-  for (int i = 0; i < 5; ++i) {
-    QApplication::processEvents();
-    QThread::msleep(5);
-  }
+  settleWindowSystem();
   cw->renderNow();
   QApplication::processEvents();
   if (p.isSet("screenshot") && !cw->grab().save(p.value("screenshot"), "PNG"))
