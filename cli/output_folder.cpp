@@ -22,6 +22,7 @@ ReportFolder::ReportFolder(std::string dir) : dir_(std::move(dir)) {
   std::error_code ec;
   fs::remove_all(temp_, ec);
   if (!fs::create_directory(temp_, ec)) throw InputError(temp_, 0, "cannot create the output folder");
+  on_signal_ = std::make_unique<TemporaryFolderOnSignal>(temp_);
 }
 
 ReportFolder::~ReportFolder() {
@@ -42,6 +43,7 @@ void ReportFolder::commit() {
   fs::rename(temp_, dir_, ec);
   if (ec) throw InputError(dir_, 0, "cannot move the folder into place: " + ec.message());
   committed_ = true;
+  on_signal_->release();
   if (had_old) fs::remove_all(old, ec);
 }
 

@@ -1,9 +1,12 @@
 // An output folder written atomically (the report commands, export-vtk): everything goes into DIR.tmp.PID
-// beside it, which replaces DIR at commit(). A failed or interrupted run removes its temporary folder and
-// leaves DIR as it was.
+// beside it, which replaces DIR at commit(). A failed or interrupted run (Ctrl-C included) removes its
+// temporary folder and leaves DIR as it was.
 #pragma once
 
+#include <memory>
 #include <string>
+
+#include "raystep/util/atomic_file.h"
 
 namespace raystep::cli {
 
@@ -21,6 +24,7 @@ class ReportFolder {
  private:
   std::string dir_, temp_;
   bool committed_ = false;
+  std::unique_ptr<TemporaryFolderOnSignal> on_signal_;  // Ctrl-C removes the temporary folder too
 };
 
 }  // namespace raystep::cli

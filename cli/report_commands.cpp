@@ -383,10 +383,12 @@ void replace_folder(const fs::path& temp, const fs::path& dir) {
   if (!old.empty()) fs::remove_all(old, ec);
 }
 
-// Removes the temporary folder unless the report was moved into place.
+// Removes the temporary folder unless the report was moved into place (and, on Ctrl-C, the signal handler
+// removes it: TemporaryFolderOnSignal).
 struct TempFolder {
   fs::path path;
   bool keep = false;
+  TemporaryFolderOnSignal on_signal{path.string()};
   ~TempFolder() {
     std::error_code ec;
     if (!keep) fs::remove_all(path, ec);

@@ -2,7 +2,12 @@
 // and bad method lists, scenes, references and sizes exit 2 with one line and leave nothing behind.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -149,3 +154,66 @@ TEST_F(AaReportCli, BadInputExitsTwoWithOneLine) {
 }
 
 }  // namespace
+
+namespace raystep::clitest {
+namespace {
+
+// Starts `raystep ARGS...` with no stdin, stdout or stderr, waits until `temp_prefix` names an entry of the
+// folder (its temporary output folder), lets it work a moment, sends Ctrl-C's SIGINT and returns the wait
+// status.
+int interrupt_when_started(const fs::path& dir, const std::string& temp_prefix, std::vector<std::string> args) {
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(RAYSTEP_EXE));
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    ::dup2(null, 0);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execv(RAYSTEP_EXE, argv.data());
+    ::_exit(127);
+  }
+  bool started = false;
+  for (int i = 0; i < 3000 && !started; ++i) {  // up to 30 s on a slow machine
+    for (const auto& e : fs::directory_iterator(dir))
+      started = started || e.path().filename().string().rfind(temp_prefix, 0) == 0;
+    if (!started) ::usleep(10000);
+  }
+  EXPECT_TRUE(started) << "no " << temp_prefix << "* appeared";
+  ::usleep(300000);
+  ::kill(child, SIGINT);
+  int status = 0;
+  EXPECT_EQ(::waitpid(child, &status, 0), child);
+  return status;
+}
+
+// Ctrl-C in the middle of a report: the process ends by the signal (a shell says 130), and neither the report
+// folder nor its temporary folder (with the images and plot files written so far) is left behind.
+TEST_F(AaReportCli, CtrlCLeavesNoTemporaryFolder) {
+  struct Case {
+    std::string output;
+    std::vector<std::string> args;
+  };
+  const std::vector<Case> cases = {
+      {"aa", {"aa-report", scene("cornell.json"), "--size", "320x240", "--methods", "jitter:16", "-o",
+              path("aa")}},
+      {"cmp", {"compare", scene("cornell.json"), "--accel", "grid,kd,bvh,brute", "--rays", "4000000", "--reps",
+               "3", "-o", path("cmp")}}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.output);
+    const int status = interrupt_when_started(dir_, c.output + ".tmp.", c.args);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "status " << status;
+    EXPECT_EQ(WTERMSIG(status), SIGINT);
+    EXPECT_EQ(128 + WTERMSIG(status), 130);  // what the shell reports
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string name = e.path().filename().string();
+      EXPECT_EQ(name.find(".tmp."), std::string::npos) << name;
+      EXPECT_NE(name, c.output);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace raystep::clitest

@@ -20,6 +20,7 @@
 #include "presenter.h"
 #include "raystep/lesson/lesson_figure.h"
 #include "raystep/util/error.h"
+#include "raystep/util/atomic_file.h"
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
@@ -150,6 +151,7 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
   // Beside DIR (the same file system), so that the rename at the end is one step.
   QTemporaryDir tmp(parent + "/." + target.fileName() + ".tmp-XXXXXX");
   if (!tmp.isValid()) fail("cannot write in " + parent.toStdString());
+  TemporaryFolderOnSignal onSignal(tmp.path().toStdString());  // Ctrl-C removes it too
 
   QString html;
   html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +

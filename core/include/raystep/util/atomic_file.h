@@ -28,10 +28,26 @@ class AtomicFile {
 // Write through a stream callback, atomically. Throws InputError naming the path if it cannot be written.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
-// Ctrl-C (SIGINT), SIGTERM and SIGHUP remove the temporary files of the AtomicFiles still open, then end the
-// process as the signal would have: a student who stops a gigabyte-long build log leaves no debris. Call
-// once, early in main. (SIGKILL cannot be caught: a killed run may leave a PATH.tmp.PID file, never a half
-// PATH.)
+// Ctrl-C (SIGINT), SIGTERM and SIGHUP remove the temporary files of the AtomicFiles still open and the
+// temporary folders still registered (TemporaryFolderOnSignal), then end the process as the signal would
+// have (a shell then reports 130 for Ctrl-C): a student who stops a gigabyte-long build log or a report
+// leaves no debris. Call once, early in main. (SIGKILL cannot be caught: a killed run may leave a
+// PATH.tmp.PID file or folder, never a half PATH.)
 void remove_temporary_files_on_signals();
+
+// While it lives, a signal removes this folder and what it holds (up to four levels of subfolders, by
+// async-signal-safe system calls only). For an output folder written as DIR.tmp.PID and renamed into place:
+// release() once it is renamed, or let the destructor forget it (the folder itself is the owner's to remove).
+class TemporaryFolderOnSignal {
+ public:
+  explicit TemporaryFolderOnSignal(const std::string& path);
+  ~TemporaryFolderOnSignal() { release(); }
+  TemporaryFolderOnSignal(const TemporaryFolderOnSignal&) = delete;
+  TemporaryFolderOnSignal& operator=(const TemporaryFolderOnSignal&) = delete;
+  void release();
+
+ private:
+  int slot_ = -1;
+};
 
 }  // namespace raystep
