@@ -6,6 +6,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   g++ cmake ninja-build pkg-config git ca-certificates
+  # compiler cache: its cache lives outside the clone (~/.cache/ccache), so a second test run rebuilds fast
+  ccache
   # the fuzz harnesses (scripts/fuzz.sh): clang with libFuzzer and the sanitizers' runtimes
   clang libclang-rt-14-dev
   # core

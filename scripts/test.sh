@@ -6,6 +6,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
+launcher=()  # ccache, as scripts/build.sh uses it
+if command -v ccache > /dev/null; then
+  launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1  # clones in other folders share the cache
+fi
 
 bash scripts/setup.sh
 bash scripts/build.sh
@@ -14,7 +19,7 @@ bash scripts/build.sh
 echo "== sanitizer pass (ASan + UBSan): core tests =="
 # -O1 and line tables (-g1): a third less to compile than -O2 -g, and every report still names file and line;
 # the biggest batteries run a quarter of their rays here (tests/core/test_budget.h).
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYSTEP_SANITIZE=ON \
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYSTEP_SANITIZE=ON "${launcher[@]}" \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF -DRAYSTEP_BUILD_GUI=OFF > /dev/null
 cmake --build build-asan -j "$jobs" --target raystep_core_tests
@@ -22,7 +27,7 @@ cmake --build build-asan -j "$jobs" --target raystep_core_tests
   ctest --output-on-failure -j "$jobs" -L core)
 
 echo "== thread sanitizer pass (TSan, clang): the concurrency tests and the planted races =="
-cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTEP_TSAN=ON \
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=Release -DRAYSTEP_TSAN=ON "${launcher[@]}" \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DRAYSTEP_BUILD_BENCH=OFF -DRAYSTEP_BUILD_CLI=OFF \
   -DRAYSTEP_BUILD_GUI=OFF -DRAYSTEP_BUILD_VTK_EXPORT=OFF > /dev/null
 cmake --build build-tsan -j "$jobs" --target raystep_concurrency_tests raystep_tsan_canary
