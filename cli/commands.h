@@ -111,6 +111,16 @@ struct TraceInfoArgs {
   bool own_costs = false;  // a multi-walk trace: cost each walk by its structure's own t_t, t_i
 };
 
+// replay_commands.cpp: the replay states of a trace (the storyboard).
+struct ReplayArgs {
+  std::string trace;
+  std::optional<int> step;  // none: every step
+  std::optional<int> walk;  // a multi-walk trace's walk; none: all
+  std::optional<int> ray;   // none: all
+  std::string format = "text";  // text | json
+  std::string output;           // empty: stdout
+};
+
 // lesson_commands.cpp: checking lessons headless, and a step as a raystep-gui command line.
 struct LessonCheckArgs {
   std::vector<std::string> paths;  // lesson files or folders of them; none: lessons/
@@ -187,6 +197,7 @@ int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
 int run_trace_info(const TraceInfoArgs& args);
+int run_replay(const ReplayArgs& args);
 // multi_trace_commands.cpp: `trace --accel A,B,...` (run_trace hands a list over) and trace-info on its file.
 int run_multi_trace(const TraceArgs& args);
 int run_multi_trace_info(const std::string& path, const MultiTrace& trace, bool own_costs);

@@ -278,6 +278,19 @@ int main(int argc, char** argv) {
       "--own-costs", trace_info.own_costs,
       "a multi-walk trace: cost each walk by its structure's own t_t, t_i (default 1, 80)");
 
+  ReplayArgs replay;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay", "A trace's replay states, event by event, as the debugger's state panel shows them (docs/replay-format.md)");
+  replay_cmd->add_option("trace", replay.trace, "trace .json")->required();
+  CLI::Option* replay_step = replay_cmd->add_option("--step", replay.step, "only the state after this event (0-based)");
+  replay_cmd->add_flag("--all", "every step (the default)")->excludes(replay_step);
+  replay_cmd->add_option("--walk", replay.walk, "a multi-walk trace: only this walk (0-based)");
+  replay_cmd->add_option("--ray", replay.ray, "only this ray (0-based)");
+  replay_cmd->add_option("--format", replay.format, "text (for reading) | json (the storyboard)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
+  replay_cmd->add_option("-o,--output", replay.output, "write to this file (atomically) instead of standard output");
+
   CLI::App* lesson_cmd =
       app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");
   lesson_cmd->require_subcommand(1);
@@ -385,6 +398,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return run_info(info);
     if (*trace_cmd) return run_trace(trace);
     if (*trace_info_cmd) return run_trace_info(trace_info);
+    if (*replay_cmd) return run_replay(replay);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
     if (*bvh_stats_cmd) return run_bvh_stats(bvh_stats);

@@ -26,13 +26,15 @@
 #include <QVBoxLayout>
 
 #include "chart_util.h"
-#include "compare_model.h"
 #include "cost_chart.h"
 #include "palette.h"
 #include "raystep/geometry/numerics.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/trace/pixel_rays.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/node_crossing.h"
+#include "raystep/replay/bvh_choice.h"
+#include "raystep/replay/side_by_side.h"
 #include "scene_view.h"
 #include "session.h"
 
@@ -44,9 +46,9 @@ constexpr int kSliderSteps = 1000;
 
 // One colour per structure, the same in its caption, its table row and its chart line (Okabe and Ito's set).
 const QColor& walkColor(int i) {
-  static const QColor colors[kMaxCompareViews] = {chartcolor::blue, chartcolor::vermillion, chartcolor::green,
+  static const QColor colors[replay::kMaxSideBySide] = {chartcolor::blue, chartcolor::vermillion, chartcolor::green,
                                                   chartcolor::purple};
-  return colors[i % kMaxCompareViews];
+  return colors[i % replay::kMaxSideBySide];
 }
 
 QString structureTitle(const std::string& kind) {
@@ -71,7 +73,7 @@ QString legendFor(const QStringList& kinds) {
               swatch(palette::stackNode, QObject::tr("waiting on the stack"));
   bool bvh = false, octree = false;
   for (const QString& k : kinds) {
-    bvh = bvh || isBvhKind(k.toStdString());
+    bvh = bvh || replay::is_bvh_kind(k.toStdString());
     octree = octree || k == "octree";
   }
   if (bvh || octree)
@@ -99,7 +101,7 @@ struct CompareWindow::Pane {
   QWidget* box = nullptr;
   std::string kind;
   WalkCost cost;
-  WalkAtT now;
+  replay::WalkAtT now;
 };
 
 QString CompareWindow::atTRule() {
@@ -342,12 +344,12 @@ void CompareWindow::setRay(int index) {
     rs.push_back(&r);
     p.cost = walk_cost(r, CostModel{});
   }
-  const TimelineRange range = timelineRange(rs);
+  const replay::TimelineRange range = replay::timeline_range(rs);
   tStart_ = range.start;
   tEnd_ = range.end;
   for (size_t i = 0; i < panes_.size(); ++i)
     series.push_back({QString::fromStdString(panes_[i]->kind), walkColor(int(i)),
-                      costStaircase(panes_[i]->cost, range.start, range.end)});
+                      replay::cost_staircase(panes_[i]->cost, range.start, range.end)});
   chart_->setSeries(series, tStart_, tEnd_, tr("cumulative cost: 1 per step + 80 per primitive test"));
   startLabel_->setText(num(tStart_));
   endLabel_->setText(num(tEnd_));
@@ -382,30 +384,30 @@ void CompareWindow::showT() {
     Pane& p = *panes_[i];
     const TracedRay* ray = p.session->ray();
     if (!ray) continue;
-    p.now = walkAtT(*ray, float(t_), CostModel{});
+    p.now = replay::walk_at_t(*ray, float(t_), CostModel{});
     {
       const QSignalBlocker block(p.session);  // the view is drawn once, by setRayMark
       p.session->setStep(p.now.step);
     }
     p.view->setRayMark(float(t_));
     // The caption: the structure, and where its walk is at t.
-    const ReplayState& s = p.session->state();
+    const replay::ReplayState& s = p.session->state();
     const Trace& walk = walks_->walks[i];
     QString where;
     if (s.ended && p.now.next == kInfinity) {
       const Event& end = ray->events.back();
       where = end.prim >= 0 ? tr("done: hit primitive %1 at t = %2").arg(end.prim).arg(num(end.t))
                             : tr("done: missed");
-    } else if (s.cellEvent >= 0 && walk.structure.kind == "grid") {
-      const Event& e = ray->events[size_t(s.cellEvent)];
+    } else if (s.cell_event >= 0 && walk.structure.kind == "grid") {
+      const Event& e = ray->events[size_t(s.cell_event)];
       where = tr("in cell (%1, %2, %3), entered at t = %4")
                   .arg(e.cell[0])
                   .arg(e.cell[1])
                   .arg(e.cell[2])
                   .arg(num(e.t_enter));
-    } else if (s.nodeEvent >= 0) {
-      const Event& e = ray->events[size_t(s.nodeEvent)];
-      const TraceNode* node = findNode(walk, e.node);
+    } else if (s.node_event >= 0) {
+      const Event& e = ray->events[size_t(s.node_event)];
+      const TraceNode* node = replay::find_node(walk, e.node);
       where = tr("at node %1 (depth %2%3), t_min = %4")
                   .arg(e.node)
                   .arg(e.depth)
@@ -431,9 +433,9 @@ void CompareWindow::fillTable() {
     const Pane& p = *panes_[i];
     const QStringList cells = {QString::fromStdString(p.kind),
                                QString("%1 / %2").arg(p.now.steps).arg(p.cost.steps),
-                               QString("%1 / %2").arg(p.now.primTests).arg(p.cost.prim_tests),
-                               QString("%1 / %2").arg(p.now.mailboxHits).arg(p.cost.mailbox_hits),
-                               QString("%1 / %2").arg(p.now.boxTests).arg(p.cost.box_tests),
+                               QString("%1 / %2").arg(p.now.prim_tests).arg(p.cost.prim_tests),
+                               QString("%1 / %2").arg(p.now.mailbox_hits).arg(p.cost.mailbox_hits),
+                               QString("%1 / %2").arg(p.now.box_tests).arg(p.cost.box_tests),
                                QString::number(p.now.cost, 'f', 0),
                                QString::number(p.cost.total, 'f', 0)};
     for (int c = 0; c < cells.size(); ++c) {
@@ -491,7 +493,7 @@ QJsonObject CompareWindow::dumpState() const {
   QJsonArray views;
   for (size_t i = 0; i < panes_.size(); ++i) {
     const Pane& p = *panes_[i];
-    const ReplayState& s = p.session->state();
+    const replay::ReplayState& s = p.session->state();
     QJsonObject v{
         {"structure", QString::fromStdString(p.kind)},
         {"step", p.now.step},
@@ -503,9 +505,9 @@ QJsonObject CompareWindow::dumpState() const {
         {"caption", p.caption->text()},
         {"color", QJsonArray{walkColor(int(i)).red(), walkColor(int(i)).green(), walkColor(int(i)).blue()}}};
     v["at_t"] = QJsonObject{{"steps", int(p.now.steps)},
-                            {"prim_tests", int(p.now.primTests)},
-                            {"mailbox_hits", int(p.now.mailboxHits)},
-                            {"box_tests", int(p.now.boxTests)},
+                            {"prim_tests", int(p.now.prim_tests)},
+                            {"mailbox_hits", int(p.now.mailbox_hits)},
+                            {"box_tests", int(p.now.box_tests)},
                             {"cost", p.now.cost},
                             {"cost_at", cost_at(p.cost, float(t_))}};
     v["total"] = QJsonObject{{"steps", int(p.cost.steps)},
@@ -574,7 +576,7 @@ QStringList pickCompareStructures(QWidget* parent, const QStringList& checked) {
   auto update = [&] {
     int n = 0;
     for (QCheckBox* b : boxes) n += b->isChecked();
-    buttons->button(QDialogButtonBox::Ok)->setEnabled(n >= kMinCompareViews && n <= kMaxCompareViews);
+    buttons->button(QDialogButtonBox::Ok)->setEnabled(n >= replay::kMinSideBySide && n <= replay::kMaxSideBySide);
   };
   for (QCheckBox* b : boxes) QObject::connect(b, &QCheckBox::toggled, &dialog, update);
   update();

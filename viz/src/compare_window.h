@@ -1,7 +1,7 @@
 // The same ray, side by side (lecture: "BSP vs. k-d: a tradeoff between speed from simplicity and better
 // adaptability", seen rather than asserted): a window with two to four 3D views under ONE camera, each
 // showing one structure's walk of the same ray; one timeline over the ray's parameter t (at t every view
-// shows its walk as compare_model.h's walkAtT defines it); the counters side by side; and each structure's
+// shows its walk as core's replay::walk_at_t (replay/side_by_side.h) defines it); the counters side by side; and each structure's
 // cumulative cost (t_t per step, t_i per test) against t. Reads a version 5 trace (core's MultiTrace) or
 // records one.
 #pragma once
@@ -13,6 +13,9 @@
 #include <QJsonObject>
 #include <QStringList>
 #include <QWidget>
+
+#include "raystep/replay/side_by_side.h"
+
 
 class QComboBox;
 class QGridLayout;

@@ -9,8 +9,9 @@
 #include <QResizeEvent>
 #include <QVBoxLayout>
 
-#include "replay.h"
 #include "session.h"
+
+#include "raystep/replay/explain.h"
 
 namespace raystep::viz {
 
@@ -38,7 +39,7 @@ class EventModel : public QAbstractListModel {
     }
     const Event& e = ray_->events[size_t(index.row())];
     if (role == Qt::DisplayRole) {
-      QString line = QString::fromStdString(describeEvent(e));
+      QString line = QString::fromStdString(replay::describe_event(e));
       if (concealAfter_ >= 0 && index.row() == concealAfter_) line.remove(QRegularExpression("\\s+next \\w+$"));
       return line;
     }

@@ -21,12 +21,12 @@
 #include "raystep/lesson/lesson_figure.h"
 #include "raystep/util/error.h"
 #include "raystep/util/atomic_file.h"
+#include "raystep/replay/replay_state.h"
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
 #include "state_panel.h"
 #include "kd_tree_model.h"
-#include "replay.h"
 #include "tree_diagram.h"
 #include "tree_view.h"
 
@@ -121,10 +121,10 @@ QImage figureOf(MainWindow& w, const LessonState& state, bool* withState) {
       TreeMarks marks;
       marks.selected = w.session()->selectedNode();
       if (const TracedRay* r = w.session()->ray()) {
-        const ReplayState& st = w.session()->state();
-        if (st.nodeEvent >= 0) marks.current = r->events[size_t(st.nodeEvent)].node;
-        for (const StackEntry& e : st.stack) marks.stack.push_back(e.node);
-        marks.visited = st.visitedNodes;
+        const replay::ReplayState& st = w.session()->state();
+        if (st.node_event >= 0) marks.current = r->events[size_t(st.node_event)].node;
+        for (const replay::StackEntry& e : st.stack) marks.stack.push_back(e.node);
+        marks.visited = st.visited_nodes;
       }
       QImage tree = drawTreeDiagram(*shape, marks);
       if (!ray) return tree;

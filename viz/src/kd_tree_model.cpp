@@ -2,8 +2,10 @@
 
 #include <algorithm>
 
-#include "replay.h"
 #include "session.h"
+
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/octree_choice.h"
 
 namespace raystep::viz {
 
@@ -61,7 +63,7 @@ class KdShape final : public TreeShape {
     if (n.is_leaf())
       return n.prim_count() == 0 ? QObject::tr("leaf, empty")
                                  : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
-    return QObject::tr("split %1 = %2").arg(axisName(n.axis())).arg(double(n.split), 0, 'g', 5);
+    return QObject::tr("split %1 = %2").arg(replay::axis_name(n.axis())).arg(double(n.split), 0, 'g', 5);
   }
   QString whatHeader() const override { return QObject::tr("split or leaf"); }
   float cost(uint32_t n) const override { return t_.info[n].cost; }
@@ -87,7 +89,7 @@ class BvhShape final : public TreeShape {
     if (n.is_leaf())
       return n.prim_count() == 0 ? QObject::tr("leaf, empty")
                                  : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
-    return QObject::tr("split on %1, %2 prims").arg(axisName(n.axis())).arg(b_.info[id].prims);
+    return QObject::tr("split on %1, %2 prims").arg(replay::axis_name(n.axis())).arg(b_.info[id].prims);
   }
   QString whatHeader() const override { return QObject::tr("split axis or leaf"); }
   float cost(uint32_t n) const override { return b_.info[n].cost; }
@@ -114,7 +116,7 @@ class OctreeShape final : public TreeShape {
     return p < 0 ? 0 : int(n - o_.nodes[uint32_t(p)].first);
   }
   QString side(uint32_t n) const override {
-    return parent(n) < 0 ? QObject::tr("root") : QString::fromStdString(octantName(row(n)));
+    return parent(n) < 0 ? QObject::tr("root") : QString::fromStdString(replay::octant_name(row(n)));
   }
   QString what(uint32_t id) const override {
     const OctreeNode& n = o_.nodes[id];

@@ -15,7 +15,7 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/util/error.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
 #include "scene_view.h"
 #include "session.h"
 #include "tree_view.h"
@@ -144,7 +144,7 @@ void enterState(MainWindow& w, const LessonState& st) {
       s->setStep(st.event.index);
       break;
     case EventSpec::By::nth: {
-      int i = s->ray() ? nthEvent(*s->ray(), st.event.type, st.event.k) : -1;
+      int i = s->ray() ? replay::nth_event(*s->ray(), st.event.type, st.event.k) : -1;
       if (i < 0) fail("--step-to " + st.event.text + ": the ray has fewer such events");
       s->setStep(i);
       break;

@@ -9,7 +9,8 @@
 #include "quiz_answers.h"
 #include "quiz_panel.h"
 #include "raystep/util/error.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/explain.h"
 #include "sah_chart.h"
 #include "scene_view.h"
 #include "session.h"
@@ -32,10 +33,10 @@ QString html(const std::string& text) {
 // The event a prediction is about: the next cell event (grid), or the next node the walk is at (a node, leaf
 // or pop event: tree); -1 when the walk stops first.
 int nextUnitEvent(const TracedRay& ray, int step, bool tree) {
-  if (!tree) return findEvent(ray, step, EventType::cell, true);
+  if (!tree) return replay::find_event(ray, step, EventType::cell, true);
   int best = -1;
   for (EventType t : {EventType::node, EventType::leaf, EventType::pop}) {
-    int i = findEvent(ray, step, t, true);
+    int i = replay::find_event(ray, step, t, true);
     if (i >= 0 && (best < 0 || i < best)) best = i;
   }
   return best;
@@ -56,7 +57,7 @@ Presenter::Presenter(MainWindow& window, LessonPane* pane, Lesson lesson)
   connect(quiz, &QuizPanel::predictToggled, this, [this](bool on) {
     const TracedRay* r = window_.session()->ray();
     bool tree =
-        r ? isTreeRay(*r) : window_.session()->structure() && window_.session()->structure()->kind != "grid";
+        r ? replay::is_tree_ray(*r) : window_.session()->structure() && window_.session()->structure()->kind != "grid";
     pane_->quiz()->setPredicting(on, tree ? tr("node") : tr("cell"));
   });
   // A cell picked in the 3D view answers "which cell next" (the cell holding the picked point).
@@ -222,13 +223,13 @@ void Presenter::predictAndReveal(const QString& prediction) {
     switch (answer_->kind) {
       case QuestionKind::next_cell:
       case QuestionKind::dda_axis:
-        to = findEvent(*r, s->step(), EventType::cell, true);
+        to = replay::find_event(*r, s->step(), EventType::cell, true);
         break;
       case QuestionKind::first_child:
         to = nextUnitEvent(*r, s->step(), true);
         break;
       case QuestionKind::next_pop:
-        to = findEvent(*r, s->step(), EventType::pop, true);
+        to = replay::find_event(*r, s->step(), EventType::pop, true);
         break;
       default:
         break;
@@ -238,7 +239,7 @@ void Presenter::predictAndReveal(const QString& prediction) {
     if (walks) {
       s->setStep(to >= 0 ? to : s->eventCount() - 1);
       text += "<br><i>" + tr("Debugger, at the walk's next step:") + "</i> " +
-              html(explainRule(s->trace(), *r, s->state()));
+              html(replay::explain_rule(s->trace(), *r, s->state()));
     }
   }
   quiz->showResult(ok, text);
@@ -249,12 +250,12 @@ void Presenter::predictNext(const QString& prediction) {
   QuizPanel* quiz = pane_->quiz();
   Session* s = window_.session();
   const TracedRay* r = s->ray();
-  if (!quiz->predicting()) quiz->setPredicting(true, r && isTreeRay(*r) ? tr("node") : tr("cell"));
+  if (!quiz->predicting()) quiz->setPredicting(true, r && replay::is_tree_ray(*r) ? tr("node") : tr("cell"));
   if (!r) {
     quiz->showResult(std::nullopt, tr("Click a pixel first: Predict follows its ray."));
     return;
   }
-  const bool tree = isTreeRay(*r);
+  const bool tree = replay::is_tree_ray(*r);
   const QString p = prediction.trimmed().toLower();
   // What the student said: a cell i,j,k or a node id, or that the walk stops.
   bool stop = p == "stop", understood = stop;
@@ -288,7 +289,7 @@ void Presenter::predictNext(const QString& prediction) {
   s->setStep(to >= 0 ? to : s->eventCount() - 1);
   quiz->setPrediction(QString());
   quiz->showResult(ok, truth + "<br><i>" + tr("Debugger:") + "</i> " +
-                           html(explainRule(s->trace(), *s->ray(), s->state())));
+                           html(replay::explain_rule(s->trace(), *s->ray(), s->state())));
   showScore();
 }
 

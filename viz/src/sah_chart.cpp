@@ -35,7 +35,7 @@
 #include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/kdtree_sah_curve.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
 
 namespace raystep::viz {
 namespace {
@@ -348,7 +348,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     }
     if (byAxis[a].empty()) continue;  // an empty series draws nothing, but warns
     vtkPlot* p = addLine(d.chart, d.axisTable[a], axisColor(a), 2.f * d.scale,
-                         std::string(axisName(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
+                         std::string(replay::axis_name(a)) + " (" + std::to_string(byAxis[a].size()) + ")");
     if (auto* points = vtkPlotPoints::SafeDownCast(p)) {  // a line plot is a points plot with lines
       bool few = byAxis[a].size() <= 400;
       points->SetMarkerStyle(few || !vtkPlotLine::SafeDownCast(p) ? vtkPlotPoints::CIRCLE
@@ -367,7 +367,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
     double x = across(c.axis, c.position);
     addRow(chosen, x, lo - 0.02 * (hi - lo));
     addRow(chosen, x, hi);
-    addLine(d.chart, chosen, palette::sahChosen, 1.5f * d.scale, std::string("chosen: ") + axisName(c.axis));
+    addLine(d.chart, chosen, palette::sahChosen, 1.5f * d.scale, std::string("chosen: ") + replay::axis_name(c.axis));
   }
   vtkAxis* left = d.chart->GetAxis(vtkAxis::LEFT);
   double pad =
@@ -398,7 +398,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
           std::min_element(c.candidates.begin(), c.candidates.end(),
                            [](const SahCandidate& a, const SahCandidate& b) { return a.cost < b.cost; });
       t += tr("; the cheapest plane (%1 = %2) costs %3")
-               .arg(axisName(best->axis))
+               .arg(replay::axis_name(best->axis))
                .arg(fmt(best->position))
                .arg(fmt(best->cost));
     }
@@ -413,14 +413,14 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
       t +=
           tr("<b>split %1 = %2</b>, cost %3 = t_t + (1 &minus; b)(p_a N_a + p_b N_b) t_i (t_t = %4; an empty "
              "side earns the empty bonus b = %5)")
-              .arg(axisName(c.axis))
+              .arg(replay::axis_name(c.axis))
               .arg(fmt(c.position))
               .arg(fmt(c.cost))
               .arg(double(t_t))
               .arg(double(empty_bonus));
     else
       t += tr("<b>split %1 = %2</b>, cost %3 = t_t + p_a N_a t_i + p_b N_b t_i (t_t = %4)")
-               .arg(axisName(c.axis))
+               .arg(replay::axis_name(c.axis))
                .arg(fmt(c.position))
                .arg(fmt(c.cost))
                .arg(double(t_t));
@@ -428,7 +428,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
       const SahCandidate& s = c.candidates[size_t(c.chosen)];
       t += tr("<br>N below %1, above %2 (planar %3)").arg(s.n_below).arg(s.n_above).arg(s.n_planar);
     }
-    d.chart->SetTitle("node " + std::to_string(c.node) + ": split " + axisName(c.axis) + " = " +
+    d.chart->SetTitle("node " + std::to_string(c.node) + ": split " + replay::axis_name(c.axis) + " = " +
                       fmt(c.position).toStdString());
   }
   if (conceal_) {  // the quiz asks for this choice: the curves only, until the answer is revealed
@@ -505,7 +505,7 @@ void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QStri
   t += tr("<b>bin %1 on %2</b> (plane %2 = %3), cost %4 = t_t + (S_l N_l + S_r N_r) t_i / S_node (t_t = %5)"
           "<br>N left %6, right %7; each side's box is tight around its primitives and may overlap the other")
            .arg(k.bin)
-           .arg(axisName(k.axis))
+           .arg(replay::axis_name(k.axis))
            .arg(fmt(k.position))
            .arg(fmt(k.cost))
            .arg(double(t_t))
@@ -513,7 +513,7 @@ void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QStri
            .arg(k.n_right);
   text_->setText(t);
   d_->chart->SetTitle("node " + std::to_string(b.node) + ": bin " + std::to_string(k.bin) + " on " +
-                      axisName(k.axis));
+                      replay::axis_name(k.axis));
   renderNow();
 }
 
@@ -799,10 +799,10 @@ QJsonObject SahChart::dumpState() const {
     o["leaf_reason"] = leaf_reason_name(c.leaf_reason);
   else
     o["chosen"] = QJsonObject{
-        {"axis", axisName(c.axis)}, {"position", c.position}, {"cost", c.cost}, {"index", c.chosen}};
+        {"axis", replay::axis_name(c.axis)}, {"position", c.position}, {"cost", c.cost}, {"index", c.chosen}};
   QJsonObject points;
   for (int a = 0; a < 3; ++a)
-    points[axisName(a)] = d.axisTable[a] ? int(d.axisTable[a]->GetNumberOfRows()) : 0;
+    points[replay::axis_name(a)] = d.axisTable[a] ? int(d.axisTable[a]->GetNumberOfRows()) : 0;
   o["points"] = points;  // as plotted: one per candidate
   o["plots"] = int(d.chart->GetNumberOfPlots());
   o["candidates"] = int(c.candidates.size());

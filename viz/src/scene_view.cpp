@@ -42,6 +42,9 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "raystep/accel/bsp_cell.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/octree_choice.h"
+#include "raystep/replay/bvh_choice.h"
 
 #include "backdrop_cache.h"
 #include "kd_tree_model.h"
@@ -582,7 +585,7 @@ void SceneView::rebuildGeometry() {
     d.haveTree = !bsp->data().nodes.empty();
     d.gridLo = bsp->data().bounds.lo;
     d.gridHi = bsp->data().bounds.hi;
-  } else if (session_->structure() && isBvhKind(session_->structure()->kind)) {
+  } else if (session_->structure() && replay::is_bvh_kind(session_->structure()->kind)) {
     // A BVH: its root box is the scene's bounds (tight around every primitive).
     const Bounds3& b = session_->structure()->scene->scene.geometry.bounds();
     d.haveTree = !b.empty();
@@ -638,8 +641,8 @@ void SceneView::rebuildGeometry() {
   QString primStates = swatch(palette::primPending, tr("not reached")) + swatch(palette::primTesting, tr("being tested (outline)")) +
                        swatch(palette::primHit, tr("hit")) + swatch(palette::primMissed, tr("missed")) +
                        swatch(palette::primSkipped, tr("skipped (mailbox)"));
-  const bool bvhLegend = (session_->structure() && isBvhKind(session_->structure()->kind)) ||
-                         (session_->trace() && isBvhKind(session_->trace()->structure.kind));
+  const bool bvhLegend = (session_->structure() && replay::is_bvh_kind(session_->structure()->kind)) ||
+                         (session_->trace() && replay::is_bvh_kind(session_->trace()->structure.kind));
   const bool octreeLegend = (session_->structure() && session_->structure()->kind == "octree") ||
                             (session_->trace() && session_->trace()->structure.kind == "octree");
   if (d.haveTree && bvhLegend)
@@ -816,7 +819,7 @@ bool SceneView::pickDisplay(int x, int y) {
 void SceneView::updateBvhChildren() {
   Impl& d = *d_;
   const TracedRay* ray = session_->ray();
-  const ReplayState& s = session_->state();
+  const replay::ReplayState& s = session_->state();
   vtkNew<vtkPoints> fpts, epts, opts, kpts;
   vtkNew<vtkCellArray> fpolys, elines, olines, klines;
   vtkNew<vtkUnsignedCharArray> fcolors, ecolors;
@@ -824,13 +827,13 @@ void SceneView::updateBvhChildren() {
   ecolors->SetNumberOfComponents(3);
   d.childrenDrawn.clear();
   d.overlapsDrawn.clear();
-  d.bvh = ray && d.haveTree && isBvhRay(session_->trace(), *ray);
+  d.bvh = ray && d.haveTree && replay::is_bvh_ray(session_->trace(), *ray);
   if (d.bvh) {
     // The children tested so far: a box hit filled, a box missed outlined only.
-    BvhChoice c = bvhChoice(*ray, s);
+    replay::BvhChoice c = replay::bvh_choice(*ray, s);
     std::vector<const TraceNode*> hitBoxes;
     for (size_t k = 0; k < c.tests.size(); ++k) {
-      const BoxTestMark& m = c.tests[k];
+      const replay::BoxTestMark& m = c.tests[k];
       const TraceNode* n = d.node(m.child);
       if (!n || !m.done) continue;
       const QColor& col = k == 0 ? palette::bvhChildFirst : palette::bvhChildOther;
@@ -853,16 +856,16 @@ void SceneView::updateBvhChildren() {
         d.overlapsDrawn.push_back(hitBoxes[a]->id);
         d.overlapsDrawn.push_back(hitBoxes[b]->id);
       }
-    for (int32_t id : s.skippedNodes)
+    for (int32_t id : s.skipped_nodes)
       if (const TraceNode* n = d.node(id)) {
         glm::vec3 inset = 0.01f * (n->box.hi - n->box.lo);
         addBoxEdges(kpts, klines, n->box.lo + inset, n->box.hi - inset);
       }
-  } else if (ray && d.haveTree && session_->trace() && isOctreeRay(session_->trace(), *ray)) {
+  } else if (ray && d.haveTree && session_->trace() && replay::is_octree_ray(session_->trace(), *ray)) {
     // Octree: the current inner cell's children in the order the ray crosses them (Revelles), from orange
     // (the first, by the entry plane) to violet (the last before the ray leaves the cell); the next one to
     // be entered filled.
-    OctreeChoice c = octreeChoice(*session_->trace(), *ray, s);
+    replay::OctreeChoice c = replay::octree_choice(*session_->trace(), *ray, s);
     const size_t m = c.valid ? c.path.size() : 0;
     for (size_t k = 0; k < m; ++k) {
       const int32_t id = c.path[k].node;
@@ -880,7 +883,7 @@ void SceneView::updateBvhChildren() {
       int before = int(elines->GetNumberOfCells());
       addBoxEdges(epts, elines, n->box.lo + inset, n->box.hi - inset);
       appendColor(ecolors, col, int(elines->GetNumberOfCells()) - before);
-      if (int(k) == c.visitedSoFar && !d.conceal)
+      if (int(k) == c.visited_so_far && !d.conceal)
         appendColor(fcolors, col, addBoxFaces(fpts, fpolys, n->box.lo, n->box.hi));
     }
   }
@@ -904,7 +907,7 @@ void SceneView::updateStep() {
   auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
   const TracedRay* ray = session_->ray();
-  const ReplayState& s = session_->state();
+  const replay::ReplayState& s = session_->state();
   // A tree node's outline: a BSP node's convex cell, any other node's box; inset (a node on the stack) by a
   // fraction of its size, so that it keeps an outline of its own beside its parent's and sibling's.
   auto addNodeEdges = [&d](vtkPoints* pts, vtkCellArray* lines, const TraceNode& n, float inset) {
@@ -920,14 +923,14 @@ void SceneView::updateStep() {
   if (ray && d.haveGrid) {
     // The most recent visited cells only: a walk through tens of thousands of cells would bury the view
     // (and the software renderer) in lines; the ray itself shows where the walk came from.
-    size_t first = s.visitedCellEvents.size() > kMaxVisitedDrawn ? s.visitedCellEvents.size() - kMaxVisitedDrawn : 0;
-    for (size_t v = first; v < s.visitedCellEvents.size(); ++v) {
-      int i = s.visitedCellEvents[v];
+    size_t first = s.visited_cell_events.size() > kMaxVisitedDrawn ? s.visited_cell_events.size() - kMaxVisitedDrawn : 0;
+    for (size_t v = first; v < s.visited_cell_events.size(); ++v) {
+      int i = s.visited_cell_events[v];
       const Event& e = ray->events[size_t(i)];
       addBoxEdges(vpts, vlines, d.cellLo(e.cell), d.cellHi(e.cell));
     }
-    if (s.cellEvent >= 0) {
-      const Event& e = ray->events[size_t(s.cellEvent)];
+    if (s.cell_event >= 0) {
+      const Event& e = ray->events[size_t(s.cell_event)];
       addBoxEdges(cpts, clines, d.cellLo(e.cell), d.cellHi(e.cell));
     }
   }
@@ -939,10 +942,10 @@ void SceneView::updateStep() {
   d.visitedNodes.clear();
   if (ray && d.haveTree) {
     if (d.nodesOf != session_->trace()) d.indexNodes(session_->trace());
-    if (s.nodeEvent >= 0) d.currentNode = ray->events[size_t(s.nodeEvent)].node;
-    d.visitedNodes = s.visitedNodes;
+    if (s.node_event >= 0) d.currentNode = ray->events[size_t(s.node_event)].node;
+    d.visitedNodes = s.visited_nodes;
     std::unordered_set<int32_t> onStack;
-    for (const StackEntry& se : s.stack) onStack.insert(se.node);
+    for (const replay::StackEntry& se : s.stack) onStack.insert(se.node);
     size_t first = d.visitedNodes.size() > kMaxVisitedDrawn ? d.visitedNodes.size() - kMaxVisitedDrawn : 0;
     for (size_t v = first; v < d.visitedNodes.size(); ++v) {
       int32_t id = d.visitedNodes[v];
@@ -951,11 +954,11 @@ void SceneView::updateStep() {
     }
     // A far child shares faces with its parent and its sibling, whose outlines are drawn over it: inset by 2%
     // of its size, the box waiting on the stack keeps an outline of its own.
-    for (const StackEntry& se : s.stack)
+    for (const replay::StackEntry& se : s.stack)
       if (const TraceNode* n = d.node(se.node)) addNodeEdges(stpts, stlines, *n, 0.02f);
     // BVH: a popped node that is skipped is drawn as skipped (sage), not as the node the walk is in.
     const bool skippedNow =
-        std::find(s.skippedNodes.begin(), s.skippedNodes.end(), d.currentNode) != s.skippedNodes.end();
+        std::find(s.skipped_nodes.begin(), s.skipped_nodes.end(), d.currentNode) != s.skipped_nodes.end();
     if (const TraceNode* n = skippedNow ? nullptr : d.node(d.currentNode)) {
       addNodeEdges(cpts, clines, *n, 0.f);
       if (n->has_plane) {  // a BSP node's plane, clipped to its convex cell
@@ -992,13 +995,13 @@ void SceneView::updateStep() {
   // The current cell's primitives by state. Their shapes change only when the walk enters another cell;
   // within a cell a step changes only their colours.
   const void* blockKey = ray;
-  if (blockKey != d.primBlockRay || s.blockEvent != d.primBlock) {
+  if (blockKey != d.primBlockRay || s.block_event != d.primBlock) {
     d.primBlockRay = blockKey;
-    d.primBlock = s.blockEvent;
+    d.primBlock = s.block_event;
     vtkNew<vtkPoints> ppts;
     vtkNew<vtkCellArray> ptris;
     d.primCells.clear();
-    for (const PrimMark& m : s.prims) {
+    for (const replay::PrimMark& m : s.prims) {
       PrimShape shape;
       vtkIdType before = ptris->GetNumberOfCells();
       if (d.primShape(m.prim, &shape)) addPrim(ppts, ptris, shape);
@@ -1017,13 +1020,13 @@ void SceneView::updateStep() {
     vtkNew<vtkPoints> tpts;
     vtkNew<vtkCellArray> tlines;
     for (size_t i = 0; i < s.prims.size() && i < d.primCells.size(); ++i) {
-      const PrimMark& m = s.prims[i];
-      QColor c = m.state == PrimState::pending   ? palette::primPending
-                 : m.state == PrimState::testing ? (m.hit ? palette::primHit : palette::primMissed)
-                 : m.state == PrimState::hit     ? palette::primHit
-                 : m.state == PrimState::missed  ? palette::primMissed
+      const replay::PrimMark& m = s.prims[i];
+      QColor c = m.state == replay::PrimState::pending   ? palette::primPending
+                 : m.state == replay::PrimState::testing ? (m.hit ? palette::primHit : palette::primMissed)
+                 : m.state == replay::PrimState::hit     ? palette::primHit
+                 : m.state == replay::PrimState::missed  ? palette::primMissed
                                                  : palette::primSkipped;
-      if (PrimShape p; m.state == PrimState::testing && d.primShape(m.prim, &p)) {
+      if (PrimShape p; m.state == replay::PrimState::testing && d.primShape(m.prim, &p)) {
         if (p.sphere) {  // three great circles
           for (int axis = 0; axis < 3; ++axis) {
             vtkIdType first = tpts->GetNumberOfPoints();
@@ -1080,9 +1083,9 @@ void SceneView::updateStep() {
     d.rayDrawn = true;
     // Bright up to the end of the current interval (where the walk has got to), dark beyond it.
     // The current interval is drawn on its own (thick), so the bright part stops where it starts.
-    float tNow = s.hasInterval ? std::clamp(s.tMax, tStart, tEnd) : tStart;
+    float tNow = s.has_interval ? std::clamp(s.t_max, tStart, tEnd) : tStart;
     if (s.ended) tNow = tEnd;
-    float tWalked = s.hasInterval && !s.ended ? std::clamp(s.tMin, tStart, tEnd) : tNow;
+    float tWalked = s.has_interval && !s.ended ? std::clamp(s.t_min, tStart, tEnd) : tNow;
     if (std::isfinite(d.rayMark)) tNow = tWalked = std::clamp(d.rayMark, tStart, tEnd);  // the compare's t
     glm::vec3 now = ray->ray.at(tNow), walked = ray->ray.at(tWalked);
     if (tWalked > tStart) {
@@ -1095,8 +1098,8 @@ void SceneView::updateStep() {
                           apts->InsertNextPoint(d.rayTo.x, d.rayTo.y, d.rayTo.z)};
       alines->InsertNextCell(2, ids);
     }
-    if (s.hasInterval) {
-      float a = std::max(s.tMin, tStart), b = std::min(s.tMax, std::isfinite(s.tMax) ? s.tMax : tEnd);
+    if (s.has_interval) {
+      float a = std::max(s.t_min, tStart), b = std::min(s.t_max, std::isfinite(s.t_max) ? s.t_max : tEnd);
       glm::vec3 pa = ray->ray.at(a), pb = ray->ray.at(b);
       vtkIdType sids[2] = {spts->InsertNextPoint(pa.x, pa.y, pa.z), spts->InsertNextPoint(pb.x, pb.y, pb.z)};
       slines->InsertNextCell(2, sids);
@@ -1113,8 +1116,8 @@ void SceneView::updateStep() {
   d.segmentData->Modified();
 
   // The nearest hit so far: orange while it may still be beaten, magenta once accepted.
-  if (ray && s.nearestPrim >= 0) {
-    glm::vec3 p = ray->ray.at(s.nearestT);
+  if (ray && s.nearest_prim >= 0) {
+    glm::vec3 p = ray->ray.at(s.nearest_t);
     d.hitSphere->SetCenter(p.x, p.y, p.z);
     d.hitSphere->SetRadius(0.03 * d.sceneRadius * d.scale);
     setColor(d.hitActor, s.accepted ? palette::hitFinal : palette::hitCandidate);
@@ -1124,9 +1127,9 @@ void SceneView::updateStep() {
   }
 
   const TraceNode* followNode = d.haveTree ? d.node(d.currentNode) : nullptr;
-  if (d.follow && ray && ((s.cellEvent >= 0 && d.haveGrid) || followNode)) {
-    glm::vec3 lo = followNode ? followNode->box.lo : d.cellLo(ray->events[size_t(s.cellEvent)].cell);
-    glm::vec3 hi = followNode ? followNode->box.hi : d.cellHi(ray->events[size_t(s.cellEvent)].cell);
+  if (d.follow && ray && ((s.cell_event >= 0 && d.haveGrid) || followNode)) {
+    glm::vec3 lo = followNode ? followNode->box.lo : d.cellLo(ray->events[size_t(s.cell_event)].cell);
+    glm::vec3 hi = followNode ? followNode->box.hi : d.cellHi(ray->events[size_t(s.cell_event)].cell);
     glm::vec3 c = 0.5f * (lo + hi);
     vtkCamera* cam = d.base->GetActiveCamera();
     double fp[3], pos[3];
@@ -1278,9 +1281,9 @@ QJsonObject SceneView::dumpState() const {
                             {"bvh_overlap", jsonColor(palette::bvhOverlap)},
                             {"bvh_skipped", jsonColor(palette::bvhSkipped)}};
   const TracedRay* ray = session_->ray();
-  const ReplayState& s = session_->state();
-  if (ray && s.cellEvent >= 0 && d.haveGrid) {
-    const Event& e = ray->events[size_t(s.cellEvent)];
+  const replay::ReplayState& s = session_->state();
+  if (ray && s.cell_event >= 0 && d.haveGrid) {
+    const Event& e = ray->events[size_t(s.cell_event)];
     glm::vec3 lo = d.cellLo(e.cell), hi = d.cellHi(e.cell);
     QJsonArray corners;
     for (int c = 0; c < 8; ++c) {
@@ -1322,7 +1325,7 @@ QJsonObject SceneView::dumpState() const {
       cn["normal"] = QJsonArray{n->normal.x, n->normal.y, n->normal.z};
       cn["offset"] = n->offset;
     } else if (!n->leaf && n->axis >= 0) {
-      cn["axis"] = axisName(n->axis);
+      cn["axis"] = replay::axis_name(n->axis);
       cn["split"] = n->split;
     }
     // A BSP node: its convex cell as drawn (faces, vertices) and its plane's polygon clipped to it.
@@ -1337,7 +1340,7 @@ QJsonObject SceneView::dumpState() const {
     }
     o["current_node"] = cn;
     QJsonArray stack, vis;
-    for (const StackEntry& se : s.stack) stack.append(se.node);
+    for (const replay::StackEntry& se : s.stack) stack.append(se.node);
     for (int32_t id : d.visitedNodes) vis.append(id);
     o["stack_nodes"] = stack;
     o["visited_nodes"] = vis;
@@ -1364,18 +1367,18 @@ QJsonObject SceneView::dumpState() const {
     }
     for (size_t k = 0; k + 1 < d.overlapsDrawn.size(); k += 2)
       overlaps.append(QJsonArray{d.overlapsDrawn[k], d.overlapsDrawn[k + 1]});
-    for (int32_t id : s.skippedNodes) skipped.append(id);
+    for (int32_t id : s.skipped_nodes) skipped.append(id);
     o["bvh"] =
         QJsonObject{{"children_drawn", drawn}, {"overlaps_drawn", overlaps}, {"skipped_nodes", skipped}};
   }
   QJsonArray visited;
-  for (int i : s.visitedCellEvents) {
+  for (int i : s.visited_cell_events) {
     const Event& e = ray->events[size_t(i)];
     visited.append(QJsonArray{e.cell[0], e.cell[1], e.cell[2]});
   }
   o["visited_cells"] = visited;
   QJsonArray prims;
-  for (const PrimMark& m : s.prims) prims.append(QJsonObject{{"prim", m.prim}, {"state", primStateName(m.state)}});
+  for (const replay::PrimMark& m : s.prims) prims.append(QJsonObject{{"prim", m.prim}, {"state", replay::prim_state_name(m.state)}});
   o["prims"] = prims;
   if (d.rayDrawn) {
     QJsonArray samples;

@@ -23,7 +23,6 @@
 #include <QTreeView>
 #include <map>
 
-#include "compare_model.h"
 #include "compare_window.h"
 #include "event_list.h"
 #include "handout.h"
@@ -41,7 +40,7 @@
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/util/error.h"
-#include "replay.h"
+#include "raystep/replay/side_by_side.h"
 #include "report_script.h"
 #include "sah_chart.h"
 #include "scene_view.h"
@@ -461,7 +460,7 @@ void runActions(MainWindow& window, const QCommandLineParser& p) {
   }
   if (p.isSet("keys")) pressKeys(window, p.value("keys"));
   if (p.isSet("compare-pick")) {  // the dialog's OK, with these boxes ticked
-    const std::vector<std::string> kinds = parseCompareList(p.value("compare-pick").toStdString());
+    const std::vector<std::string> kinds = replay::parse_side_by_side_list(p.value("compare-pick").toStdString());
     QStringList list;
     for (const std::string& k : kinds) list << QString::fromStdString(k);
     window.setCompareStructures(list);
@@ -627,7 +626,7 @@ int runCompare(MainWindow& window, const QCommandLineParser& p, bool quit, bool 
   CompareWindow* cw = window.compareWindow();
   if (p.isSet("compare")) {
     // The list first: a wrong one costs nothing (no scene read, nothing built).
-    const std::vector<std::string> kinds = parseCompareList(p.value("compare").toStdString());
+    const std::vector<std::string> kinds = replay::parse_side_by_side_list(p.value("compare").toStdString());
     LessonState st = stateFromOptions(p);
     if (st.scene.empty() || MainWindow::isTraceFile(QString::fromStdString(st.scene)))
       fail("--compare needs a scene or a mesh (a trace of several structures opens with --trace FILE)");

@@ -14,6 +14,7 @@
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/memory_limit.h"
+#include "raystep/replay/replay_state.h"
 
 namespace raystep::viz {
 namespace {
@@ -187,7 +188,7 @@ void Session::setScene(std::shared_ptr<const SceneData> scene) {
   heat_.reset();
   trace_.reset();
   ray_ = step_ = 0;
-  state_ = ReplayState{};
+  replayRay();
   Q_EMIT sceneChanged();
   Q_EMIT structureChanged();
   Q_EMIT pictureChanged();
@@ -202,7 +203,7 @@ void Session::setStructure(std::shared_ptr<const StructureData> structure) {
   structure_ = std::move(structure);
   trace_.reset();
   ray_ = step_ = 0;
-  state_ = ReplayState{};
+  replayRay();
   selectedNode_ = -1;
   pixel_.reset();
   square_ = -1;
@@ -238,9 +239,15 @@ void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source
   square_ = squareCount() > 0 ? 0 : -1;
   ray_ = 0;
   step_ = 0;
-  state_ = ray() ? replayAt(*ray(), 0) : ReplayState{};
+  replayRay();
   Q_EMIT traceChanged();
   Q_EMIT stepChanged();
+}
+
+void Session::replayRay() {
+  const TracedRay* r = ray();
+  replayer_ = r ? std::make_unique<replay::Replayer>(*r) : nullptr;
+  state_ = replayer_ ? replayer_->at(0) : replay::ReplayState{};
 }
 
 const TracedRay* Session::ray() const {
@@ -257,7 +264,7 @@ void Session::setRay(int index) {
   if (!trace_ || index < 0 || index >= int(trace_->rays.size()) || index == ray_) return;
   ray_ = index;
   step_ = 0;
-  state_ = replayAt(*ray(), 0);
+  replayRay();
   Q_EMIT traceChanged();
   Q_EMIT stepChanged();
 }
@@ -268,14 +275,14 @@ void Session::setStep(int step) {
   step = std::clamp(step, 0, int(r->events.size()) - 1);
   if (step == step_ && state_.step == step) return;
   step_ = step;
-  state_ = replayAt(*r, step);
+  state_ = replayer_->at(step);
   Q_EMIT stepChanged();
 }
 
 bool Session::jumpTo(EventType type, bool forward) {
   const TracedRay* r = ray();
   if (!r) return false;
-  int i = findEvent(*r, step_, type, forward);
+  int i = replay::find_event(*r, step_, type, forward);
   if (i < 0) return false;
   setStep(i);
   return true;

@@ -23,7 +23,8 @@
 #include "raystep/scene/scene.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/trace_file.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/replayer.h"
 
 namespace raystep::viz {
 
@@ -121,7 +122,7 @@ class Session : public QObject {
   const TracedRay* ray() const;
   int step() const { return step_; }
   int eventCount() const;
-  const ReplayState& state() const { return state_; }
+  const replay::ReplayState& state() const { return state_; }
 
   void setRay(int index);
   void setStep(int step);  // clamped to the events
@@ -159,6 +160,8 @@ class Session : public QObject {
   void squareChanged();
 
  private:
+  void replayRay();  // a new ray: its replayer, at its first event
+
   std::shared_ptr<const SceneData> scene_;
   std::shared_ptr<const StructureData> structure_;
   QImage picture_;
@@ -167,7 +170,8 @@ class Session : public QObject {
   QString traceSource_;
   int imageWidth_ = 0, imageHeight_ = 0;
   int ray_ = 0, step_ = 0;
-  ReplayState state_;
+  std::unique_ptr<replay::Replayer> replayer_;  // the current ray's, from checkpoints
+  replay::ReplayState state_;
   int selectedNode_ = -1;
   std::shared_ptr<const TracePixel> pixel_;
   int square_ = -1;

@@ -14,8 +14,12 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
-#include "raystep/lesson/tree_nodes.h"
-#include "replay.h"
+#include "raystep/trace/node_path.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/node_crossing.h"
+#include "raystep/replay/octree_choice.h"
+#include "raystep/replay/bvh_choice.h"
+#include "raystep/replay/explain.h"
 #include "session.h"
 
 namespace raystep::viz {
@@ -33,7 +37,7 @@ class MailboxModel : public QAbstractTableModel {
  public:
   using QAbstractTableModel::QAbstractTableModel;
   // A step adds or removes a few rows at the end: tell the view just that (a reset of 30,000 rows is slow).
-  void setEntries(const std::vector<MailboxEntry>* entries) {
+  void setEntries(const std::vector<replay::MailboxEntry>* entries) {
     int before = shown_, after = entries ? int(entries->size()) : 0;
     if (after > before) {
       beginInsertRows({}, before, after - 1);
@@ -62,11 +66,11 @@ class MailboxModel : public QAbstractTableModel {
     return cell(index.row(), index.column());
   }
   QString cell(int row, int col) const {
-    const MailboxEntry& m = (*entries_)[size_t(row)];
+    const replay::MailboxEntry& m = (*entries_)[size_t(row)];
     switch (col) {
       case 0: return QString::number(m.prim);
       case 1:
-        if (m.testedInCellEvent >= 0) return QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
+        if (m.tested_in_cell_event >= 0) return QString("(%1,%2,%3)").arg(m.cell[0]).arg(m.cell[1]).arg(m.cell[2]);
         return m.leaf >= 0 ? QString("leaf %1").arg(m.leaf) : QString("-");
       case 2: return m.hit ? QString("hit t=%1").arg(num(m.t)) : QString("miss");
       default: return QString::number(m.skips);
@@ -74,7 +78,7 @@ class MailboxModel : public QAbstractTableModel {
   }
 
  private:
-  const std::vector<MailboxEntry>* entries_ = nullptr;
+  const std::vector<replay::MailboxEntry>* entries_ = nullptr;
   int shown_ = 0;
 };
 
@@ -187,7 +191,7 @@ QString sampleText(const TracePixel* px, const TracedRay& r) {
 
 void StatePanel::refresh() {
   const TracedRay* r = session_->ray();
-  const ReplayState& s = session_->state();
+  const replay::ReplayState& s = session_->state();
   mailbox_->setEntries(r ? &s.mailbox : nullptr);
   if (!r || !s.event) {
     ray_->setText(tr("<i>No ray yet. Click a pixel in the image, or open a trace.</i>"));
@@ -195,7 +199,7 @@ void StatePanel::refresh() {
     stack_->setRowCount(0);
     // Before a ray, the boxes of the structure that is built.
     const bool tree = session_->structure() && session_->structure()->kind != "grid";
-    const bool bvh = session_->structure() && isBvhKind(session_->structure()->kind);
+    const bool bvh = session_->structure() && replay::is_bvh_kind(session_->structure()->kind);
     treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
     crossingTitle_->setText(bvh ? tr("children") : tr("t*"));
     mailBoxGroup_->setTitle(bvh ? tr("Tests (each in one leaf)")
@@ -204,11 +208,11 @@ void StatePanel::refresh() {
     gridBox_->setVisible(!tree);
     return;
   }
-  const bool tree = isTreeRay(*r);
-  const bool bvh = isBvhRay(session_->trace(), *r);
+  const bool tree = replay::is_tree_ray(*r);
+  const bool bvh = replay::is_bvh_ray(session_->trace(), *r);
   treeBox_->setVisible(tree || bvh);
   treeBox_->setTitle(bvh ? tr("BVH: stack traversal") : tr("Tree: stack traversal"));
-  const bool octree = isOctreeRay(session_->trace(), *r);
+  const bool octree = replay::is_octree_ray(session_->trace(), *r);
   treeBox_->setTitle(bvh      ? tr("BVH: stack traversal")
                      : octree ? tr("Octree: Revelles' traversal")
                               : tr("Tree: stack traversal"));
@@ -218,7 +222,7 @@ void StatePanel::refresh() {
                               : tr("stack (top first; pushed far children)"));
   mailBoxGroup_->setTitle(bvh ? tr("Tests (each in one leaf)")
                               : tr("Mailbox: this ray's tests"));
-  gridBox_->setVisible(!tree || s.cellEvent >= 0);
+  gridBox_->setVisible(!tree || s.cell_event >= 0);
   if (tree || bvh) refreshTree(*r, s);
   ray_->setText(
       tr("<b>Ray</b> %1, depth %2%3: o = (%4, %5, %6), d = (%7, %8, %9)")
@@ -228,12 +232,12 @@ void StatePanel::refresh() {
                sampleText(session_->pixel(), *r))
           .arg(num(r->ray.origin.x), num(r->ray.origin.y), num(r->ray.origin.z))
           .arg(num(r->ray.direction.x), num(r->ray.direction.y), num(r->ray.direction.z)));
-  QString line = QString::fromStdString(describeEvent(*s.event));
+  QString line = QString::fromStdString(replay::describe_event(*s.event));
   if (conceal_) line.remove(QRegularExpression("\\s+next \\w+$"));  // a cell's line names the next axis
   event_->setText(tr("<b>Event</b> %1").arg(line.toHtmlEscaped()));
 
-  if (s.cellEvent >= 0) {
-    const Event& c = r->events[size_t(s.cellEvent)];
+  if (s.cell_event >= 0) {
+    const Event& c = r->events[size_t(s.cell_event)];
     cell_->setText(QString("<b>(%1, %2, %3)</b>").arg(c.cell[0]).arg(c.cell[1]).arg(c.cell[2]));
     interval_->setText(QString("[%1, %2]").arg(num(c.t_enter), num(c.t_exit)));
     QString t = "<table cellspacing=4><tr><th></th><th>x</th><th>y</th><th>z</th></tr><tr><td>tMax</td>";
@@ -246,7 +250,7 @@ void StatePanel::refresh() {
       t += tr("</tr></table>next axis: <i>? (the quiz asks it)</i>");
     else
       t += QString("</tr></table>next axis: <b>%1</b>%2")
-               .arg(axisName(c.next_axis))
+               .arg(replay::axis_name(c.next_axis))
                .arg(c.next_axis >= 0 ? tr(" (smallest tMax)") : tr(" (the walk ends in this cell)"));
     dda_->setText(t);
   } else {
@@ -254,22 +258,22 @@ void StatePanel::refresh() {
     interval_->clear();
     dda_->clear();
   }
-  if (s.nearestPrim >= 0)
+  if (s.nearest_prim >= 0)
     nearest_->setText(tr("prim %1 at t = %2 <b>%3</b>")
-                          .arg(s.nearestPrim)
-                          .arg(num(s.nearestT))
+                          .arg(s.nearest_prim)
+                          .arg(num(s.nearest_t))
                           .arg(s.accepted ? tr("(accepted)") : s.deferred ? tr("(deferred: beyond the cell's exit)")
                                                                           : tr("(candidate)")));
   else nearest_->setText(s.ended ? tr("none: a miss") : tr("none yet"));
   rule_->setText(conceal_ ? tr("Shown with the answer.")
-                          : QString::fromStdString(explainRule(session_->trace(), *r, s)));
+                          : QString::fromStdString(replay::explain_rule(session_->trace(), *r, s)));
   const RayCounters& k = s.counters;
   QString walk = bvh ? tr("nodes %1 &nbsp; box tests %2 &nbsp; pushes %3 &nbsp; pops %4 &nbsp; skips %5")
                            .arg(k.nodes)
                            .arg(k.box_tests)
                            .arg(k.pushes)
                            .arg(k.pops)
-                           .arg(s.skippedNodes.size())
+                           .arg(s.skipped_nodes.size())
                  : tree
                      ? tr("nodes %1 &nbsp; pushes %2 &nbsp; pops %3").arg(k.nodes).arg(k.pushes).arg(k.pops)
                      : tr("cells %1").arg(k.cells);
@@ -280,23 +284,23 @@ void StatePanel::refresh() {
   if (s.event->type == EventType::prim_test) mailboxView_->scrollToBottom();
 }
 
-void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
-  if (s.nodeEvent >= 0) {
-    const Event& n = r.events[size_t(s.nodeEvent)];
-    const TraceNode* tn = session_->trace() ? findNode(*session_->trace(), n.node) : nullptr;
-    const bool bvh = isBvhRay(session_->trace(), r);
-    const bool octree = isOctreeRay(session_->trace(), r);
+void StatePanel::refreshTree(const TracedRay& r, const replay::ReplayState& s) {
+  if (s.node_event >= 0) {
+    const Event& n = r.events[size_t(s.node_event)];
+    const TraceNode* tn = session_->trace() ? replay::find_node(*session_->trace(), n.node) : nullptr;
+    const bool bvh = replay::is_bvh_ray(session_->trace(), r);
+    const bool octree = replay::is_octree_ray(session_->trace(), r);
     QString what = !tn        ? QString(event_type_name(n.type))
                    : tn->leaf ? tr("leaf, %1 primitives").arg(tn->prims.size())
                    : bvh      ? (tn->axis >= 0 ? tr("inner, %1 children, built split on %2")
                                                 .arg(tn->children.size())
-                                                .arg(axisName(tn->axis))
+                                                .arg(replay::axis_name(tn->axis))
                                                : tr("inner, %1 children (a wide node)").arg(tn->children.size()))
                    : tn->has_plane
                        ? tr("inner, plane n = (%1, %2, %3), d = %4")
                              .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
                    : octree ? tr("inner cell, 8 children")
-                            : tr("inner, split %1 = %2").arg(axisName(tn->axis)).arg(num(tn->split));
+                            : tr("inner, split %1 = %2").arg(replay::axis_name(tn->axis)).arg(num(tn->split));
     const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), n.node) : "";
     node_->setText(tr("<b>%1</b> (%2), depth %3%7, [t_min, t_max] = [%4, %5]%6")
                        .arg(n.node)
@@ -308,55 +312,55 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   } else {
     node_->setText(tr("<i>not in the tree yet</i>"));
   }
-  if (isBvhRay(session_->trace(), r)) {
+  if (replay::is_bvh_ray(session_->trace(), r)) {
     refreshBvhChildren(r, s);
-  } else if (isOctreeRay(session_->trace(), r)) {
+  } else if (replay::is_octree_ray(session_->trace(), r)) {
     refreshOctreeChildren(r, s);
-  } else if (NodeCrossing c = session_->trace() ? nodeCrossing(*session_->trace(), r, s) : NodeCrossing{};
+  } else if (replay::NodeCrossing c = session_->trace() ? replay::node_crossing(*session_->trace(), r, s) : replay::NodeCrossing{};
              c.valid) {
     auto child = [](int32_t id) { return id >= 0 ? QString::number(id) : QString("-"); };
     QString which;
     switch (c.crossing) {
-      case Crossing::nearOnly:
-        which = (std::isinf(c.tStar) ? tr("parallel to the plane") : tr("t* &gt; t_max")) +
-                tr(": <b>near child only</b> (%1)").arg(child(c.nearChild));
+      case replay::Crossing::near_only:
+        which = (std::isinf(c.t_star) ? tr("parallel to the plane") : tr("t* &gt; t_max")) +
+                tr(": <b>near child only</b> (%1)").arg(child(c.near_child));
         break;
-      case Crossing::farOnly:
-        which = (std::isinf(c.tStar) ? tr("parallel to the plane") : tr("t* &lt; t_min")) +
-                tr(": <b>far child only</b> (%1)").arg(child(c.farChild));
+      case replay::Crossing::far_only:
+        which = (std::isinf(c.t_star) ? tr("parallel to the plane") : tr("t* &lt; t_min")) +
+                tr(": <b>far child only</b> (%1)").arg(child(c.far_child));
         break;
-      case Crossing::both:
-        which = (c.tStar >= c.tMin && c.tStar <= c.tMax ? tr("t_min &le; t* &le; t_max")
+      case replay::Crossing::both:
+        which = (c.t_star >= c.t_min && c.t_star <= c.t_max ? tr("t_min &le; t* &le; t_max")
                                                          : tr("t* at the interval's edge (within the margin)")) +
-                tr(": <b>both</b>: near %1 [t_min, t*], far %2 [t*, t_max] pushed").arg(child(c.nearChild), child(c.farChild));
+                tr(": <b>both</b>: near %1 [t_min, t*], far %2 [t*, t_max] pushed").arg(child(c.near_child), child(c.far_child));
         break;
-      case Crossing::inPlane:
+      case replay::Crossing::in_plane:
         which = tr("the ray lies in the plane: <b>both</b>, near %1, far %2 over the whole interval")
-                    .arg(child(c.nearChild), child(c.farChild));
+                    .arg(child(c.near_child), child(c.far_child));
         break;
     }
     if (c.general) {  // a BSP plane: n, d, the origin's side and t* = (d - n.o) / (n.dir)
       const QString plane =
-          tr("n.o - d = %1, n.dir = %2").arg(num(float(c.originSide)), num(float(c.nDotDir)));
+          tr("n.o - d = %1, n.dir = %2").arg(num(float(c.origin_side)), num(float(c.n_dot_dir)));
       if (conceal_)
         crossing_->setText(tr("<b>%1</b> (%2)<br><i>near side and children: ? (the quiz asks it)</i>")
-                               .arg(num(c.tStar), plane));
+                               .arg(num(c.t_star), plane));
       else
         crossing_->setText(tr("<b>%1</b> = (d - n.o) / (n.dir) (%2; near side %3)<br>%4")
-                               .arg(num(c.tStar), plane)
-                               .arg(c.nearIsBelow ? tr("below") : tr("above"))
+                               .arg(num(c.t_star), plane)
+                               .arg(c.near_is_below ? tr("below") : tr("above"))
                                .arg(which));
     } else if (conceal_)  // the quiz asks which child comes first: t* and the plane only
       crossing_->setText(tr("<b>%1</b> (plane %2 = %3)<br><i>near side and children: ? (the quiz asks it)</i>")
-                             .arg(num(c.tStar))
-                             .arg(axisName(c.axis))
+                             .arg(num(c.t_star))
+                             .arg(replay::axis_name(c.axis))
                              .arg(num(c.split)));
     else
       crossing_->setText(tr("<b>%1</b> (plane %2 = %3; near side %4)<br>%5")
-                             .arg(num(c.tStar))
-                             .arg(axisName(c.axis))
+                             .arg(num(c.t_star))
+                             .arg(replay::axis_name(c.axis))
                              .arg(num(c.split))
-                             .arg(c.nearIsBelow ? tr("below") : tr("above"))
+                             .arg(c.near_is_below ? tr("below") : tr("above"))
                              .arg(which));
   } else {
     crossing_->setText(tr("<i>none: no split at this event</i>"));
@@ -367,13 +371,13 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   // As tall as its rows (at least one, at most eight), so that the panel below it stays in view.
   stack_->setFixedHeight(stack_->horizontalHeader()->height() + rowHeight_ * std::clamp(rows, 1, 8) + 4);
   for (int row = 0; row < rows; ++row) {
-    const StackEntry& e = s.stack[size_t(rows - 1 - row)];
+    const replay::StackEntry& e = s.stack[size_t(rows - 1 - row)];
     // The node by id and by its path in the slides' notation (LLR: below, below, above).
     const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), e.node) : "";
     QString cells[4] = {path.empty() ? QString::number(e.node)
                                      : QString("%1 (%2)").arg(e.node).arg(QString::fromStdString(path)),
-                        QString::number(e.depth), num(e.tMin), num(e.tMax)};
-    bool justPushed = e.pushEvent == s.step;
+                        QString::number(e.depth), num(e.t_min), num(e.t_max)};
+    bool justPushed = e.push_event == s.step;
     for (int col = 0; col < 4; ++col) {
       auto* item = stack_->item(row, col);
       if (!item) {
@@ -388,17 +392,17 @@ void StatePanel::refreshTree(const TracedRay& r, const ReplayState& s) {
   }
 }
 
-void StatePanel::refreshBvhChildren(const TracedRay& r, const ReplayState& s) {
+void StatePanel::refreshBvhChildren(const TracedRay& r, const replay::ReplayState& s) {
   // Each child's box test as far as the walk is (a test not reached yet: "?"), then the order chosen.
-  BvhChoice c = bvhChoice(r, s);
+  replay::BvhChoice c = replay::bvh_choice(r, s);
   if (!c.valid) {
     crossing_->setText(tr("<i>- (the current node is not an inner node whose children are tested)</i>"));
     return;
   }
   QString t;
-  for (const BoxTestMark& m : c.tests) {
+  for (const replay::BoxTestMark& m : c.tests) {
     QString result = !m.done ? tr("<i>?</i>")
-                     : m.hit ? QString("[%1, %2]").arg(num(m.tNear), num(m.tFar))
+                     : m.hit ? QString("[%1, %2]").arg(num(m.t_near), num(m.t_far))
                              : tr("<b>miss</b>");
     t += tr("child %1: %2<br>").arg(m.child).arg(result);
   }
@@ -416,14 +420,14 @@ void StatePanel::refreshBvhChildren(const TracedRay& r, const ReplayState& s) {
   crossing_->setText(t);
 }
 
-void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s) {
+void StatePanel::refreshOctreeChildren(const TracedRay& r, const replay::ReplayState& s) {
   // The children in the order the ray crosses them (Revelles: the entry plane picks the first, each exit
   // plane the next), those visited so far in bold.
-  OctreeChoice c = session_->trace() ? octreeChoice(*session_->trace(), r, s) : OctreeChoice{};
+  replay::OctreeChoice c = session_->trace() ? replay::octree_choice(*session_->trace(), r, s) : replay::OctreeChoice{};
   if (!c.valid) {
     // A leaf: its exit t per axis; the smallest is the exit plane, across which the next cell lies.
-    const TraceNode* n = session_->trace() && s.nodeEvent >= 0
-                             ? findNode(*session_->trace(), r.events[size_t(s.nodeEvent)].node)
+    const TraceNode* n = session_->trace() && s.node_event >= 0
+                             ? replay::find_node(*session_->trace(), r.events[size_t(s.node_event)].node)
                              : nullptr;
     if (n && n->leaf) {
       QStringList exits;
@@ -433,24 +437,24 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
         const float d = r.ray.direction[a], inv = 1.f / d;
         if (!std::isfinite(inv)) continue;
         const float t1 = ((std::signbit(d) ? n->box.lo[a] : n->box.hi[a]) - r.ray.origin[a]) * inv;
-        exits << tr("%1 at %2").arg(axisName(a)).arg(num(t1));
+        exits << tr("%1 at %2").arg(replay::axis_name(a)).arg(num(t1));
         if (exit < 0 || t1 < best) exit = a, best = t1;
       }
       crossing_->setText(
           tr("leaf cell; exit planes: %1").arg(exits.join(", ")) +
-          (conceal_ || exit < 0 ? QString() : tr("<br>leaves by %1 (the smallest)").arg(axisName(exit))));
+          (conceal_ || exit < 0 ? QString() : tr("<br>leaves by %1 (the smallest)").arg(replay::axis_name(exit))));
       return;
     }
     crossing_->setText(tr("<i>- (the current node is not an inner cell whose children are walked)</i>"));
     return;
   }
-  QString t = c.entryAxis >= 0
-                  ? tr("entry plane %1 at t = %2").arg(axisName(c.entryAxis)).arg(num(c.t0[c.entryAxis]))
+  QString t = c.entry_axis >= 0
+                  ? tr("entry plane %1 at t = %2").arg(replay::axis_name(c.entry_axis)).arg(num(c.t0[c.entry_axis]))
                   : QString();
   // The centre planes' t: with the entry t, Revelles' first child (the far half where one comes before it).
   QStringList mids;
   for (int a = 0; a < 3; ++a)
-    if (c.moving[a]) mids << tr("%1 at %2").arg(axisName(a)).arg(num(c.tMid[a]));
+    if (c.moving[a]) mids << tr("%1 at %2").arg(replay::axis_name(a)).arg(num(c.t_mid[a]));
   if (!mids.isEmpty())
     t += (t.isEmpty() ? QString() : QString("<br>")) + tr("centre planes: ") + mids.join(", ");
   if (conceal_) {
@@ -459,15 +463,15 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const ReplayState& s)
   }
   // One line per child, numbered in the order the ray crosses them, with the plane it is left by.
   for (size_t k = 0; k < c.path.size(); ++k) {
-    const OctreeChildStep& st = c.path[k];
-    const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visitedSoFar, st.node) !=
-                      c.visited.begin() + c.visitedSoFar;
+    const replay::OctreeChildStep& st = c.path[k];
+    const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visited_so_far, st.node) !=
+                      c.visited.begin() + c.visited_so_far;
     QString item =
-        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(octantName(st.octant)));
+        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(replay::octant_name(st.octant)));
     t += "<br>" + (seen ? "<b>" + item + "</b>" : item) +
-         (st.leavesParent
-              ? tr(", leaves the cell by %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit))
-              : tr(", exit plane %1 at t = %2").arg(axisName(st.exitAxis)).arg(num(st.tExit)));
+         (st.leaves_parent
+              ? tr(", leaves the cell by %1 at t = %2").arg(replay::axis_name(st.exit_axis)).arg(num(st.t_exit))
+              : tr(", exit plane %1 at t = %2").arg(replay::axis_name(st.exit_axis)).arg(num(st.t_exit)));
   }
   crossing_->setText(t);
 }

@@ -9,6 +9,8 @@
 #include <QJsonObject>
 #include <QWidget>
 
+#include "raystep/replay/replay_state.h"
+
 class QLabel;
 class QTableView;
 class QTableWidget;
@@ -20,7 +22,7 @@ struct TracedRay;
 
 namespace raystep::viz {
 
-struct ReplayState;
+struct replay::ReplayState;
 class Session;
 class MailboxModel;
 
@@ -40,9 +42,9 @@ class StatePanel : public QWidget {
 
  private:
   void refresh();
-  void refreshTree(const TracedRay& ray, const ReplayState& s);
-  void refreshOctreeChildren(const TracedRay& r, const ReplayState& s);
-  void refreshBvhChildren(const TracedRay& ray, const ReplayState& s);
+  void refreshTree(const TracedRay& ray, const replay::ReplayState& s);
+  void refreshOctreeChildren(const TracedRay& r, const replay::ReplayState& s);
+  void refreshBvhChildren(const TracedRay& ray, const replay::ReplayState& s);
   Session* session_;
   QLabel* ray_;
   QLabel* event_;

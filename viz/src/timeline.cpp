@@ -14,8 +14,9 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
-#include "replay.h"
 #include "session.h"
+
+#include "raystep/replay/replay_state.h"
 
 namespace raystep::viz {
 
@@ -169,7 +170,7 @@ Timeline::Timeline(Session* session, QWidget* parent) : QWidget(parent), session
     ray_->setMinimumContentsLength(session_->pixel() && session_->trace() && session_->trace()->pixel ? 34
                                                                                                       : 14);
     ray_->setCurrentIndex(session_->rayIndex());
-    if (const TracedRay* r = session_->ray()) offerUnit(isTreeRay(*r));
+    if (const TracedRay* r = session_->ray()) offerUnit(replay::is_tree_ray(*r));
     refresh();
   });
   connect(session_, &Session::stepChanged, this, &Timeline::refresh);
@@ -208,7 +209,7 @@ bool Timeline::jump(const QString& kind, bool forward) {
   if (!r) return false;
   int best = -1;
   for (EventType t : typesOf(kind)) {
-    int i = findEvent(*r, session_->step(), t, forward);
+    int i = replay::find_event(*r, session_->step(), t, forward);
     if (i >= 0 && (best < 0 || (forward ? i < best : i > best))) best = i;
   }
   if (best < 0) {  // say so, rather than doing nothing
@@ -246,7 +247,7 @@ void Timeline::refresh() {
   slider_->setRange(0, std::max(0, n - 1));
   slider_->setValue(session_->step());
   slider_->setEnabled(n > 0);
-  const ReplayState& s = session_->state();
+  const replay::ReplayState& s = session_->state();
   position_->setText(n ? tr("event %1 / %2: <b>%3</b>").arg(session_->step()).arg(n - 1).arg(event_type_name(s.event->type))
                        : tr("no trace: click a pixel"));
 }

@@ -48,7 +48,7 @@ TreeView::TreeView(Session* session, QWidget* parent)
   });
   connect(current_, &QPushButton::clicked, this, [this] {
     const TracedRay* ray = session_->ray();
-    int e = session_->state().nodeEvent;
+    int e = session_->state().node_event;
     if (ray && e >= 0 && e < int(ray->events.size())) Q_EMIT nodeChosen(ray->events[size_t(e)].node);
   });
   connect(session_, &Session::structureChanged, this, [this] {
@@ -62,7 +62,7 @@ TreeView::TreeView(Session* session, QWidget* parent)
   });
   connect(session_, &Session::selectedNodeChanged, this, &TreeView::showSelected);
   connect(session_, &Session::stepChanged, this,
-          [this] { current_->setEnabled(session_->state().nodeEvent >= 0); });
+          [this] { current_->setEnabled(session_->state().node_event >= 0); });
   current_->setEnabled(false);
 }
 

@@ -15,6 +15,7 @@
 #include "raystep/accel/kdtree_sah_curve.h"
 #include "raystep/accel/octree.h"
 #include "raystep/lesson/tree_nodes.h"
+#include "raystep/trace/node_path.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"

@@ -25,11 +25,4 @@ LessonTree lesson_tree(const Accelerator& accel);
 // has a letter the tree does not take, or the structure takes no paths.
 uint32_t lesson_node_by_path(const Accelerator& accel, const std::string& path);
 
-// The other way, from a trace alone: the path of node `id` from the root, in the slides' notation (kd-tree and
-// BSP tree L below / R above, binary BVH L / R its first / second child, octree a digit per level; "" the
-// root). False when the trace's nodes do not chain up to the root or the tree takes no paths (a wide BVH).
-bool trace_node_path(const Trace& trace, int32_t id, std::string* path);
-// "LLR", or "root"; "" when unknown: for texts that name a node.
-std::string trace_node_path_text(const Trace& trace, int32_t id);
-
 }  // namespace raystep

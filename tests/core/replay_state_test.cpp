@@ -1,4 +1,4 @@
-// The debugger's replay model (viz/src/replay.h) on the mailbox trap of grid_test.cpp: a long triangle (0)
+// The debugger's replay model (core/replay/replay_state.h) on the mailbox trap of grid_test.cpp: a long triangle (0)
 // found in cell 0 but lying in cell 2 (deferred), skipped by the mailbox in cell 1, where the small triangle
 // (1) wins. Checks what the panels show at every step, and that the state depends on the step alone.
 #include <gtest/gtest.h>
@@ -11,10 +11,13 @@
 #include "raystep/scene/ray_sets.h"
 #include "raystep/trace/grid_trace.h"
 #include "raystep/trace/record_trace.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/node_crossing.h"
+#include "raystep/replay/bvh_choice.h"
+#include "raystep/replay/explain.h"
 #include "test_scenes.h"
 
-namespace raystep::viz {
+namespace raystep::replay {
 namespace {
 
 Trace trapTrace() {
@@ -37,40 +40,40 @@ TEST(Replay, MailboxTrapStepByStep) {
   const TracedRay& ray = t.rays[0];
   ASSERT_EQ(ray.events.size(), 9u);  // begin, cell, test, deferred, cell, mailbox, test, accepted, end
 
-  ReplayState s0 = replayAt(ray, 0);
-  EXPECT_EQ(s0.cellEvent, -1);
-  EXPECT_FALSE(s0.hasInterval);
+  ReplayState s0 = replay_at(ray, 0);
+  EXPECT_EQ(s0.cell_event, -1);
+  EXPECT_FALSE(s0.has_interval);
 
   // In cell 0 the long triangle is being tested, then found (and deferred: t = 3.5 > t_exit = 2).
-  ReplayState s2 = replayAt(ray, 2);
-  EXPECT_EQ(s2.cellEvent, 1);
+  ReplayState s2 = replay_at(ray, 2);
+  EXPECT_EQ(s2.cell_event, 1);
   // The entry is the slab test's, widened outward by up to 2 gamma(3) (6 ulps) so that it never comes late.
-  EXPECT_LE(s2.tMin, 1.f);
-  EXPECT_GE(s2.tMin, 1.f - 2.f * gamma(3));
-  EXPECT_FLOAT_EQ(s2.tMax, 2.f);
+  EXPECT_LE(s2.t_min, 1.f);
+  EXPECT_GE(s2.t_min, 1.f - 2.f * gamma(3));
+  EXPECT_FLOAT_EQ(s2.t_max, 2.f);
   ASSERT_EQ(s2.prims.size(), 1u);
   EXPECT_EQ(s2.prims[0].state, PrimState::testing);
-  ReplayState s3 = replayAt(ray, 3);
+  ReplayState s3 = replay_at(ray, 3);
   EXPECT_EQ(s3.prims[0].state, PrimState::hit);
   EXPECT_TRUE(s3.deferred);
   EXPECT_FALSE(s3.accepted);
-  EXPECT_EQ(s3.nearestPrim, 0);
-  EXPECT_FLOAT_EQ(s3.nearestT, 3.5f);
-  EXPECT_NE(explainRule(ray, s3).find("t_exit(cell) = 2"), std::string::npos) << explainRule(ray, s3);
+  EXPECT_EQ(s3.nearest_prim, 0);
+  EXPECT_FLOAT_EQ(s3.nearest_t, 3.5f);
+  EXPECT_NE(explain_rule(ray, s3).find("t_exit(cell) = 2"), std::string::npos) << explain_rule(ray, s3);
 
   // Cell 1: the mailbox skips triangle 0; triangle 1 is not reached yet.
-  ReplayState s4 = replayAt(ray, 4);
-  EXPECT_EQ(s4.visitedCellEvents, std::vector<int>{1});
+  ReplayState s4 = replay_at(ray, 4);
+  EXPECT_EQ(s4.visited_cell_events, std::vector<int>{1});
   // Cell 0's Why steps on; cell 1 is the last: its Why names the DDA's axis but says the walk ends there.
-  EXPECT_EQ(explainRule(ray, replayAt(ray, 1)).rfind("Step along", 0), 0u)
-      << explainRule(ray, replayAt(ray, 1));
+  EXPECT_EQ(explain_rule(ray, replay_at(ray, 1)).rfind("Step along", 0), 0u)
+      << explain_rule(ray, replay_at(ray, 1));
   ASSERT_GE(ray.events[4].next_axis, 0);  // the DDA had picked its axis when it entered the cell
-  EXPECT_NE(explainRule(ray, s4).find("the walk ends in this cell"), std::string::npos)
-      << explainRule(ray, s4);
+  EXPECT_NE(explain_rule(ray, s4).find("the walk ends in this cell"), std::string::npos)
+      << explain_rule(ray, s4);
   ASSERT_EQ(s4.prims.size(), 2u);
   EXPECT_EQ(s4.prims[0].state, PrimState::pending);
   EXPECT_EQ(s4.prims[1].state, PrimState::pending);
-  ReplayState s5 = replayAt(ray, 5);
+  ReplayState s5 = replay_at(ray, 5);
   EXPECT_EQ(s5.prims[0].state, PrimState::skipped);
   ASSERT_EQ(s5.mailbox.size(), 1u);
   EXPECT_EQ(s5.mailbox[0].prim, 0);
@@ -79,11 +82,11 @@ TEST(Replay, MailboxTrapStepByStep) {
   EXPECT_EQ(s5.counters.mailbox_hits, 1u);
 
   // The small triangle wins inside cell 1: tmin(next cell) = 3 > tmax(ray) = 2.5.
-  ReplayState s7 = replayAt(ray, 7);
+  ReplayState s7 = replay_at(ray, 7);
   EXPECT_TRUE(s7.accepted);
-  EXPECT_EQ(s7.nearestPrim, 1);
-  EXPECT_FLOAT_EQ(s7.nearestT, 2.5f);
-  std::string rule = explainRule(ray, s7);
+  EXPECT_EQ(s7.nearest_prim, 1);
+  EXPECT_FLOAT_EQ(s7.nearest_t, 2.5f);
+  std::string rule = explain_rule(ray, s7);
   EXPECT_NE(rule.find("tmin(next cell) = t_exit = 3"), std::string::npos) << rule;
   EXPECT_NE(rule.find("t(hit) = 2.5"), std::string::npos) << rule;
   EXPECT_EQ(s7.counters.prim_tests, 2u);
@@ -94,24 +97,24 @@ TEST(Replay, StateDependsOnTheStepAlone) {
   Trace t = trapTrace();
   const TracedRay& ray = t.rays[0];
   for (int k = 0; k < int(ray.events.size()); ++k) {
-    ReplayState a = replayAt(ray, k), b = replayAt(ray, k);
+    ReplayState a = replay_at(ray, k), b = replay_at(ray, k);
     EXPECT_EQ(a.step, k);
-    EXPECT_EQ(a.cellEvent, b.cellEvent);
+    EXPECT_EQ(a.cell_event, b.cell_event);
     EXPECT_EQ(a.prims.size(), b.prims.size());
-    EXPECT_EQ(describeEvent(*a.event), describeEvent(ray.events[size_t(k)]));
+    EXPECT_EQ(describe_event(*a.event), describe_event(ray.events[size_t(k)]));
   }
-  EXPECT_EQ(replayAt(ray, 100).step, int(ray.events.size()) - 1);  // clamped
+  EXPECT_EQ(replay_at(ray, 100).step, int(ray.events.size()) - 1);  // clamped
 }
 
 TEST(Replay, FindsEventsByKind) {
   Trace t = trapTrace();
   const TracedRay& ray = t.rays[0];
-  EXPECT_EQ(findEvent(ray, 0, EventType::cell, true), 1);
-  EXPECT_EQ(findEvent(ray, 1, EventType::cell, true), 4);
-  EXPECT_EQ(findEvent(ray, 4, EventType::cell, false), 1);
-  EXPECT_EQ(findEvent(ray, 4, EventType::cell, true), -1);
-  EXPECT_EQ(nthEvent(ray, EventType::prim_test, 2), 6);
-  EXPECT_EQ(nthEvent(ray, EventType::prim_test, 3), -1);
+  EXPECT_EQ(find_event(ray, 0, EventType::cell, true), 1);
+  EXPECT_EQ(find_event(ray, 1, EventType::cell, true), 4);
+  EXPECT_EQ(find_event(ray, 4, EventType::cell, false), 1);
+  EXPECT_EQ(find_event(ray, 4, EventType::cell, true), -1);
+  EXPECT_EQ(nth_event(ray, EventType::prim_test, 2), 6);
+  EXPECT_EQ(nth_event(ray, EventType::prim_test, 3), -1);
 }
 
 // Trees: the stack is the pushes not yet popped.
@@ -133,12 +136,12 @@ TEST(Replay, TreeStackFromPushAndPop) {
   add(EventType::pop, 2, 3, 5);
   add(EventType::leaf, 2, 3, 5);
   add(EventType::ray_end, -1, 0, 0);
-  EXPECT_EQ(replayAt(ray, 3).stack.size(), 1u);
-  EXPECT_EQ(replayAt(ray, 3).stack[0].node, 2);
-  EXPECT_FLOAT_EQ(replayAt(ray, 3).tMin, 1.f);
-  EXPECT_TRUE(replayAt(ray, 4).stack.empty());
-  EXPECT_FLOAT_EQ(replayAt(ray, 5).tMin, 3.f);
-  EXPECT_EQ(replayAt(ray, 5).counters.pushes, 1u);
+  EXPECT_EQ(replay_at(ray, 3).stack.size(), 1u);
+  EXPECT_EQ(replay_at(ray, 3).stack[0].node, 2);
+  EXPECT_FLOAT_EQ(replay_at(ray, 3).t_min, 1.f);
+  EXPECT_TRUE(replay_at(ray, 4).stack.empty());
+  EXPECT_FLOAT_EQ(replay_at(ray, 5).t_min, 3.f);
+  EXPECT_EQ(replay_at(ray, 5).counters.pushes, 1u);
 }
 
 // The kd-tree panel's reading of a real walk: at every inner node, t* from the trace's split plane and the
@@ -155,38 +158,38 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
   int kinds[4] = {0, 0, 0, 0};
   int stops = 0, walked = 0;
   for (const TracedRay& ray : t.rays) {
-    if (!isTreeRay(ray)) continue;  // it misses the root's box
+    if (!is_tree_ray(ray)) continue;  // it misses the root's box
     ++walked;
     for (int i = 0; i < int(ray.events.size()); ++i) {
       const Event& e = ray.events[size_t(i)];
-      ReplayState s = replayAt(ray, i);
+      ReplayState s = replay_at(ray, i);
       // The nodes left behind, each once (a popped node, left for its own node event, is among them).
-      std::set<int32_t> left(s.visitedNodes.begin(), s.visitedNodes.end());
-      EXPECT_EQ(left.size(), s.visitedNodes.size());
+      std::set<int32_t> left(s.visited_nodes.begin(), s.visited_nodes.end());
+      EXPECT_EQ(left.size(), s.visited_nodes.size());
       if (e.type == EventType::node && i > 0 && ray.events[size_t(i - 1)].type == EventType::node)
         EXPECT_EQ(left.count(ray.events[size_t(i - 1)].node), 1u);  // its parent, just left
       if (e.type == EventType::push) {
-        ASSERT_GE(s.nodeEvent, 0);
-        EXPECT_EQ(ray.events[size_t(s.nodeEvent)].type, EventType::node);
-        EXPECT_EQ(s.nodeEvent, i - 1);
+        ASSERT_GE(s.node_event, 0);
+        EXPECT_EQ(ray.events[size_t(s.node_event)].type, EventType::node);
+        EXPECT_EQ(s.node_event, i - 1);
         ASSERT_FALSE(s.stack.empty());
         EXPECT_EQ(s.stack.back().node, e.node);
-        EXPECT_EQ(s.stack.back().pushEvent, i);
-        EXPECT_EQ(s.tMin,
+        EXPECT_EQ(s.stack.back().push_event, i);
+        EXPECT_EQ(s.t_min,
                   ray.events[size_t(i - 1)].t_min_node);  // the inner node's interval, not the far child's
       }
       if (e.type == EventType::hit_accepted && e.reason == AcceptReason::next_node_beyond) {
         ++stops;
-        int pop = findEvent(ray, i, EventType::pop, false);
+        int pop = find_event(ray, i, EventType::pop, false);
         ASSERT_GE(pop, 0);
         EXPECT_LT(e.t, ray.events[size_t(pop)].t_min_node);
-        std::string why = explainRule(&t, ray, s);
+        std::string why = explain_rule(&t, ray, s);
         EXPECT_NE(why.find("tmin(next node) > tmax(ray)"), std::string::npos) << why;
       }
       if (e.type != EventType::node || ray.events[size_t(i + 1)].type == EventType::leaf) continue;
-      NodeCrossing c = nodeCrossing(t, ray, s);
+      NodeCrossing c = node_crossing(t, ray, s);
       ASSERT_TRUE(c.valid) << "node " << e.node;
-      const TraceNode* n = findNode(t, e.node);
+      const TraceNode* n = find_node(t, e.node);
       ASSERT_NE(n, nullptr);
       EXPECT_EQ(c.axis, n->axis);
       const Event& next = ray.events[size_t(i + 1)];
@@ -195,34 +198,34 @@ TEST(Replay, KdCrossingsAgreeWithTheWalk) {
         // The near child is the side the ray starts in (the slides'): only it is visited when the plane lies
         // beyond the node's part of the ray or behind the origin; only the far one when the ray crossed the
         // plane before entering the node.
-        case Crossing::nearOnly:
-          EXPECT_TRUE(c.tStar > c.tMax || c.tStar < 0) << c.tStar;
-          if (ray.ray.origin[c.axis] != c.split) EXPECT_EQ(c.nearIsBelow, ray.ray.origin[c.axis] < c.split);
+        case Crossing::near_only:
+          EXPECT_TRUE(c.t_star > c.t_max || c.t_star < 0) << c.t_star;
+          if (ray.ray.origin[c.axis] != c.split) EXPECT_EQ(c.near_is_below, ray.ray.origin[c.axis] < c.split);
           break;
-        case Crossing::farOnly:
-          EXPECT_LT(c.tStar, c.tMin);
-          EXPECT_GE(c.tStar, 0);
+        case Crossing::far_only:
+          EXPECT_LT(c.t_star, c.t_min);
+          EXPECT_GE(c.t_star, 0);
           break;
         case Crossing::both:
           // The far child's interval starts at t*, clamped to the node's: the kernel's own numbers.
-          EXPECT_EQ(next.t_min_node, std::min(std::max(c.tStar, c.tMin), c.tMax));
+          EXPECT_EQ(next.t_min_node, std::min(std::max(c.t_star, c.t_min), c.t_max));
           EXPECT_EQ(ray.events[size_t(i + 2)].t_max_node, next.t_min_node);
-          EXPECT_EQ(c.nearChild, ray.events[size_t(i + 2)].node);
+          EXPECT_EQ(c.near_child, ray.events[size_t(i + 2)].node);
           // Both visited: the near child is the first, the side the direction points into (the origin's side
           // but for an origin on the plane within rounding).
-          EXPECT_EQ(c.nearChild == e.node + 1, c.nearIsBelow);
+          EXPECT_EQ(c.near_child == e.node + 1, c.near_is_below);
           break;
-        case Crossing::inPlane:
-          EXPECT_TRUE(std::isnan(c.tStar));
+        case Crossing::in_plane:
+          EXPECT_TRUE(std::isnan(c.t_star));
           break;
       }
-      std::string why = explainRule(&t, ray, s);
+      std::string why = explain_rule(&t, ray, s);
       EXPECT_NE(why.find("t* ="), std::string::npos) << why;
     }
   }
   // The rays meet every kind of inner-node decision but the in-plane one, and the tree's stopping rule.
-  EXPECT_GT(kinds[int(Crossing::nearOnly)], 0);
-  EXPECT_GT(kinds[int(Crossing::farOnly)], 0);
+  EXPECT_GT(kinds[int(Crossing::near_only)], 0);
+  EXPECT_GT(kinds[int(Crossing::far_only)], 0);
   EXPECT_GT(kinds[int(Crossing::both)], 0);
   EXPECT_GT(stops, 0);
   EXPECT_GT(walked, 50);
@@ -250,17 +253,17 @@ TEST(Replay, KdRaysParallelToAPlaneStayOnTheirSide) {
     for (int i = 0; i + 1 < int(ray.events.size()); ++i) {
       const Event& e = ray.events[size_t(i)];
       if (e.type != EventType::node || ray.events[size_t(i + 1)].type == EventType::leaf) continue;
-      ReplayState s = replayAt(ray, i);
-      NodeCrossing c = nodeCrossing(t, ray, s);
+      ReplayState s = replay_at(ray, i);
+      NodeCrossing c = node_crossing(t, ray, s);
       ASSERT_TRUE(c.valid);
-      if (!std::isinf(c.tStar)) continue;
+      if (!std::isinf(c.t_star)) continue;
       ++parallel;
       ASSERT_NE(c.crossing, Crossing::both);
-      int32_t visited = c.nearChild >= 0 ? c.nearChild : c.farChild;
+      int32_t visited = c.near_child >= 0 ? c.near_child : c.far_child;
       bool originBelow = ray.ray.origin[c.axis] < c.split;
       if (ray.ray.origin[c.axis] != c.split)
         EXPECT_EQ(visited == e.node + 1, originBelow) << "node " << e.node;
-      std::string why = explainRule(&t, ray, s);
+      std::string why = explain_rule(&t, ray, s);
       EXPECT_NE(why.find("parallel"), std::string::npos) << why;
     }
   EXPECT_GT(parallel, 20);
@@ -282,11 +285,11 @@ TEST(Replay, ATieGoesToTheLowerPrimitiveId) {
   add(EventType::prim_test, 5, true, 2.f);
   add(EventType::prim_test, 1, true, 2.f);
   add(EventType::ray_end, 1, true, 2.f);
-  ReplayState s2 = replayAt(ray, 2);
-  EXPECT_EQ(s2.nearestPrim, 3);
-  EXPECT_NE(explainRule(ray, s2).find("tie goes to the lower id"), std::string::npos) << explainRule(ray, s2);
-  EXPECT_EQ(replayAt(ray, 3).nearestPrim, 1);
-  EXPECT_NE(explainRule(ray, replayAt(ray, 3)).find("It becomes the nearest hit"), std::string::npos);
+  ReplayState s2 = replay_at(ray, 2);
+  EXPECT_EQ(s2.nearest_prim, 3);
+  EXPECT_NE(explain_rule(ray, s2).find("tie goes to the lower id"), std::string::npos) << explain_rule(ray, s2);
+  EXPECT_EQ(replay_at(ray, 3).nearest_prim, 1);
+  EXPECT_NE(explain_rule(ray, replay_at(ray, 3)).find("It becomes the nearest hit"), std::string::npos);
 }
 
 // The Why text of a triangle's test compares the watertight test with Möller–Trumbore on that ray and
@@ -311,13 +314,13 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   r.ray.direction = glm::vec3(0.f, 0.f, -1.f);
   Trace t = record_grid_trace(g, grid, {r}, "leak.json", "fnv1a64:0123456789abcdef");
   const TracedRay& ray = t.rays[0];
-  int first = nthEvent(ray, EventType::prim_test, 1), second = nthEvent(ray, EventType::prim_test, 2);
+  int first = nth_event(ray, EventType::prim_test, 1), second = nth_event(ray, EventType::prim_test, 2);
   ASSERT_GE(second, 0);
   ASSERT_EQ(ray.events[size_t(first)].prim, 0);
   EXPECT_TRUE(ray.events[size_t(first)].hit);
   EXPECT_FALSE(ray.events[size_t(second)].hit);
-  std::string why0 = explainRule(&t, ray, replayAt(ray, first)),
-              why1 = explainRule(&t, ray, replayAt(ray, second));
+  std::string why0 = explain_rule(&t, ray, replay_at(ray, first)),
+              why1 = explain_rule(&t, ray, replay_at(ray, second));
   EXPECT_NE(
       why0.find("\nThis ray and triangle alone: watertight hit (settled by the double-precision filter); "
                 "Möller–Trumbore miss (u + v = 1 + 8.9e-08 > 1)."),
@@ -329,7 +332,7 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
       std::string::npos)
       << why1;
   // Without the trace's vertices there is nothing to compare.
-  EXPECT_EQ(explainRule(ray, replayAt(ray, first)).find("Möller"), std::string::npos);
+  EXPECT_EQ(explain_rule(ray, replay_at(ray, first)).find("Möller"), std::string::npos);
 
   // Away from edges both agree, in float alone: a hit inside, and a miss with u > 1 (u: p1's weight).
   TracePrimitive tri;
@@ -338,11 +341,11 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   TracedRay inside;
   inside.ray.origin = glm::vec3(0.25f, 0.25f, 1.f);
   inside.ray.direction = glm::vec3(0.f, 0.f, -1.f);
-  EXPECT_EQ(compareTriangleTests(inside, tri),
+  EXPECT_EQ(compare_triangle_tests(inside, tri),
             "This ray and triangle alone: watertight hit (float alone); Möller–Trumbore hit.");
   TracedRay outside = inside;
   outside.ray.origin.x = 2.f;
-  EXPECT_EQ(compareTriangleTests(outside, tri),
+  EXPECT_EQ(compare_triangle_tests(outside, tri),
             "This ray and triangle alone: watertight miss (float alone); Möller–Trumbore miss (u = 2 > 1).");
   // A ray exactly through an edge of general coordinates: the edge function is exactly 0, which no error
   // bound can prove, so rational arithmetic settles it (and the edge counts as inside).
@@ -352,7 +355,7 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   edge.v[2] = glm::vec3(0.05f, 0.85f, 0.3f);
   TracedRay through = inside;
   through.ray.origin = glm::vec3(0.5f, 0.5f, 1.f);
-  std::string line = compareTriangleTests(through, edge);
+  std::string line = compare_triangle_tests(through, edge);
   EXPECT_EQ(
       line.rfind("This ray and triangle alone: watertight hit (settled by exact rational arithmetic); ", 0),
       0u)
@@ -361,7 +364,7 @@ TEST(Replay, PrimTestComparesTheWatertightTestWithMollerTrumbore) {
   TracePrimitive sphere;
   sphere.type = PrimType::sphere;
   sphere.radius = 1.f;
-  EXPECT_EQ(compareTriangleTests(inside, sphere), "");
+  EXPECT_EQ(compare_triangle_tests(inside, sphere), "");
 }
 
 // Without mailboxes a primitive in two cells is tested twice: the second hit is no nearer than the first.
@@ -385,7 +388,7 @@ TEST(Replay, ASecondTestOfTheNearestPrimitiveIsNotANewHit) {
   c1->cell[0] = 1, c1->t_enter = 2.f, c1->t_exit = 4.f, c1->next_axis = 0;
   Event* t1 = ev(EventType::prim_test);
   t1->prim = 4, t1->hit = true, t1->t = 3.f;
-  std::string first = explainRule(ray, replayAt(ray, 2)), second = explainRule(ray, replayAt(ray, 5));
+  std::string first = explain_rule(ray, replay_at(ray, 2)), second = explain_rule(ray, replay_at(ray, 5));
   EXPECT_NE(first.find("nearer than any hit so far"), std::string::npos) << first;
   EXPECT_EQ(second.find("nearer than any hit so far"), std::string::npos) << second;
   EXPECT_NE(second.find("already the nearest hit"), std::string::npos) << second;
@@ -452,45 +455,45 @@ TracedRay bvhRay() {
 
 TEST(Replay, BvhChildrenOrderPushAndSkip) {
   const TracedRay r = bvhRay();
-  EXPECT_TRUE(isTreeRay(r));
-  EXPECT_TRUE(isBvhRay(nullptr, r));
+  EXPECT_TRUE(is_tree_ray(r));
+  EXPECT_TRUE(is_bvh_ray(nullptr, r));
 
   // At the root: the box tests are not reached yet, so the choice is not known.
-  ReplayState s1 = replayAt(r, 1);
-  BvhChoice c1 = bvhChoice(r, s1);
+  ReplayState s1 = replay_at(r, 1);
+  BvhChoice c1 = bvh_choice(r, s1);
   ASSERT_TRUE(c1.valid);
   ASSERT_EQ(c1.tests.size(), 2u);
   EXPECT_FALSE(c1.tests[0].done);
   EXPECT_FALSE(c1.decided);
-  EXPECT_NE(explainRule(r, s1).find("may overlap"), std::string::npos) << explainRule(r, s1);
+  EXPECT_NE(explain_rule(r, s1).find("may overlap"), std::string::npos) << explain_rule(r, s1);
 
   // After the second test: both hit, overlapping; nearer first (1), 2 pushed.
-  ReplayState s3 = replayAt(r, 3);
-  BvhChoice c3 = bvhChoice(r, s3);
+  ReplayState s3 = replay_at(r, 3);
+  BvhChoice c3 = bvh_choice(r, s3);
   EXPECT_TRUE(c3.decided);
   EXPECT_EQ(c3.first, 1);
   EXPECT_EQ(c3.pushed, std::vector<int32_t>{2});
-  EXPECT_FLOAT_EQ(c3.tests[1].tNear, 1.5f);
+  EXPECT_FLOAT_EQ(c3.tests[1].t_near, 1.5f);
   EXPECT_EQ(s3.counters.box_tests, 2u);
-  const std::string why3 = explainRule(r, s3);
+  const std::string why3 = explain_rule(r, s3);
   EXPECT_NE(why3.find("bounding volumes can overlap"), std::string::npos) << why3;
   EXPECT_NE(why3.find("Nearer first: enter child 1"), std::string::npos) << why3;
   EXPECT_NE(why3.find("push child 2"), std::string::npos) << why3;
 
   // The leaf says why there is no mailbox.
-  const std::string why6 = explainRule(r, replayAt(r, 6));
+  const std::string why6 = explain_rule(r, replay_at(r, 6));
   EXPECT_NE(why6.find("exactly one leaf"), std::string::npos) << why6;
 
   // The skip: its rule with the numbers, the node not counted as visited, the stack empty.
-  ReplayState s9 = replayAt(r, 9);
-  EXPECT_EQ(s9.skippedNodes, std::vector<int32_t>{2});
+  ReplayState s9 = replay_at(r, 9);
+  EXPECT_EQ(s9.skipped_nodes, std::vector<int32_t>{2});
   EXPECT_TRUE(s9.stack.empty());
-  const std::string why9 = explainRule(r, s9);
+  const std::string why9 = explain_rule(r, s9);
   EXPECT_NE(why9.find("skip: t_near = 1.5 > t of the nearest hit = 1.2"), std::string::npos) << why9;
-  ReplayState s11 = replayAt(r, 11);
-  EXPECT_EQ(std::count(s11.visitedNodes.begin(), s11.visitedNodes.end(), 2), 0);
-  EXPECT_EQ(describeEvent(r.events[3]), "3  box_test  child 2 of 0: hit [1.5, 4]");
+  ReplayState s11 = replay_at(r, 11);
+  EXPECT_EQ(std::count(s11.visited_nodes.begin(), s11.visited_nodes.end(), 2), 0);
+  EXPECT_EQ(describe_event(r.events[3]), "3  box_test  child 2 of 0: hit [1.5, 4]");
 }
 
 }  // namespace
-}  // namespace raystep::viz
+}  // namespace raystep::replay

@@ -1,34 +1,29 @@
-#include "compare_model.h"
+#include "raystep/replay/side_by_side.h"
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
-#include "raystep/accel/accelerator.h"
-#include "raystep/accel/bounding_volumes.h"
 #include "raystep/geometry/numerics.h"
 #include "raystep/trace/multi_trace.h"
-#include "raystep/trace/record_trace.h"
-#include "raystep/util/error.h"
 
-namespace raystep::viz {
+namespace raystep::replay {
 
-std::vector<std::string> parseCompareList(const std::string& list) {
-  return parse_walk_list(list, "--compare '" + list + "'", kMinCompareViews, kMaxCompareViews);
+std::vector<std::string> parse_side_by_side_list(const std::string& list) {
+  return parse_walk_list(list, "--compare '" + list + "'", kMinSideBySide, kMaxSideBySide);
 }
 
 namespace {
 
-bool isStep(const Event& e) {
+bool is_step(const Event& e) {
   return e.type == EventType::cell || e.type == EventType::node;
 }
-float entryOf(const Event& e) {
+float entry_of(const Event& e) {
   return e.type == EventType::cell ? e.t_enter : e.t_min_node;
 }
 
 }  // namespace
 
-WalkAtT walkAtT(const TracedRay& ray, float t, const CostModel& model) {
+WalkAtT walk_at_t(const TracedRay& ray, float t, const CostModel& model) {
   WalkAtT w;
   w.entered = -kInfinity;
   w.next = kInfinity;
@@ -37,8 +32,8 @@ WalkAtT walkAtT(const TracedRay& ray, float t, const CostModel& model) {
   int last = int(ray.events.size()) - 1;
   for (size_t i = 0; i < ray.events.size(); ++i) {
     const Event& e = ray.events[i];
-    if (isStep(e)) {
-      const float p = std::max(position, entryOf(e));
+    if (is_step(e)) {
+      const float p = std::max(position, entry_of(e));
       if (p > t) {  // the first step beyond t: the walk is shown just before it
         w.next = p;
         last = int(i) - 1;
@@ -54,16 +49,16 @@ WalkAtT walkAtT(const TracedRay& ray, float t, const CostModel& model) {
   w.entered = position;
   for (int i = 0; i <= last; ++i) {
     const Event& e = ray.events[size_t(i)];
-    if (isStep(e)) ++w.steps;
-    if (e.type == EventType::prim_test) ++w.primTests;
-    if (e.type == EventType::mailbox_hit) ++w.mailboxHits;
-    if (e.type == EventType::box_test) ++w.boxTests;
+    if (is_step(e)) ++w.steps;
+    if (e.type == EventType::prim_test) ++w.prim_tests;
+    if (e.type == EventType::mailbox_hit) ++w.mailbox_hits;
+    if (e.type == EventType::box_test) ++w.box_tests;
   }
-  w.cost = model.t_t * w.steps + model.t_i * w.primTests;
+  w.cost = model.t_t * w.steps + model.t_i * w.prim_tests;
   return w;
 }
 
-TimelineRange timelineRange(const std::vector<const TracedRay*>& rays) {
+TimelineRange timeline_range(const std::vector<const TracedRay*>& rays) {
   float start = kInfinity, end = -kInfinity;
   for (const TracedRay* r : rays) {
     const WalkCost c = walk_cost(*r, CostModel{});
@@ -78,7 +73,7 @@ TimelineRange timelineRange(const std::vector<const TracedRay*>& rays) {
   return {start, end};
 }
 
-std::vector<std::pair<double, double>> costStaircase(const WalkCost& cost, float start, float end) {
+std::vector<std::pair<double, double>> cost_staircase(const WalkCost& cost, float start, float end) {
   std::vector<std::pair<double, double>> out;
   out.push_back({start, cost_at(cost, start)});
   for (const CostPoint& p : cost.points) {
@@ -94,4 +89,4 @@ std::vector<std::pair<double, double>> costStaircase(const WalkCost& cost, float
   return out;
 }
 
-}  // namespace raystep::viz
+}  // namespace raystep::replay

@@ -6,15 +6,15 @@
 #include <cmath>
 #include <cstdio>
 
-#include "compare_model.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/util/error.h"
-#include "replay.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/replay/side_by_side.h"
 #include "test_scenes.h"
 
-namespace raystep::viz {
+namespace raystep::replay {
 namespace {
 
 // The staircase's value at t: the last point at or before t (a riser's upper point wins at its own t).
@@ -25,7 +25,7 @@ double staircaseAt(const std::vector<std::pair<double, double>>& s, double t) {
   return y;
 }
 
-TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
+TEST(SideBySide, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
   const Geometry g = test::make_soup(5, 200, 3);
   const std::vector<std::string> kinds = {"grid", "kd", "bvh", "octree", "bsp"};
   std::vector<std::unique_ptr<Accelerator>> accels;
@@ -44,13 +44,13 @@ TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
   for (size_t r = 0; r < requests.size(); ++r) {
     std::vector<const TracedRay*> rays;
     for (const Trace& w : m.walks) rays.push_back(&w.rays[r]);
-    const TimelineRange range = timelineRange(rays);
+    const TimelineRange range = timeline_range(rays);
     ASSERT_TRUE(std::isfinite(range.start) && std::isfinite(range.end));
     ASSERT_LT(range.start, range.end);
     for (size_t i = 0; i < rays.size(); ++i) {
       const TracedRay& ray = *rays[i];
       const WalkCost cost = walk_cost(ray, model);
-      const auto stairs = costStaircase(cost, range.start, range.end);
+      const auto stairs = cost_staircase(cost, range.start, range.end);
       int lastStep = -1;
       // 61 positions of the slider, and every step's own entry t (where the walk moves on).
       std::vector<float> ts;
@@ -59,7 +59,7 @@ TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
         if (std::isfinite(p.t)) ts.push_back(p.t);
       std::sort(ts.begin(), ts.end());
       for (float t : ts) {
-        const WalkAtT at = walkAtT(ray, t, model);
+        const WalkAtT at = walk_at_t(ray, t, model);
         ASSERT_GE(at.step, 0);
         ASSERT_LT(at.step, int(ray.events.size()));
         EXPECT_GE(at.step, lastStep) << kinds[i] << " ray " << r << ": the walk goes back as t grows";
@@ -69,21 +69,21 @@ TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
         EXPECT_GT(at.next, t);
         // Its cost is core's cost_at, and its counters are the replay's at the same event.
         EXPECT_DOUBLE_EQ(at.cost, cost_at(cost, t)) << kinds[i] << " ray " << r << " t " << t;
-        const ReplayState s = replayAt(ray, at.step);
+        const ReplayState s = replay_at(ray, at.step);
         EXPECT_EQ(at.steps, s.counters.cells + s.counters.nodes);
-        EXPECT_EQ(at.primTests, s.counters.prim_tests);
-        EXPECT_EQ(at.mailboxHits, s.counters.mailbox_hits);
-        EXPECT_EQ(at.boxTests, s.counters.box_tests);
+        EXPECT_EQ(at.prim_tests, s.counters.prim_tests);
+        EXPECT_EQ(at.mailbox_hits, s.counters.mailbox_hits);
+        EXPECT_EQ(at.box_tests, s.counters.box_tests);
         EXPECT_DOUBLE_EQ(staircaseAt(stairs, t), cost_at(cost, t));
         beforeFirst += at.steps == 0;
         midWalk += at.steps > 0 && at.step + 1 < int(ray.events.size());
         ++checked;
       }
       // At the end of the timeline every walk is done: its last event, its whole cost.
-      const WalkAtT end = walkAtT(ray, range.end, model);
+      const WalkAtT end = walk_at_t(ray, range.end, model);
       EXPECT_EQ(end.step, int(ray.events.size()) - 1);
       EXPECT_EQ(end.steps, cost.steps);
-      EXPECT_EQ(end.primTests, cost.prim_tests);
+      EXPECT_EQ(end.prim_tests, cost.prim_tests);
       EXPECT_DOUBLE_EQ(end.cost, cost.total);
       done += end.steps > 0;
     }
@@ -96,9 +96,9 @@ TEST(CompareModel, EveryWalkAtTIsCostAtAndTheReplaysCounters) {
   EXPECT_GT(done, 100);
 }
 
-TEST(CompareModel, BadListsAreRefusedInOneLine) {
-  EXPECT_EQ(parseCompareList("grid,kd,bvh"), (std::vector<std::string>{"grid", "kd", "bvh"}));
-  EXPECT_EQ(parseCompareList("octree,bsp,bvh8,kd-median").size(), 4u);
+TEST(SideBySide, BadListsAreRefusedInOneLine) {
+  EXPECT_EQ(parse_side_by_side_list("grid,kd,bvh"), (std::vector<std::string>{"grid", "kd", "bvh"}));
+  EXPECT_EQ(parse_side_by_side_list("octree,bsp,bvh8,kd-median").size(), 4u);
   const std::pair<const char*, const char*> bad[] = {{"grid", "give 2 to 4 structures"},
                                                      {"grid,kd,grid", "grid is listed twice"},
                                                      {"grid,quadtree", "unknown structure 'quadtree'"},
@@ -108,7 +108,7 @@ TEST(CompareModel, BadListsAreRefusedInOneLine) {
                                                      {"kd,bvol-sphere", "bvol-sphere records no events"}};
   for (const auto& [list, says] : bad) {
     try {
-      parseCompareList(list);
+      parse_side_by_side_list(list);
       ADD_FAILURE() << list << " accepted";
     } catch (const InputError& e) {
       const std::string what = e.what();
@@ -120,4 +120,4 @@ TEST(CompareModel, BadListsAreRefusedInOneLine) {
 }
 
 }  // namespace
-}  // namespace raystep::viz
+}  // namespace raystep::replay
