@@ -6,11 +6,11 @@
 #include <QApplication>
 #include <QCoreApplication>
 
-#include "heartbeat.h"
-#include "main_window.h"
+#include "app/heartbeat.h"
+#include "app/main_window.h"
 #include "raystep/util/atomic_file.h"
-#include "scene_view.h"
-#include "script.h"
+#include "views/scene_view.h"
+#include "app/script.h"
 
 int main(int argc, char** argv) {
   raystep::remove_temporary_files_on_signals();

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "palette.h"
+#include "common/palette.h"
 
 namespace {
 

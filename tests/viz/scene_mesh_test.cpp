@@ -13,7 +13,7 @@
 
 #include "raystep/scene/scene.h"
 #include "raystep/trace/trace_file.h"
-#include "scene_mesh.h"
+#include "views/scene_mesh.h"
 
 namespace raystep::viz {
 namespace {

@@ -1,0 +1,107 @@
+#include "views/tree_view.h"
+
+#include <functional>
+
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QItemSelectionModel>
+#include <QLabel>
+#include <QPushButton>
+#include <QTreeView>
+#include <QVBoxLayout>
+
+#include "views/kd_tree_model.h"
+#include "app/session.h"
+
+namespace raystep::viz {
+
+TreeView::TreeView(Session* session, QWidget* parent)
+    : QWidget(parent), session_(session), model_(new KdTreeModel(this)) {
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  auto* bar = new QHBoxLayout;
+  title_ = new QLabel(tr("<b>kd-tree</b>"));
+  current_ = new QPushButton(tr("Current node"));
+  current_->setObjectName("treeCurrentNode");
+  current_->setToolTip(tr("Expand the tree to the node the replayed ray is in"));
+  bar->addWidget(title_);
+  bar->addStretch();
+  bar->addWidget(current_);
+  layout->addLayout(bar);
+  view_ = new QTreeView;
+  view_->setObjectName("kdTreeView");
+  view_->setModel(model_);
+  view_->setUniformRowHeights(true);  // no per-row size queries: fast on deep trees
+  view_->setSelectionMode(QAbstractItemView::SingleSelection);
+  view_->setIndentation(10);
+  view_->setAllColumnsShowFocus(true);
+  view_->header()->setStretchLastSection(true);  // the cost column takes the room that is left
+  view_->header()->setSectionResizeMode(KdTreeModel::SideColumn, QHeaderView::ResizeToContents);
+  view_->setColumnWidth(KdTreeModel::NodeColumn, 60);
+  view_->setColumnWidth(KdTreeModel::DepthColumn, 40);
+  view_->setColumnWidth(KdTreeModel::WhatColumn, 150);
+  view_->setColumnWidth(KdTreeModel::CostColumn, 70);
+  layout->addWidget(view_, 1);
+
+  connect(view_->selectionModel(), &QItemSelectionModel::currentChanged, this, [this](const QModelIndex& i) {
+    if (!syncing_ && i.isValid()) Q_EMIT nodeChosen(KdTreeModel::nodeOf(i));
+  });
+  connect(current_, &QPushButton::clicked, this, [this] {
+    const TracedRay* ray = session_->ray();
+    int e = session_->state().node_event;
+    if (ray && e >= 0 && e < int(ray->events.size())) Q_EMIT nodeChosen(ray->events[size_t(e)].node);
+  });
+  connect(session_, &Session::structureChanged, this, [this] {
+    model_->setStructure(session_->structureShared());
+    if (const TreeShape* t = model_->tree())
+      title_->setText(tr("<b>%1</b>: %2 nodes").arg(t->name()).arg(t->size()));
+    else
+      title_->setText(tr("<b>Tree</b>: none (build a kd-tree or a BVH)"));
+    view_->expandToDepth(0);  // the root's two children
+    showSelected();
+  });
+  connect(session_, &Session::selectedNodeChanged, this, &TreeView::showSelected);
+  connect(session_, &Session::stepChanged, this,
+          [this] { current_->setEnabled(session_->state().node_event >= 0); });
+  current_->setEnabled(false);
+}
+
+void TreeView::showSelected() {
+  syncing_ = true;
+  QModelIndex i = model_->indexOfNode(session_->selectedNode());
+  if (i.isValid()) {
+    for (QModelIndex p = i.parent(); p.isValid(); p = p.parent()) view_->expand(p);
+    view_->selectionModel()->setCurrentIndex(i,
+                                             QItemSelectionModel::ClearAndSelect | QItemSelectionModel::Rows);
+    view_->scrollTo(i.siblingAtColumn(KdTreeModel::NodeColumn));
+  } else {
+    view_->selectionModel()->clearSelection();
+  }
+  syncing_ = false;
+}
+
+void TreeView::resetRows() {
+  syncing_ = true;
+  view_->collapseAll();
+  view_->selectionModel()->clear();
+  view_->expandToDepth(0);
+  syncing_ = false;
+  showSelected();
+}
+
+int TreeView::expandedCount() const {
+  // Rows made so far: walk only the expanded branches.
+  int n = 0;
+  std::function<void(const QModelIndex&)> walk = [&](const QModelIndex& parent) {
+    int rows = model_->rowCount(parent);
+    for (int r = 0; r < rows; ++r) {
+      ++n;
+      QModelIndex c = model_->index(r, 0, parent);
+      if (view_->isExpanded(c)) walk(c);
+    }
+  };
+  walk(QModelIndex());
+  return n;
+}
+
+}  // namespace raystep::viz
