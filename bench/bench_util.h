@@ -17,7 +17,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/scene/scene.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 
 namespace raystep::bench {
 

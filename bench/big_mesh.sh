@@ -1,5 +1,5 @@
 #!/bin/bash
-# A mesh of about 2 million triangles (issue 15's pathological input): MESH subdivided LEVELS times (each
+# A mesh of about 2 million triangles (the pathological input of bench/README.md, "Memory and big inputs"): MESH subdivided LEVELS times (each
 # triangle into 4 at its edges' midpoints, shared between neighbours so the surface stays watertight), then
 # COPIES copies side by side, written to /tmp (never committed). Then, one thread: builds and casts 65,536
 # camera and 65,536 random rays with each structure in STRUCTS (`raystep cast`: build and trace times, max RSS

@@ -15,7 +15,7 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 using namespace raystep;

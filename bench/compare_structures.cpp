@@ -26,7 +26,7 @@
 #include "raystep/accel/structure_options.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 using namespace raystep;

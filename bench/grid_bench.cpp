@@ -12,7 +12,7 @@
 #include "raystep/accel/grid.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 
 namespace raystep {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "bench_util.h"
 #include "raystep/accel/kdtree.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 using namespace raystep;

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Rendering scales with cores (issue 14's goal: 2 threads >= 1.8x one thread on a 512x512 render).
+# Rendering scales with cores (the goal: 2 threads >= 1.8x one thread on a 512x512 render).
 # Renders SCENE at 512x512 with 1 and 2 threads, interleaved, REPS times each, and prints the median render
 # times (the `time: ... render X ms` line of `raystep render`) and their ratio. Needs a quiet machine: other
 # processes on the same cores make the 2-thread time meaningless.

@@ -21,7 +21,7 @@
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/render/camera.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"

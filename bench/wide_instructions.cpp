@@ -13,7 +13,7 @@
 
 #include "bench_util.h"
 #include "raystep/accel/wide_bvh.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 using namespace raystep;

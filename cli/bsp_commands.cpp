@@ -10,7 +10,7 @@
 
 #include "commands.h"
 #include "raystep/accel/bsp_sah_curve.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 namespace raystep::cli {

@@ -9,7 +9,7 @@
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/bvh_entry_probability.h"
 #include "raystep/accel/bvh_sah_curve.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 

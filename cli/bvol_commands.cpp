@@ -7,7 +7,7 @@
 
 #include "commands.h"
 #include "raystep/report/bvol_report.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 

@@ -30,7 +30,7 @@
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/build_event_writer.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/pixel_rays.h"

@@ -14,7 +14,7 @@
 #ifdef RAYSTEP_HAVE_VTK_EXPORT
 #include "output_folder.h"
 #include "raystep/accel/accelerator.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"

@@ -9,7 +9,7 @@
 #include "commands.h"
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bounding_volumes.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/multi_trace.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"

@@ -18,7 +18,7 @@
 #include "raystep/render/antialiasing.h"
 #include "raystep/report/aa_report.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 

@@ -21,7 +21,7 @@
 #include "raystep/report/grid_sweep.h"
 #include "raystep/report/structure_compare.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 

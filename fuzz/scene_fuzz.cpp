@@ -1,10 +1,10 @@
-// libFuzzer harness for the JSON scene reader (scene/scene_loader.h). The scene is named as a file of the
+// libFuzzer harness for the JSON scene reader (io/scene_loader.h). The scene is named as a file of the
 // scratch folder, so that "file": "mesh.obj" finds a mesh there (and the mesh path is exercised).
 #include <cstdint>
 #include <string>
 
 #include "contract.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::string path = raystep::fuzz::scratch_folder() + "/fuzz-scene.json";

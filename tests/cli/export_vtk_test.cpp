@@ -36,7 +36,7 @@
 #include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/accel/wide_bvh.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/vtk_export/vtk_export.h"
 

@@ -14,7 +14,7 @@
 #include "raystep/io/image_io.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 namespace raystep {

@@ -16,7 +16,7 @@
 #include "raystep/geometry/min_sphere.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"
 

@@ -17,7 +17,7 @@
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/geometry/icosphere.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"

@@ -14,7 +14,7 @@
 #include "raystep/geometry/icosphere.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/util/error.h"
 #include "ray_battery.h"

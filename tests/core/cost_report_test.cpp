@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"
 

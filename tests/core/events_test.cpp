@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 
 namespace raystep {
 namespace {

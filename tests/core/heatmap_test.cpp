@@ -8,7 +8,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/util/error.h"
 

@@ -183,5 +183,113 @@ TEST(JsonTape, RandomMutationsOfATraceReadAsNlohmannReadsThem) {
   EXPECT_GT(valid, trials / 20);  // some mutations stay valid JSON: values are compared, not only errors
 }
 
+// Streaming: the arrays the handler asks for never enter the tape; each element reaches the handler as it is
+// parsed, equal to what the whole document's DOM holds there, with the indices of the arrays around it; the
+// rest of the tape is as without streaming. From a file, the same.
+struct Collect final : JsonStreamHandler {
+  std::vector<std::string> paths;
+  std::vector<std::pair<std::vector<size_t>, json>> elements;
+  std::vector<std::pair<size_t, size_t>> ends;
+  std::vector<size_t> arrays;
+  bool stream(std::string_view path) override {
+    paths.emplace_back(path);
+    return path == "rays[].events" || path == "walks[].rays[].events";
+  }
+  void element(size_t array, const std::vector<size_t>& where, const JsonValue& v) override {
+    arrays.push_back(array);
+    // The element as text, parsed back: compare() against the DOM below.
+    json j = json::parse(dump(v));
+    elements.emplace_back(where, j);
+  }
+  void end(size_t array, size_t count) override { ends.emplace_back(array, count); }
+  static std::string dump(const JsonValue& v) {
+    using K = JsonValue::Kind;
+    switch (v.kind()) {
+      case K::null: return "null";
+      case K::boolean: return v.get_bool() ? "true" : "false";
+      case K::number_integer:
+      case K::number_unsigned: return std::to_string(v.get_int64());
+      case K::number_float: return json(v.get_double()).dump();
+      case K::string: return json(std::string(v.get_string())).dump();
+      case K::array: {
+        std::string s = "[";
+        for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + dump(v[i]);
+        return s + "]";
+      }
+      case K::object: {
+        std::string s = "{";
+        bool first = true;
+        for (const auto& [k, m] : v.members()) s += (first ? "" : ",") + json(std::string(k)).dump() + ":" + dump(m), first = false;
+        return s + "}";
+      }
+    }
+    return "";
+  }
+};
+
+TEST(JsonTape, StreamedArraysReachTheHandlerElementByElement) {
+  const std::string text = R"({"format":"x","rays":[{"o":1,"events":[{"seq":0,"a":[1,2,{"b":null}]},7,"s",[3]]},)"
+                           R"({"events":[],"x":{"events":[1]}}],"walks":[{"rays":[{"events":[{"k":true}]}]}],"events":[9]})";
+  const json dom = json::parse(text);
+  Collect c;
+  JsonTape tape = JsonTape::parse(text, &c);
+  // Only the two paths asked for are streamed: rays[].x.events and the top-level events are kept.
+  ASSERT_EQ(c.elements.size(), 5u);
+  EXPECT_EQ(c.elements[0].first, (std::vector<size_t>{0, 0}));
+  EXPECT_EQ(c.elements[0].second, dom["rays"][0]["events"][0]);
+  EXPECT_EQ(c.elements[1].second, dom["rays"][0]["events"][1]);
+  EXPECT_EQ(c.elements[2].second, dom["rays"][0]["events"][2]);
+  EXPECT_EQ(c.elements[3].first, (std::vector<size_t>{0, 3}));
+  EXPECT_EQ(c.elements[3].second, dom["rays"][0]["events"][3]);
+  EXPECT_EQ(c.elements[4].first, (std::vector<size_t>{0, 0, 0}));
+  EXPECT_EQ(c.elements[4].second, dom["walks"][0]["rays"][0]["events"][0]);
+  EXPECT_EQ(c.ends, (std::vector<std::pair<size_t, size_t>>{{0, 4}, {1, 0}, {2, 1}}));
+  EXPECT_EQ(c.arrays, (std::vector<size_t>{0, 0, 0, 0, 2}));
+  const JsonValue root = tape.root();
+  const JsonValue events = root.find("rays")[0].find("events");
+  EXPECT_TRUE(events.is_streamed());
+  EXPECT_EQ(events.stream_number(), 0u);
+  EXPECT_EQ(events.size(), 4u);
+  EXPECT_FALSE(events[0].exists());
+  EXPECT_EQ(root.find("rays")[1].find("events").stream_number(), 1u);
+  EXPECT_FALSE(root.find("rays")[1].find("x").find("events").is_streamed());
+  EXPECT_EQ(root.find("rays")[1].find("x").find("events")[0].get_int64(), 1);
+  EXPECT_EQ(root.find("events")[0].get_int64(), 9);
+  EXPECT_EQ(root.find("rays")[0].find("o").get_int64(), 1);
+  EXPECT_EQ(root.find("format").get_string(), "x");
+  // From a file: the same elements and the same tape.
+  const std::string path = ::testing::TempDir() + "/json_tape_stream.json";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+  }
+  Collect fc;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  ASSERT_NE(f, nullptr);
+  JsonTape from_file = JsonTape::parse_file(f, &fc);
+  std::fclose(f);
+  EXPECT_EQ(fc.elements, c.elements);
+  EXPECT_EQ(fc.ends, c.ends);
+  EXPECT_EQ(Collect::dump(from_file.root().find("walks")), Collect::dump(root.find("walks")));
+  // A bad text throws as without streaming, at the same byte.
+  Collect b;
+  const std::string bad = R"({"rays":[{"events":[{"a":1},{"a":]}]})";
+  size_t expected_byte = 0;
+  try {
+    (void)json::parse(bad);
+  } catch (const json::parse_error& e) {
+    expected_byte = e.byte;
+  }
+  try {
+    JsonTape::parse(bad, &b);
+    ADD_FAILURE() << "no error";
+  } catch (const json::parse_error& e) {
+    EXPECT_EQ(e.byte, expected_byte);
+  }
+  EXPECT_EQ(b.elements.size(), 1u);
+}
+
 }  // namespace
 }  // namespace raystep

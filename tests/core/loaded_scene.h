@@ -7,7 +7,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/scene/scene.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 
 namespace raystep::test {
 

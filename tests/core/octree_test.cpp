@@ -16,7 +16,7 @@
 #include "raystep/accel/structure_options.h"
 #include "raystep/geometry/icosphere.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/trace/event_recorder.h"
+#include "raystep/record/event_recorder.h"
 #include "raystep/trace/octree_trace.h"
 #include "raystep/util/error.h"
 #include "ray_battery.h"

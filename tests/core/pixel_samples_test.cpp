@@ -16,7 +16,7 @@
 #include "raystep/render/pixel_samples.h"
 #include "raystep/render/render.h"
 #include "raystep/render/whitted.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/util/error.h"
 #include "test_scenes.h"

@@ -15,7 +15,7 @@
 #include "raystep/accel/accelerator.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"

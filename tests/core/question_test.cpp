@@ -21,7 +21,7 @@
 #include "raystep/render/whitted.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
 #include "question_test_util.h"

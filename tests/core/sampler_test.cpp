@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 
 namespace raystep {
 namespace {

@@ -28,7 +28,7 @@
 #include "raystep/geometry/triangle_clip.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "test_budget.h"
 #include "test_scenes.h"
 

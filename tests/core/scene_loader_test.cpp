@@ -1,4 +1,4 @@
-// Scene files (scene/scene_loader.h, scene/json_locate.h): defaults, every field, every error with its
+// Scene files (io/scene_loader.h, scene/json_locate.h): defaults, every field, every error with its
 // line, the scenes/ folder, and bare meshes as scenes.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raystep/scene/json_locate.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/util/error.h"
 
 namespace raystep {

@@ -14,7 +14,7 @@
 #include "raystep/geometry/triangle_moller.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/geometry.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/scene/ray_sets.h"
 #include "exact_reference.h"
 

@@ -11,7 +11,7 @@
 
 #include "raystep/accel/kdtree_build.h"
 #include "raystep/accel/kdtree_sah_curve.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "viz_test_util.h"
 
 namespace {

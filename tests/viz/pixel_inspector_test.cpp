@@ -15,7 +15,7 @@
 #include "raystep/render/render.h"
 #include "raystep/render/whitted.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "viz_test_util.h"
 
 namespace {

@@ -17,7 +17,7 @@
 #include "raystep/accel/bvh_build.h"
 #include "raystep/accel/octree_build.h"
 #include "raystep/accel/wide_bvh.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "viz_test_util.h"
 
 namespace {

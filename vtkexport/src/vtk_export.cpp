@@ -16,7 +16,7 @@
 
 #include "cell_set_block.h"
 #include "geometry_block.h"
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 #include "raystep/util/error.h"
 #include "walk_block.h"
 

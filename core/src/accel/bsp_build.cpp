@@ -333,7 +333,7 @@ class Builder {
                             Candidate* best) {
     const size_t N = prims.size();
     // Beside the 13 directions a quarter as many primitive planes: the SAH, greedy, takes the planes through
-    // single triangles too eagerly and builds worse trees with more (bench/README.md, issue 16).
+    // single triangles too eagerly and builds worse trees with more (bench/README.md, "BSP tree").
     const int planes = options_.directions == BspDirections::autopartition
                            ? options_.candidates
                            : std::max(1, options_.candidates / 4);

@@ -13,7 +13,7 @@
 
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/random_lines.h"
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 
 namespace raystep::entry_probability {
 

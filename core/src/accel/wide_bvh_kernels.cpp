@@ -10,7 +10,7 @@
 #include <new>
 #include <type_traits>
 
-#include "raystep/trace/event_recorder.h"
+#include "raystep/record/event_recorder.h"
 #include "wide_bvh_impl.h"
 
 #if defined(__x86_64__)

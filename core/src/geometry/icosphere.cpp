@@ -7,7 +7,6 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
-#include "raystep/scene/geometry.h"
 
 namespace raystep {
 

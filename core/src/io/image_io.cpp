@@ -19,24 +19,6 @@
 
 namespace raystep {
 
-// ---- sRGB transfer curve (IEC 61966-2-1) ----
-
-float srgb_encode(float linear) {
-  if (linear <= 0.0031308f) return 12.92f * linear;
-  return 1.055f * std::pow(linear, 1.f / 2.4f) - 0.055f;
-}
-
-float srgb_decode(float encoded) {
-  if (encoded <= 0.04045f) return encoded / 12.92f;
-  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
-}
-
-uint8_t srgb_encode8(float linear) {
-  if (!(linear > 0.f)) return 0;  // also NaN
-  if (linear >= 1.f) return 255;
-  return uint8_t(std::lround(srgb_encode(linear) * 255.f));
-}
-
 namespace {
 
 // Limits that keep a bad file from making us allocate without bound.

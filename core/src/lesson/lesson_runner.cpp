@@ -11,7 +11,7 @@
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"

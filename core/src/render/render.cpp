@@ -22,7 +22,7 @@
 #include "raystep/render/camera.h"
 #include "raystep/render/pixel_filter.h"
 #include "raystep/render/pixel_samples.h"
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 #include "raystep/util/error.h"
 
 namespace raystep {

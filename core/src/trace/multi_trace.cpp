@@ -128,12 +128,18 @@ MultiTrace parse_multi_trace_json(const std::string& text, const std::string& na
 }
 
 MultiTrace read_multi_trace_json(const std::string& path) {
-  return parse_multi_trace_json(detail::read_trace_text(path), path);
+  std::vector<Trace> walks;
+  int version = detail::read_trace_document(path, true, &walks);
+  if (version != kMultiTraceVersion)
+    throw InputError(path, 0,
+                     "version: a single structure's trace (version " + std::to_string(version) +
+                         "), not a multi-walk trace (version " + std::to_string(kMultiTraceVersion) + ")");
+  return from_walks(version, std::move(walks));
 }
 
 MultiTrace read_any_trace_json(const std::string& path) {
   std::vector<Trace> walks;
-  int version = detail::parse_trace_document(detail::read_trace_text(path), path, true, &walks);
+  int version = detail::read_trace_document(path, true, &walks);
   return from_walks(version, std::move(walks));
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "raystep/trace/event_recorder.h"
+#include "raystep/record/event_recorder.h"
 #include "raystep/trace/ray_request.h"
 #include "raystep/trace/trace_file.h"
 

@@ -18,9 +18,11 @@ constexpr const char* kLimitVariable = "RAYSTEP_MEMORY_LIMIT";
 // Peak resident bytes per byte of the file, measured (bench/README.md, "Load") and rounded up. An OBJ file:
 // its text, tinyobjloader's arrays, the mesh and the scene made of it: the 2.2-million-triangle mesh of 88 MB
 // peaks at 495 MB (5.6 bytes per byte; a file of short lines, with small indices, has more faces per byte,
-// hence 8). A trace: its text, the JSON tape and the events: the 10-million-event trace of 644 MB peaks at
-// 3.4 GiB in `raystep trace-info` (5.5 bytes per byte).
-constexpr uint64_t kReadFactor[] = {8, 6};
+// hence 8). A trace is streamed (its text is never held whole, its events are kept as they are parsed): the
+// events, 88 bytes each against at least 28 bytes of text each (a bare {"seq":0,"type":"ray_begin"}), and the
+// tape of the rest: the ten-million-event trace of 536 MB peaks at 0.92 GB in `raystep trace-info` (1.7 bytes
+// per byte), at most about 3.2 for events alone, hence 4.
+constexpr uint64_t kReadFactor[] = {8, 4};
 
 // Peak bytes per primitive of a process that holds the scene and builds the structure over it (the peak RSS
 // of `raystep cast` on the 2.2-million-triangle mesh divided by its triangles, rounded up): the grid 233,

@@ -10,7 +10,7 @@
 #include "raystep/render/reference.h"
 #include "raystep/render/whitted.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/memory_limit.h"

@@ -7,7 +7,7 @@
 
 #include <QWidget>
 
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 
 class QComboBox;
 class QLabel;

@@ -9,7 +9,7 @@
 
 #include "raystep/geometry/ray.h"
 #include "raystep/scene/geometry.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 

@@ -13,7 +13,7 @@
 #include "raystep/accel/mailbox.h"
 #include "raystep/accel/nearest_hit.h"
 #include "raystep/accel/recorded_walk.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 

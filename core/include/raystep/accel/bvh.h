@@ -15,7 +15,7 @@
 #include "raystep/accel/bvh_pair.h"
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/component.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 
@@ -37,7 +37,7 @@ class Bvh final : public RecordedWalk<Bvh, BvhOptions> {
   // Nodes, their build information and the primitive ids.
   size_t memory_bytes() const override;
 
-  // The traversal kernel, instrumented through the recorder (trace/recorder.h): node, box_test, push, pop,
+  // The traversal kernel, instrumented through the recorder (record/recorder.h): node, box_test, push, pop,
   // skip, leaf, prim_test, hit_accepted. Ties at equal t go to the lower primitive id, as in brute force.
   template <class Recorder>
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;

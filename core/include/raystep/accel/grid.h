@@ -21,7 +21,7 @@
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/bounds.h"
 #include "raystep/geometry/component.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 
@@ -49,7 +49,7 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
            (boundaries_[0].capacity() + boundaries_[1].capacity() + boundaries_[2].capacity()) * sizeof(float);
   }
 
-  // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
+  // The traversal kernel, instrumented through the recorder (see record/recorder.h).
   template <class Recorder>
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 

@@ -12,7 +12,7 @@
 #include "raystep/accel/mailbox.h"
 #include "raystep/accel/recorded_walk.h"
 #include "raystep/geometry/component.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 
@@ -30,7 +30,7 @@ class KdTree final : public RecordedWalk<KdTree, KdOptions> {
            tree_.prim_index.capacity() * sizeof(uint32_t);
   }
 
-  // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
+  // The traversal kernel, instrumented through the recorder (see record/recorder.h).
   template <class Recorder>
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 

@@ -15,7 +15,7 @@
 #include "raystep/accel/nearest_hit.h"
 #include "raystep/accel/octree_build.h"
 #include "raystep/accel/recorded_walk.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 
@@ -29,7 +29,7 @@ class Octree final : public RecordedWalk<Octree, OctreeOptions> {
            tree_.prim_index.capacity() * sizeof(uint32_t);
   }
 
-  // The traversal kernel, instrumented through the recorder (see trace/recorder.h).
+  // The traversal kernel, instrumented through the recorder (see record/recorder.h).
   template <class Recorder>
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 

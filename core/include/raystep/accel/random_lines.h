@@ -13,7 +13,7 @@
 
 #include "raystep/geometry/bounds.h"
 #include "raystep/geometry/ray.h"
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 
 namespace raystep {
 

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "raystep/accel/accelerator.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 

@@ -9,7 +9,7 @@
 
 #include "raystep/accel/accelerator.h"
 #include "raystep/accel/bvh_build.h"
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 
@@ -55,7 +55,7 @@ class WideBvh final : public Accelerator {
   // Tests: run every WideBvh with `level` (false, and no change, if this CPU cannot run it).
   static bool force_simd(WideSimd level);
 
-  // The traversal kernel, instrumented through the recorder (trace/recorder.h): node, box_test (one per
+  // The traversal kernel, instrumented through the recorder (record/recorder.h): node, box_test (one per
   // non-empty child slot), push (in the order chosen: the farthest first), pop, skip, leaf, prim_test,
   // hit_accepted, ray_end. Ties at equal t go to the lower primitive id, as in brute force. Instantiated for
   // NullRecorder, CountingRecorder and EventRecorder.

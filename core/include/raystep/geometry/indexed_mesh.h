@@ -1,5 +1,5 @@
 // An indexed triangle mesh: triangles index into shared positions, so neighbouring triangles use
-// bit-identical edges. The shape of the generated watertightness test meshes (icosphere.h, prism.h).
+// bit-identical edges. The shape of the generated watertightness test meshes (icosphere.h, prism.h); scene/geometry.h adds one to a scene's primitives.
 #pragma once
 
 #include <cstdint>
@@ -10,17 +10,11 @@
 
 namespace raystep {
 
-class Geometry;
-
 struct IndexedMesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::uvec3> triangles;  // wound counter-clockwise seen from outside
 
   glm::vec3 vertex(size_t tri, int k) const { return positions[triangles[tri][k]]; }
 };
-
-// Adds the mesh's triangles to g as one object; returns the object index.
-uint32_t add_to_geometry(const IndexedMesh& mesh, Geometry& g, const std::string& name = "mesh",
-                         uint32_t material = 0);
 
 }  // namespace raystep

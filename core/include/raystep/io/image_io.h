@@ -12,12 +12,6 @@
 
 namespace raystep {
 
-// The sRGB transfer curve and its inverse, on [0, 1].
-float srgb_encode(float linear);
-float srgb_decode(float encoded);
-// Linear value -> 8-bit sRGB code, clamped (NaN -> 0) and rounded to nearest.
-uint8_t srgb_encode8(float linear);
-
 void write_png(const std::string& path, const Image& image);
 // Little-endian (scale -1), exact float bits: read_pfm(write_pfm(img)) == img bit for bit.
 void write_pfm(const std::string& path, const Image& image);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "raystep/accel/structure_options.h"
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 
 namespace raystep {
 

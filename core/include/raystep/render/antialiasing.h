@@ -11,7 +11,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 #include "raystep/scene/scene.h"
 
 namespace raystep {

@@ -23,6 +23,12 @@ struct Image {
   const glm::vec3& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
+// The sRGB transfer curve (IEC 61966-2-1) and its inverse, on [0, 1]: what output encodes with (io/image_io.h).
+float srgb_encode(float linear);
+float srgb_decode(float encoded);
+// Linear value -> 8-bit sRGB code, clamped (NaN -> 0) and rounded to nearest.
+uint8_t srgb_encode8(float linear);
+
 // The perceptual colour ramp for t in [0, 1] (clamped; NaN maps to 0): matplotlib's viridis through nine
 // stops, linearly interpolated in sRGB and returned as linear RGB so that write_png reproduces the stops.
 glm::vec3 viridis(float t);

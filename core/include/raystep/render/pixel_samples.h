@@ -10,7 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "raystep/render/antialiasing.h"
-#include "raystep/render/sampler.h"
+#include "raystep/util/random.h"
 
 namespace raystep {
 

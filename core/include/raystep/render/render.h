@@ -1,6 +1,6 @@
 // The render loop: every pixel estimated with the anti-aliasing pattern (render/antialiasing.h) through the
 // Whitted tracer (render/whitted.h), in parallel over rows with TBB. Each pixel draws its random numbers
-// from its own stream (render/sampler.h), so the image is bit-identical whatever the thread count. With the
+// from its own stream (util/random.h), so the image is bit-identical whatever the thread count. With the
 // tent filter (render/pixel_filter.h) each sample is shared among the pixels whose tents reach it, and the
 // pixels of a one-pixel frame around the image cast their samples too, for the border pixels' tents.
 #pragma once

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/indexed_mesh.h"
 #include "raystep/geometry/ray.h"
 #include "raystep/geometry/sphere.h"
 #include "raystep/geometry/triangle.h"
@@ -107,5 +108,9 @@ class Geometry {
   std::vector<Object> objects_;
   Bounds3 bounds_;
 };
+
+// Adds an indexed mesh's triangles (geometry/indexed_mesh.h) to g as one object; returns the object index.
+uint32_t add_to_geometry(const IndexedMesh& mesh, Geometry& g, const std::string& name = "mesh",
+                         uint32_t material = 0);
 
 }  // namespace raystep

@@ -15,7 +15,7 @@
 #include "raystep/geometry/bounds.h"
 #include "raystep/render/pixel_samples.h"
 #include "raystep/scene/geometry.h"
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 
 namespace raystep {
 

@@ -1,4 +1,4 @@
-// The ParaView export (issue 16, docs/vtk-export.md): the scene's geometry, a structure's cells and each
+// The ParaView export (docs/vtk-export.md): the scene's geometry, a structure's cells and each
 // recorded ray's walk written with VTK's XML writers as one multiblock dataset, DIR/raystep.vtm, whose
 // blocks are named "geometry", "structure" and "ray 0", "ray 1", ... (each ray a multiblock of "path",
 // "visited" and "tests"). This library links VTK privately: no header of it names a VTK type (the F3D split).

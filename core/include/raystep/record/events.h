@@ -7,7 +7,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "raystep/trace/recorder.h"
+#include "raystep/record/recorder.h"
 
 namespace raystep {
 

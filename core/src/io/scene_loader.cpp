@@ -2,7 +2,7 @@
 // light and object), so an unknown key is caught in one place, and each value is read by one converter
 // that knows its range. Errors name the file, the line (found by json_locate only when reporting) and the
 // path of the value. docs/scene-format.md documents every field; keep the two in step.
-#include "raystep/scene/scene_loader.h"
+#include "raystep/io/scene_loader.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,7 +1,8 @@
-// The random numbers of the sample patterns: PCG32 (O'Neill, "PCG: A Family of Simple Fast Space-Efficient
-// Statistically Good Algorithms for Random Number Generation", 2014), one stream per pixel, seeded from the
-// scene seed and the pixel index through splitmix64 (Steele et al. 2014). A pixel's samples depend on nothing
-// else, so an image is bit-identical whatever the thread count and the scheduling.
+// raystep's random numbers: PCG32 (O'Neill, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
+// Algorithms for Random Number Generation", 2014), a stream for each (seed, index), seeded through splitmix64
+// (Steele et al. 2014). The sample patterns take one stream per pixel, so a pixel's samples depend on nothing
+// else and an image is bit-identical whatever the thread count; the entry-probability measurements draw their
+// random lines from one.
 #pragma once
 
 #include <cstdint>

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "raystep/scene/geometry.h"
-#include "raystep/trace/events.h"
+#include "raystep/record/events.h"
 
 namespace raystep {
 
