@@ -25,12 +25,12 @@
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/io/image_io.h"
 #include "raystep/io/ray_files.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/reference.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/trace/build_event_writer.h"
 #include "raystep/trace/heatmap.h"
 #include "raystep/trace/pixel_rays.h"
@@ -120,7 +120,8 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
     std::array<int, 3> res;
     for (int a = 0; a < 3; ++a) {
       if (n[a] != std::floor(n[a]) || n[a] < 1 || n[a] > 4096)
-        throw InputError("", 0, "--grid-res '" + *s.grid_res + "': each of NX,NY,NZ must be a whole number 1..4096");
+        throw InputError("", 0,
+                         "--grid-res '" + *s.grid_res + "': each of NX,NY,NZ must be a whole number 1..4096");
       res[a] = int(n[a]);
     }
     options.grid.resolution = res;
@@ -136,8 +137,9 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s) {
     if (s.octree_leaf < 1 || s.octree_leaf > (1 << 24))
       throw InputError("", 0, "--octree-leaf must be 1..16777216");
     if (s.kd_max_depth < 0 || s.kd_max_depth > kOctreeMaxDepth)
-      throw InputError("", 0,
-                       "--max-depth must be 0.." + std::to_string(kOctreeMaxDepth) + " for the octree (0: automatic)");
+      throw InputError(
+          "", 0,
+          "--max-depth must be 0.." + std::to_string(kOctreeMaxDepth) + " for the octree (0: automatic)");
     options.octree.leaf_size = s.octree_leaf;
     options.octree.max_depth = s.kd_max_depth;
   }
@@ -156,7 +158,8 @@ void check_threads(int threads) {
 
 int run_render(const RenderArgs& a) {
   std::string ext = extension(a.output);
-  if (ext != ".png" && ext != ".pfm") throw InputError(a.output, 0, "unknown image format (use .png or .pfm)");
+  if (ext != ".png" && ext != ".pfm")
+    throw InputError(a.output, 0, "unknown image format (use .png or .pfm)");
   check_output_folder(a.output);
   if (!a.samples_map.empty()) {
     if (extension(a.samples_map) != ".png") throw InputError(a.samples_map, 0, "the samples map is a .png");
@@ -189,27 +192,30 @@ int run_render(const RenderArgs& a) {
     write_png(a.output, heatmap_image(heat));
     std::printf("heat map: %s per primary ray (one ray through each pixel's centre), %s, %dx%d\n",
                 heat_quantity_label(quantity), accel->name().c_str(), opt.width, opt.height);
-    std::printf("scale: 0 (dark blue, bottom of the colour bar) .. %u (yellow, top); mean %.2f\n", heat.max_value,
-                heat.mean_value);
+    std::printf("scale: 0 (dark blue, bottom of the colour bar) .. %u (yellow, top); mean %.2f\n",
+                heat.max_value, heat.mean_value);
     std::printf("time: build %.1f ms, heat map %.1f ms\n", build_ms, heat_ms);
     std::printf("wrote %s\n", a.output.c_str());
     return 0;
   }
   RenderResult r = render_image(scene, *accel, opt);
 
-  if (ext == ".png") write_png(a.output, r.image);
-  else write_pfm(a.output, r.image);
+  if (ext == ".png")
+    write_png(a.output, r.image);
+  else
+    write_pfm(a.output, r.image);
   if (!a.samples_map.empty()) {
     uint32_t max_count = 0;
     write_png(a.samples_map, sample_count_image(r.samples, opt.width, opt.height, &max_count));
-    std::printf("samples map: %s (black 0 .. yellow %u samples per pixel)\n", a.samples_map.c_str(), max_count);
+    std::printf("samples map: %s (black 0 .. yellow %u samples per pixel)\n", a.samples_map.c_str(),
+                max_count);
   }
 
   uint64_t samples = 0;
   for (uint32_t s : r.samples) samples += s;
   double pixels = double(opt.width) * opt.height;
-  std::printf("scene: %s (%zu primitives), accel %s, aa %s, %dx%d\n", scene.path.c_str(), scene.geometry.size(),
-              accel->name().c_str(), to_string(opt.aa).c_str(), opt.width, opt.height);
+  std::printf("scene: %s (%zu primitives), accel %s, aa %s, %dx%d\n", scene.path.c_str(),
+              scene.geometry.size(), accel->name().c_str(), to_string(opt.aa).c_str(), opt.width, opt.height);
   std::printf("rays: primary=%" PRIu64 " shadow=%" PRIu64 " reflected=%" PRIu64 " refracted=%" PRIu64
               " total=%" PRIu64 " (%.2f samples per pixel)\n",
               r.rays.primary, r.rays.shadow, r.rays.reflected, r.rays.refracted, r.rays.total(),
@@ -222,8 +228,8 @@ int run_render(const RenderArgs& a) {
 namespace {
 
 // What an engineer comparing structures wants beside the speed: the grid's resolution and references per
-// primitive (exact against bounding-box insertion), the kd-tree's and the BVH's size and depth, the wide BVH's
-// kernel.
+// primitive (exact against bounding-box insertion), the kd-tree's and the BVH's size and depth, the wide
+// BVH's kernel.
 void print_structure_summary(const Accelerator& accel, size_t prims) {
   double per_prim = 1.0 / double(std::max<size_t>(prims, 1));
   if (auto* grid = dynamic_cast<const UniformGrid*>(&accel)) {
@@ -245,19 +251,21 @@ void print_structure_summary(const Accelerator& accel, size_t prims) {
         double(st.references) * per_prim);
   } else if (auto* bvh = dynamic_cast<const Bvh*>(&accel)) {
     BvhStats st = bvh_stats(bvh->data(), bvh->options());
-    std::printf("structure: %s %zu nodes (%zu leaves, %.2f primitives per leaf), depth %d, SAH cost %.1f, %zu "
-                "bytes\n",
-                bvh->name().c_str(), st.nodes, st.leaves, st.mean_leaf_prims, st.max_depth, st.sah_cost,
-                bvh->memory_bytes());
+    std::printf(
+        "structure: %s %zu nodes (%zu leaves, %.2f primitives per leaf), depth %d, SAH cost %.1f, %zu "
+        "bytes\n",
+        bvh->name().c_str(), st.nodes, st.leaves, st.mean_leaf_prims, st.max_depth, st.sah_cost,
+        bvh->memory_bytes());
   } else if (auto* octree = dynamic_cast<const Octree*>(&accel)) {
     OctreeStats st = octree_stats(octree->data());
-    std::printf("structure: octree %zu nodes (%zu leaves, %zu empty), depth %d (limit %d), %zu references (%.3f "
-                "per primitive), leaves over K: %zu at the depth limit, %zu not reduced, %zu over budget\n",
-                st.nodes, st.leaves, st.empty_leaves, st.max_depth, octree_max_depth(octree->options(), prims),
-                st.references, double(st.references) * per_prim,
-                st.leaves_by_reason[int(OctreeLeafReason::max_depth)],
-                st.leaves_by_reason[int(OctreeLeafReason::no_reduction)],
-                st.leaves_by_reason[int(OctreeLeafReason::budget)]);
+    std::printf(
+        "structure: octree %zu nodes (%zu leaves, %zu empty), depth %d (limit %d), %zu references (%.3f "
+        "per primitive), leaves over K: %zu at the depth limit, %zu not reduced, %zu over budget\n",
+        st.nodes, st.leaves, st.empty_leaves, st.max_depth, octree_max_depth(octree->options(), prims),
+        st.references, double(st.references) * per_prim,
+        st.leaves_by_reason[int(OctreeLeafReason::max_depth)],
+        st.leaves_by_reason[int(OctreeLeafReason::no_reduction)],
+        st.leaves_by_reason[int(OctreeLeafReason::budget)]);
   } else if (auto* wide = dynamic_cast<const WideBvh*>(&accel)) {
     // The kernel in use matters as much as the tree: the same walk runs at half the speed without AVX2.
     std::printf("structure: %s (%d-wide nodes, %s kernel), %zu bytes\n", wide->name().c_str(), wide->width(),
@@ -306,8 +314,8 @@ int run_cast(const CastArgs& a) {
   size_t found = std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.found(); });
   print_structure_summary(*accel, scene.geometry.size());
   std::printf("hits: %zu of %zu rays; wrote %s\n", found, rays.size(), a.hits.c_str());
-  std::printf("accel=%s prims=%zu rays=%zu build_ms=%.3f trace_ms=%.3f mrays_per_s=%.3f\n", accel->name().c_str(),
-              scene.geometry.size(), rays.size(), build_ms, trace_ms,
+  std::printf("accel=%s prims=%zu rays=%zu build_ms=%.3f trace_ms=%.3f mrays_per_s=%.3f\n",
+              accel->name().c_str(), scene.geometry.size(), rays.size(), build_ms, trace_ms,
               trace_ms > 0 ? double(rays.size()) / (trace_ms * 1e3) : 0.0);
   return 0;
 }
@@ -350,7 +358,8 @@ int run_info(const InfoArgs& a) {
   std::printf("objects: %zu\n", g.objects().size());
   for (const Object& o : g.objects())
     std::printf("  %-28s primitives %u..%u  material %s\n", o.name.c_str(), o.first_prim,
-                o.first_prim + o.prim_count - (o.prim_count ? 1 : 0), scene.materials[o.material].name.c_str());
+                o.first_prim + o.prim_count - (o.prim_count ? 1 : 0),
+                scene.materials[o.material].name.c_str());
   std::printf("materials: %zu, lights: %zu\n", scene.materials.size(), scene.lights.size());
   std::printf("render: %dx%d, aa %s, max depth %d\n", scene.render.width, scene.render.height,
               to_string(scene.render.aa).c_str(), scene.render.max_depth);
@@ -363,7 +372,8 @@ int run_trace(const TraceArgs& a) {
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
   if (a.aa && !a.pixel) throw InputError("", 0, "trace: --aa goes with --pixel");
   if (a.seed && !a.aa) throw InputError("", 0, "trace: --seed goes with --aa");
-  if (a.build_events && a.format != "json") throw InputError("", 0, "trace: --build-events needs --format json");
+  if (a.build_events && a.format != "json")
+    throw InputError("", 0, "trace: --build-events needs --format json");
   check_output_folder(a.output);
   // The anti-aliasing spec is checked before the scene is read: a typo costs nothing.
   std::optional<AntiAliasing> aa;
@@ -373,11 +383,14 @@ int run_trace(const TraceArgs& a) {
   const uint64_t seed = a.seed ? *a.seed : scene.render.seed;
   auto accel = build_structure(a.structure);
   if (!records_events(*accel))
-    throw InputError("", 0,
-                     "trace: --accel " + a.structure.accel +
-                         " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
+    throw InputError(
+        "", 0,
+        "trace: --accel " + a.structure.accel +
+            " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
+            "octree or bsp)");
   auto* kd = dynamic_cast<KdTree*>(accel.get());
-  if (a.build_events && !kd) throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");
+  if (a.build_events && !kd)
+    throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");
 
   // The rays to record, checked before the (possibly long) build; pixel rays need the built structure.
   std::optional<RayRequest> by_hand;
@@ -391,9 +404,11 @@ int run_trace(const TraceArgs& a) {
   } else {
     if (a.size) parse_size(*a.size, &w, &h);
     std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);
-    if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w || p[1] >= h)
-      throw InputError("", 0, "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
-                                  std::to_string(h) + " image");
+    if (p[0] != std::floor(p[0]) || p[1] != std::floor(p[1]) || p[0] < 0 || p[1] < 0 || p[0] >= w ||
+        p[1] >= h)
+      throw InputError("", 0,
+                       "--pixel '" + *a.pixel + "': outside the " + std::to_string(w) + "x" +
+                           std::to_string(h) + " image");
     px = int(p[0]);
     py = int(p[1]);
   }
@@ -405,8 +420,10 @@ int run_trace(const TraceArgs& a) {
       return t;
     }
     std::vector<RayRequest> requests;
-    if (by_hand) requests.push_back(*by_hand);
-    else requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
+    if (by_hand)
+      requests.push_back(*by_hand);
+    else
+      requests = pixel_rays(scene, *accel, w, h, px, py, a.secondary);
     return record_trace(scene.geometry, *accel, requests, a.scene, file_content_hash(a.scene));
   };
 
@@ -432,8 +449,10 @@ int run_trace(const TraceArgs& a) {
   } else {
     accel->build(scene.geometry);
     trace = record();
-    if (a.format == "csv") write_trace_csv(a.output, trace);
-    else write_trace_json(a.output, trace);
+    if (a.format == "csv")
+      write_trace_csv(a.output, trace);
+    else
+      write_trace_json(a.output, trace);
   }
   std::printf("%s", trace_summary(trace).c_str());
   std::printf("wrote %s\n", a.output.c_str());
@@ -454,14 +473,17 @@ int run_sah(const SahArgs& a) {
     node = kd_node_by_path(tree, *a.path);
   }
   SahCurve curve = record_sah_curve(scene.geometry, options, node);
-  if (ext == ".csv") write_sah_csv(a.output, curve);
-  else write_sah_json(a.output, curve, options);
+  if (ext == ".csv")
+    write_sah_csv(a.output, curve);
+  else
+    write_sah_json(a.output, curve, options);
   const char* axes = "xyz";
   std::printf("node %u: depth %d, %u primitives, box [%g, %g, %g] .. [%g, %g, %g]\n", node, curve.info.depth,
-              curve.n_prims, curve.info.box.lo.x, curve.info.box.lo.y, curve.info.box.lo.z, curve.info.box.hi.x,
-              curve.info.box.hi.y, curve.info.box.hi.z);
+              curve.n_prims, curve.info.box.lo.x, curve.info.box.lo.y, curve.info.box.lo.z,
+              curve.info.box.hi.x, curve.info.box.hi.y, curve.info.box.hi.z);
   if (curve.leaf) {
-    std::printf("decision: leaf (%s), leaf cost N*t_i = %g\n", leaf_reason_name(curve.leaf_reason), curve.leaf_cost);
+    std::printf("decision: leaf (%s), leaf cost N*t_i = %g\n", leaf_reason_name(curve.leaf_reason),
+                curve.leaf_cost);
     // What the rows mean for this leaf: only a leaf made by the cost rule has every row at N*t_i or above.
     switch (curve.leaf_reason) {
       case LeafReason::few_primitives:
@@ -489,16 +511,18 @@ int run_sah(const SahArgs& a) {
   } else
     std::printf("decision: split %c = %.9g, cost %g against leaf cost N*t_i = %g\n", axes[curve.axis],
                 curve.position, curve.cost, curve.leaf_cost);
-  std::printf("candidates: %zu (t_i %g, t_t %g, empty bonus %g); wrote %s\n", curve.candidates.size(), options.t_i,
-              options.t_t, options.empty_bonus, a.output.c_str());
+  std::printf("candidates: %zu (t_i %g, t_t %g, empty bonus %g); wrote %s\n", curve.candidates.size(),
+              options.t_i, options.t_t, options.empty_bonus, a.output.c_str());
   return 0;
 }
 
 void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
-                              uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv) {
+                              uint64_t lines, size_t rays_cast, const char* rays_note,
+                              const std::string& csv) {
   // Predicted against measured entry probabilities: the top of the tree, then all nodes at once.
-  std::printf("\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
-              static_cast<unsigned long long>(lines));
+  std::printf(
+      "\nentry probability, %llu random lines through the root (Crofton: P(node) = S_node / S_root):\n",
+      static_cast<unsigned long long>(lines));
   if (rays_cast < lines)
     std::printf(
         "  (rays: the first %zu of the lines only, %llu primitive tests in all: the leaves are crowded)\n",
@@ -512,7 +536,8 @@ void report_entry_probability(const std::vector<EntryNode>& nodes, const std::ve
     }
     if (nodes[i].depth <= 3)
       std::printf("  %-8zu %-7d %-10s %10.4f %10.4f %10.4f\n", i, nodes[i].depth,
-                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines, entry[i].rays);
+                  paths[i].empty() ? "(root)" : paths[i].c_str(), entry[i].predicted, entry[i].lines,
+                  entry[i].rays);
   }
   double sum_abs = 0, worst = 0, sum_over = 0;
   size_t compared = 0;
@@ -524,17 +549,19 @@ void report_entry_probability(const std::vector<EntryNode>& nodes, const std::ve
     ++compared;
   }
   double n = double(std::max<size_t>(compared, 1));
-  std::printf("all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f %s\n", compared,
-              sum_abs / n, worst, sum_over / n, rays_note);
+  std::printf("all %zu nodes: |predicted - lines| mean %.5f, max %.5f; predicted - rays mean %.5f %s\n",
+              compared, sum_abs / n, worst, sum_over / n, rays_note);
   if (compared < entry.size())
-    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n", entry.size() - compared);
+    std::printf("(%zu nodes under a root of zero area have no predicted probability)\n",
+                entry.size() - compared);
   if (!csv.empty()) {
     write_file_atomically(csv, [&](std::ostream& out) {
       out << "node,depth,parent,leaf,prims,predicted,lines,rays\n";
       char buf[160];
       for (size_t i = 0; i < nodes.size(); ++i) {
         std::snprintf(buf, sizeof buf, "%zu,%d,%d,%d,%u,%.9g,%.9g,%.9g\n", i, nodes[i].depth, nodes[i].parent,
-                      nodes[i].leaf ? 1 : 0, nodes[i].prims, entry[i].predicted, entry[i].lines, entry[i].rays);
+                      nodes[i].leaf ? 1 : 0, nodes[i].prims, entry[i].predicted, entry[i].lines,
+                      entry[i].rays);
         out << buf;
       }
     });
@@ -566,14 +593,14 @@ int run_kdtree_stats(const KdStatsArgs& a) {
   size_t full = st.leaves - st.empty_leaves;
   std::printf("scene: %s (%zu primitives), %s, built in %.1f ms\n", scene.path.c_str(), prims,
               tree->name().c_str(), build_ms);
-  std::printf("nodes: %zu (%zu inner, %zu leaves of which %zu empty)\n", st.nodes, st.nodes - st.leaves, st.leaves,
-              st.empty_leaves);
+  std::printf("nodes: %zu (%zu inner, %zu leaves of which %zu empty)\n", st.nodes, st.nodes - st.leaves,
+              st.leaves, st.empty_leaves);
   std::printf("depth: max %d (limit %d), mean leaf depth %.2f\n", st.max_depth,
               kd_max_depth(tree->options(), prims), st.leaves ? leaf_depth / double(st.leaves) : 0.0);
   std::printf("primitives per non-empty leaf: mean %.2f, max %zu\n", full ? leaf_prims / double(full) : 0.0,
               st.max_leaf_prims);
-  std::printf("references per primitive: %.3f (%zu references)\n", prims ? double(st.references) / double(prims) : 0.0,
-              st.references);
+  std::printf("references per primitive: %.3f (%zu references)\n",
+              prims ? double(st.references) / double(prims) : 0.0, st.references);
   std::printf("SAH cost of the tree: %.3f (t_i %g, t_t %g); a single leaf would cost %.1f\n", st.sah_cost,
               tree->options().t_i, tree->options().t_t, double(prims) * tree->options().t_i);
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The meshes of the slanted scenes (issue 16, BSP against kd-tree): scenes/meshes/subdivided_box.obj, a unit box
+"""The meshes of the slanted scenes (BSP against kd-tree): scenes/meshes/subdivided_box.obj, a unit box
 whose faces are split into N x N quads (the scene turns it about a slanted axis), and scenes/meshes/thin_strips.obj,
 rows of long thin triangles in the plane z = 0 (the scene tilts it). Deterministic: no randomness."""
 import argparse

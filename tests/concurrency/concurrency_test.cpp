@@ -54,7 +54,7 @@ class EnoughWorkers : public ::testing::Environment {
 [[maybe_unused]] ::testing::Environment* const enough_workers =
     ::testing::AddGlobalTestEnvironment(new EnoughWorkers);
 
-// The debugger's document, as viz/src/session.h holds it: the scene, and a structure built over it that
+// The debugger's document, as viz/src/app/session.h holds it: the scene, and a structure built over it that
 // keeps the scene alive. Workers receive both by shared pointer.
 struct Built {
   std::shared_ptr<const Scene> scene;

@@ -8,16 +8,17 @@
 #include <map>
 #include <random>
 
+#include "ray_battery.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/geometry/icosphere.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/util/error.h"
-#include "ray_battery.h"
+#include "test_budget.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -128,7 +129,7 @@ TEST(Bvh, WatertightOnEdgeAimedAndFaceRays) {
   add_to_geometry(make_icosphere(3), g);
   BruteForce brute;
   brute.build(g);
-  std::vector<Ray> rays = edge_rays(g, 8000, 12);
+  std::vector<Ray> rays = edge_rays(g, test::budget(8000), 12);
   for (BvhBuilder builder : kBuilders)
     for (BvhOrder order : kOrders) {
       auto bvh = make_bvh(g, builder, order);
@@ -171,7 +172,9 @@ TEST(Bvh, ChildPairTestEqualsOneBoxAtATimeBitForBit) {
     return *(values.begin() + std::uniform_int_distribution<size_t>(0, values.size() - 1)(rng));
   };
   std::uniform_real_distribution<float> u(-2.f, 2.f);
-  auto coordinate = [&] { return pick({0.f, -0.f, 1.f, -1.f, 0.5f, u(rng), u(rng), u(rng) * 1e6f, u(rng) * 1e-6f}); };
+  auto coordinate = [&] {
+    return pick({0.f, -0.f, 1.f, -1.f, 0.5f, u(rng), u(rng), u(rng) * 1e6f, u(rng) * 1e-6f});
+  };
   int disagreements = 0, hits = 0, misses = 0;
   for (int i = 0; i < 200000; ++i) {
     BvhPair p;

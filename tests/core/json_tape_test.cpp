@@ -1,7 +1,7 @@
 // The JSON tape against nlohmann-json's DOM, which it stands in for: on every text, hand-made edge cases and
-// random mutations of a trace, JsonTape::parse (nlohmann's SAX parser filling the tape) gives the same values,
-// number kinds and member order as nlohmann::json::parse, or throws the same exception with the same message
-// and byte.
+// random mutations of a trace, JsonTape::parse (nlohmann's SAX parser filling the tape) gives the same
+// values, number kinds and member order as nlohmann::json::parse, or throws the same exception with the same
+// message and byte.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -22,15 +22,24 @@ std::string compare(const JsonValue& v, const json& j, const std::string& at = "
   using K = JsonValue::Kind;
   auto kind_of = [](const json& x) {
     switch (x.type()) {
-      case json::value_t::null: return K::null;
-      case json::value_t::boolean: return K::boolean;
-      case json::value_t::number_integer: return K::number_integer;
-      case json::value_t::number_unsigned: return K::number_unsigned;
-      case json::value_t::number_float: return K::number_float;
-      case json::value_t::string: return K::string;
-      case json::value_t::array: return K::array;
-      case json::value_t::object: return K::object;
-      default: return K::null;
+      case json::value_t::null:
+        return K::null;
+      case json::value_t::boolean:
+        return K::boolean;
+      case json::value_t::number_integer:
+        return K::number_integer;
+      case json::value_t::number_unsigned:
+        return K::number_unsigned;
+      case json::value_t::number_float:
+        return K::number_float;
+      case json::value_t::string:
+        return K::string;
+      case json::value_t::array:
+        return K::array;
+      case json::value_t::object:
+        return K::object;
+      default:
+        return K::null;
     }
   };
   if (!v.exists()) return at + ": absent";
@@ -104,30 +113,35 @@ std::string outcome(const std::string& text) {
   return got == expected ? "same" : "tape: " + got + " | nlohmann: " + expected;
 }
 
-void expect_same(const std::string& text) { EXPECT_EQ(outcome(text), "same") << text; }
+void expect_same(const std::string& text) {
+  EXPECT_EQ(outcome(text), "same") << text;
+}
 
 TEST(JsonTape, EdgeCasesReadAsNlohmannReadsThem) {
   const char* cases[] = {
       // numbers: kinds, signs, limits, overflow and underflow, grammar errors
-      "0", "-0", "1", "-1", "0.0", "-0.0", "1e0", "1E+2", "1e-2", "3.4028234663852886e38", "0.1", "1.7976931348623157e308",
-      "1.7976931348623159e308", "1e400", "-1e400", "1e-400", "4.9e-324", "2.2250738585072014e-308", "1e-310",
-      "0.000000000000000000000000000000000000000000000001", "18446744073709551615", "18446744073709551616",
-      "9223372036854775807", "9223372036854775808", "-9223372036854775808", "-9223372036854775809",
-      "123456789012345678901234567890", "0.36198219656944275", "01", "-01", "1.", ".5", "+1", "-", "1e", "1e+",
-      "--1", "0x10", "1.5e3.2", "Infinity", "NaN", "[1,]", "[,1]", "[1 2]", "1 2",
+      "0", "-0", "1", "-1", "0.0", "-0.0", "1e0", "1E+2", "1e-2", "3.4028234663852886e38", "0.1",
+      "1.7976931348623157e308", "1.7976931348623159e308", "1e400", "-1e400", "1e-400", "4.9e-324",
+      "2.2250738585072014e-308", "1e-310", "0.000000000000000000000000000000000000000000000001",
+      "18446744073709551615", "18446744073709551616", "9223372036854775807", "9223372036854775808",
+      "-9223372036854775808", "-9223372036854775809", "123456789012345678901234567890", "0.36198219656944275",
+      "01", "-01", "1.", ".5", "+1", "-", "1e", "1e+", "--1", "0x10", "1.5e3.2", "Infinity", "NaN", "[1,]",
+      "[,1]", "[1 2]", "1 2",
       // literals
       "true", "false", "null", "tru", "nul", "truex", "[true,false,null]", "True",
       // strings: escapes, unicode, control characters, invalid UTF-8
       "\"\"", "\"abc\"", "\"a\\\"b\"", "\"\\u0041\\n\\t\\/\"", "\"\\ud83d\\ude00\"", "\"\\ud83d\"", "\"\\x\"",
       "\"caf\xc3\xa9\"", "\"\xff\"", "\"\xc3\"", "\"a\tb\"", "\"a\x01\"", "\"\x7f\"", "\"abc", "\"",
-      "\"\xc0\x80\"", "\"\xc1\xbf\"", "\"\xe0\x80\x80\"", "\"\xe0\xa0\x80\"", "\"\xed\xa0\x80\"", "\"\xed\x9f\xbf\"",
-      "\"\xf0\x8f\xbf\xbf\"", "\"\xf0\x90\x80\x80\"", "\"\xf4\x8f\xbf\xbf\"", "\"\xf4\x90\x80\x80\"", "\"\xf5\x80\x80\x80\"",
-      "\"\xe2\x82\"", "\"\xe2\x82", "\"\x80\"", "\"\\", "\"\\\"", "\"a\\qb\"", "\"\\u12\"", "\"\\ud800\\udc00\"",
+      "\"\xc0\x80\"", "\"\xc1\xbf\"", "\"\xe0\x80\x80\"", "\"\xe0\xa0\x80\"", "\"\xed\xa0\x80\"",
+      "\"\xed\x9f\xbf\"", "\"\xf0\x8f\xbf\xbf\"", "\"\xf0\x90\x80\x80\"", "\"\xf4\x8f\xbf\xbf\"",
+      "\"\xf4\x90\x80\x80\"", "\"\xf5\x80\x80\x80\"", "\"\xe2\x82\"", "\"\xe2\x82", "\"\x80\"", "\"\\",
+      "\"\\\"", "\"a\\qb\"", "\"\\u12\"", "\"\\ud800\\udc00\"",
       // containers, nesting, duplicate keys, key order, whitespace, BOM, trailing text
-      "{}", "[]", "[[]]", "{\"a\":{}}", "{\"b\":1,\"a\":2}", "{\"a\":1,\"a\":2}", "{\"a\":1,\"b\":2,\"a\":[3]}",
-      "{\"\":0}", "{\"a\"}", "{\"a\":}", "{\"a\" 1}", "{1:2}", "{\"a\":1,}", "{,}", "[", "]", "{", "}", "",
-      " ", " \t\r\n[ 1 , { \"k\" : [ ] } ] \n", "\xef\xbb\xbf[1]", "\xef\xbb[1]", "[1]x", "[1] ]", "[1]\0",
-      "{\"a\":1}{}", "[\"a\",\"\\u00e9\",\"z\"]", "{\"\xc3\xa9\":1,\"z\":2,\"a\":3}", "{\"B\":1,\"a\":2,\"_\":3}",
+      "{}", "[]", "[[]]", "{\"a\":{}}", "{\"b\":1,\"a\":2}", "{\"a\":1,\"a\":2}",
+      "{\"a\":1,\"b\":2,\"a\":[3]}", "{\"\":0}", "{\"a\"}", "{\"a\":}", "{\"a\" 1}", "{1:2}", "{\"a\":1,}",
+      "{,}", "[", "]", "{", "}", "", " ", " \t\r\n[ 1 , { \"k\" : [ ] } ] \n", "\xef\xbb\xbf[1]",
+      "\xef\xbb[1]", "[1]x", "[1] ]", "[1]\0", "{\"a\":1}{}", "[\"a\",\"\\u00e9\",\"z\"]",
+      "{\"\xc3\xa9\":1,\"z\":2,\"a\":3}", "{\"B\":1,\"a\":2,\"_\":3}",
       "[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]", "/* c */ 1", "[1,2,3,\"inf\",\"-inf\",-1.5e-7]"};
   for (const char* c : cases) expect_same(c);
   expect_same(std::string("[1]\0", 4));
@@ -147,20 +161,25 @@ TEST(JsonTape, EdgeCasesReadAsNlohmannReadsThem) {
 
 TEST(JsonTape, RandomMutationsOfATraceReadAsNlohmannReadsThem) {
   const std::string base =
-      "{\n \"format\": \"raystep-trace\",\n \"version\": 1,\n \"scene\": {\"path\":\"a\",\"hash\":\"b\",\"primitives\":2},\n"
+      "{\n \"format\": \"raystep-trace\",\n \"version\": 1,\n \"scene\": "
+      "{\"path\":\"a\",\"hash\":\"b\",\"primitives\":2},\n"
       " \"structure\": {\"kind\":\"grid\",\"bounds_min\":[0.0,-1.0,0.0],\"bounds_max\":[3.0,2.0,1.0],"
       "\"resolution\":[3,1,1],\"density\":3.0,\"insert\":\"exact\",\"references\":4.0},\n"
       " \"rays\": [\n  {\"origin\":[-1.0,0.5,0.5],\"direction\":[1.0,0.0,0.0],\"tmin\":0.0,\"tmax\":\"inf\","
       "\"kind\":\"primary\",\"depth\":0,\"pixel\":[12,7],\n   \"events\": [\n"
       "    {\"seq\":0,\"type\":\"ray_begin\"},\n"
-      "    {\"seq\":1,\"type\":\"cell\",\"cell\":[0,0,0],\"t_enter\":1.0,\"t_exit\":2.0,\"t_max\":[2.0,\"inf\",\"inf\"],"
+      "    "
+      "{\"seq\":1,\"type\":\"cell\",\"cell\":[0,0,0],\"t_enter\":1.0,\"t_exit\":2.0,\"t_max\":[2.0,\"inf\","
+      "\"inf\"],"
       "\"t_delta\":[1.0,\"inf\",\"inf\"],\"next_axis\":\"x\"},\n"
       "    {\"seq\":2,\"type\":\"prim_test\",\"prim\":0,\"hit\":true,\"t\":3.5},\n"
       "    {\"seq\":3,\"type\":\"ray_end\",\"prim\":1,\"t\":2.5e-3}\n   ]}\n ],\n"
-      " \"geometry\": {\"cells\": [], \"primitives\": [{\"id\":0,\"type\":\"triangle\",\"vertices\":[[0.0,-1.0,0.0],"
+      " \"geometry\": {\"cells\": [], \"primitives\": "
+      "[{\"id\":0,\"type\":\"triangle\",\"vertices\":[[0.0,-1.0,0.0],"
       "[0.0,2.0,0.0],[3.0,0.5,0.6000000238418579]]}]}\n}\n";
   expect_same(base);
-  const std::string alphabet = "{}[],:\"\\ 0123456789.-+eE\ntrufalsnbu/\x01\x7f\xc3\xa9\xe2\x82\xac\xed\xa0\xf0\x9f\xff";
+  const std::string alphabet =
+      "{}[],:\"\\ 0123456789.-+eE\ntrufalsnbu/\x01\x7f\xc3\xa9\xe2\x82\xac\xed\xa0\xf0\x9f\xff";
   std::mt19937 rng(12345);
   int valid = 0;
   const int trials = 4000;
@@ -171,10 +190,18 @@ TEST(JsonTape, RandomMutationsOfATraceReadAsNlohmannReadsThem) {
       size_t at = rng() % text.size();
       char c = alphabet[rng() % alphabet.size()];
       switch (rng() % 4) {
-        case 0: text[at] = c; break;
-        case 1: text.erase(at, 1 + rng() % 4); break;
-        case 2: text.insert(at, 1, c); break;
-        case 3: text.resize(at); break;
+        case 0:
+          text[at] = c;
+          break;
+        case 1:
+          text.erase(at, 1 + rng() % 4);
+          break;
+        case 2:
+          text.insert(at, 1, c);
+          break;
+        case 3:
+          text.resize(at);
+          break;
       }
     }
     ASSERT_EQ(outcome(text), "same") << text;
@@ -205,12 +232,17 @@ struct Collect final : JsonStreamHandler {
   static std::string dump(const JsonValue& v) {
     using K = JsonValue::Kind;
     switch (v.kind()) {
-      case K::null: return "null";
-      case K::boolean: return v.get_bool() ? "true" : "false";
+      case K::null:
+        return "null";
+      case K::boolean:
+        return v.get_bool() ? "true" : "false";
       case K::number_integer:
-      case K::number_unsigned: return std::to_string(v.get_int64());
-      case K::number_float: return json(v.get_double()).dump();
-      case K::string: return json(std::string(v.get_string())).dump();
+      case K::number_unsigned:
+        return std::to_string(v.get_int64());
+      case K::number_float:
+        return json(v.get_double()).dump();
+      case K::string:
+        return json(std::string(v.get_string())).dump();
       case K::array: {
         std::string s = "[";
         for (size_t i = 0; i < v.size(); ++i) s += (i ? "," : "") + dump(v[i]);
@@ -219,7 +251,8 @@ struct Collect final : JsonStreamHandler {
       case K::object: {
         std::string s = "{";
         bool first = true;
-        for (const auto& [k, m] : v.members()) s += (first ? "" : ",") + json(std::string(k)).dump() + ":" + dump(m), first = false;
+        for (const auto& [k, m] : v.members())
+          s += (first ? "" : ",") + json(std::string(k)).dump() + ":" + dump(m), first = false;
         return s + "}";
       }
     }
@@ -228,8 +261,9 @@ struct Collect final : JsonStreamHandler {
 };
 
 TEST(JsonTape, StreamedArraysReachTheHandlerElementByElement) {
-  const std::string text = R"({"format":"x","rays":[{"o":1,"events":[{"seq":0,"a":[1,2,{"b":null}]},7,"s",[3]]},)"
-                           R"({"events":[],"x":{"events":[1]}}],"walks":[{"rays":[{"events":[{"k":true}]}]}],"events":[9]})";
+  const std::string text =
+      R"({"format":"x","rays":[{"o":1,"events":[{"seq":0,"a":[1,2,{"b":null}]},7,"s",[3]]},)"
+      R"({"events":[],"x":{"events":[1]}}],"walks":[{"rays":[{"events":[{"k":true}]}]}],"events":[9]})";
   const json dom = json::parse(text);
   Collect c;
   JsonTape tape = JsonTape::parse(text, &c);
@@ -278,7 +312,8 @@ TEST(JsonTape, StreamedArraysReachTheHandlerElementByElement) {
   const std::string bad = R"({"rays":[{"events":[{"a":1},{"a":]}]})";
   size_t expected_byte = 0;
   try {
-    (void)json::parse(bad);
+    const json parsed = json::parse(bad);
+    ADD_FAILURE() << "the damaged text parsed: " << parsed.dump();
   } catch (const json::parse_error& e) {
     expected_byte = e.byte;
   }

@@ -1,24 +1,25 @@
 // The kd-tree's traversal: agreement with brute force (same primitive, same t) on random rays and on the hard
-// ones (axis-parallel with +0 and -0, rays lying in split planes, origins on planes, faces on candidate planes,
-// coplanar and identical triangles, edge-aimed rays), and the recorded walk's invariants (every push popped or
-// the walk ended on a hit, intervals shrinking down the tree, each primitive tested once with mailboxes).
+// ones (axis-parallel with +0 and -0, rays lying in split planes, origins on planes, faces on candidate
+// planes, coplanar and identical triangles, edge-aimed rays), and the recorded walk's invariants (every push
+// popped or the walk ended on a hit, intervals shrinking down the tree, each primitive tested once with
+// mailboxes).
 #include <gtest/gtest.h>
 
 #include <map>
 #include <random>
 
+#include "ray_battery.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/geometry/icosphere.h"
+#include "raystep/io/scene_loader.h"
+#include "raystep/record/event_recorder.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
-#include "raystep/record/event_recorder.h"
 #include "raystep/util/error.h"
-#include "ray_battery.h"
 #include "test_budget.h"
 #include "test_scenes.h"
 
@@ -57,7 +58,8 @@ Geometry make_coplanar(int n) {
 Geometry make_identical(int n) {
   Geometry g;
   g.begin_object("identical", 0);
-  for (int i = 0; i < n; ++i) g.add_triangle(glm::vec3(0.f), glm::vec3(1.f, 0.f, 0.2f), glm::vec3(0.f, 1.f, 0.4f));
+  for (int i = 0; i < n; ++i)
+    g.add_triangle(glm::vec3(0.f), glm::vec3(1.f, 0.f, 0.2f), glm::vec3(0.f, 1.f, 0.4f));
   g.add_triangle(glm::vec3(-1.f, -1.f, 1.f), glm::vec3(2.f, -1.f, 1.f), glm::vec3(-1.f, 2.f, 1.f));
   return g;
 }
@@ -123,12 +125,12 @@ TEST(KdTree, WatertightOnEdgeAimedRays) {
   add_to_geometry(make_icosphere(3), g);
   BruteForce brute;
   brute.build(g);
-  std::vector<Ray> rays = edge_rays(g, 100000, 12);
+  std::vector<Ray> rays = edge_rays(g, test::budget(100000), 12);
   for (KdBuilder builder : kBuilders) {
     auto tree = make_tree(g, builder);
     EXPECT_EQ(count_disagreements(*tree, brute, rays), 0) << int(builder);
     // From the centre outwards every ray must hit: no leak between the leaves.
-    EXPECT_EQ(test::count_leaks(*tree, rays, 20000), 0) << int(builder);
+    EXPECT_EQ(test::count_leaks(*tree, rays, test::budget(20000)), 0) << int(builder);
   }
 }
 
@@ -194,7 +196,7 @@ TEST(KdTree, CoplanarAndIdenticalTriangles) {
     Geometry g = scene == 0 ? make_coplanar(400) : make_identical(400);
     BruteForce brute;
     brute.build(g);
-    std::vector<Ray> random = random_rays(g.bounds(), 100000, 14);
+    std::vector<Ray> random = random_rays(g.bounds(), test::budget(100000), 14);
     for (KdBuilder builder : kBuilders) {
       auto tree = make_tree(g, builder);
       std::vector<Ray> rays = random, hard = plane_rays(*tree, 5);
@@ -304,8 +306,8 @@ TEST(KdTree, CountedQueriesGiveTheSameHits) {
   EXPECT_GT(counters.prim_tests, 0u);
 }
 
-// The whole tracer (shadow, mirror and glass rays) gives the same picture, bit for bit, with either kd-tree as
-// with brute force.
+// The whole tracer (shadow, mirror and glass rays) gives the same picture, bit for bit, with either kd-tree
+// as with brute force.
 TEST(KdTree, RendersTheSamePictureAsBruteForce) {
   for (const char* name : {"spheres.json", "cornell.json"}) {
     Scene scene = load_scene(std::string(RAYSTEP_SOURCE_DIR) + "/scenes/" + name);

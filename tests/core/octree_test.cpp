@@ -1,4 +1,4 @@
-// The octree (issue 16): agreement with brute force (same primitive, same t) under every option on random,
+// The octree: agreement with brute force (same primitive, same t) under every option on random,
 // camera, edge-aimed and in-plane rays (lying in the cells' faces and centre planes, with +0 and -0
 // components), non-finite rays (a miss, no crash), the pathological meshes (identical, coplanar, a teapot in
 // a stadium, long slivers: bounded nodes and references, right hits), the recorded walk against the kernel
@@ -11,15 +11,15 @@
 #include <map>
 #include <random>
 
+#include "ray_battery.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/geometry/icosphere.h"
-#include "raystep/scene/ray_sets.h"
 #include "raystep/record/event_recorder.h"
+#include "raystep/scene/ray_sets.h"
 #include "raystep/trace/octree_trace.h"
 #include "raystep/util/error.h"
-#include "ray_battery.h"
 #include "test_scenes.h"
 
 namespace raystep {

@@ -13,12 +13,13 @@
 
 #include "loaded_scene.h"
 #include "raystep/accel/accelerator.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/trace/trace_file.h"
 #include "raystep/util/error.h"
+#include "test_budget.h"
 
 namespace raystep {
 namespace {
@@ -315,7 +316,7 @@ TEST(PixelTrace, DamagedPixelSectionsNeverCrashTheReader) {
                           "\"jitter:2\""};
   std::mt19937 rng(7);
   int accepted = 0, refused = 0;
-  for (int trial = 0; trial < 1500; ++trial) {
+  for (int trial = 0; trial < test::budget(1500); ++trial) {
     std::string bad = text;
     // Replace one token (a number, string or literal) inside the pixel section.
     size_t at = begin + rng() % (end - begin);

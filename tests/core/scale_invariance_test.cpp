@@ -1,4 +1,4 @@
-// Scale and translation invariance (issue 17): every shipped scene and mesh, scaled by 1e-6 and 1e6 and
+// Scale and translation invariance: every shipped scene and mesh, scaled by 1e-6 and 1e6 and
 // translated by 1e5 with its camera and lights, renders the same picture with every structure, and rays
 // spawned from its surfaces never meet their own surface again. Geometry is float, so "the same picture" is
 // defined in two parts: on the transformed scene every structure agrees exactly with brute force (the same
@@ -26,9 +26,9 @@
 #include "raystep/accel/brute_force.h"
 #include "raystep/geometry/spawn.h"
 #include "raystep/geometry/triangle_clip.h"
+#include "raystep/io/scene_loader.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
-#include "raystep/io/scene_loader.h"
 #include "test_budget.h"
 #include "test_scenes.h"
 
@@ -330,14 +330,23 @@ struct Figures {
       unexplained = 0;
 };
 
-TEST(ScaleInvariance, EveryShippedSceneRendersTheSamePictureAtEveryScale) {
+// One test per transform (each a third of the work, so that no test takes a minute under the sanitizers).
+class ScaleInvarianceAt : public ::testing::TestWithParam<int> {};  // the picture: kTransforms[i]
+class SpawnedRaysAt : public ::testing::TestWithParam<int> {};      // spawned rays: 3 is the scene as shipped
+std::string transform_test_name(const ::testing::TestParamInfo<int>& info) {
+  static const char* const names[] = {"Scale1eMinus6", "Scale1e6", "Translate1e5", "Identity"};
+  return names[info.param];
+}
+
+TEST_P(ScaleInvarianceAt, EveryShippedSceneRendersTheSamePicture) {
+  const int xi = GetParam();
   Figures totals[3];
   for (const std::string& path : shipped_scenes()) {
     Scene scene = load_scene(path);
     BruteForce brute;
     brute.build(scene.geometry);
     Picture original = render(scene, brute, true);
-    for (int xi = 0; xi < 3; ++xi) {
+    {
       const Transform& x = kTransforms[xi];
       Scene moved = transform_scene(scene, x);
       BruteForce moved_brute;
@@ -393,7 +402,7 @@ TEST(ScaleInvariance, EveryShippedSceneRendersTheSamePictureAtEveryScale) {
   // 0.007 to 0.03 units (half an ulp of 1e5 in each of the vertices, the eye and the look-at point), a tenth
   // to a third of a pixel's footprint in these 48 x 36 pictures: of the 18 scenes' edges, some 2% of the
   // pixels.
-  for (int xi = 0; xi < 3; ++xi) {
+  {
     const Figures& t = totals[xi];
     std::printf(
         "%-13s %d pixels, %d rays: %d disagreements, %d pixels with another primitive, %d with another "
@@ -468,12 +477,13 @@ std::vector<Spawned> spawned_rays(const Scene& scene, const Ray& ray, const Hit&
   return out;
 }
 
-TEST(ScaleInvariance, SpawnedRaysNeverMeetTheirOwnSurfaceAtAnyScale) {
+TEST_P(SpawnedRaysAt, NeverMeetTheirOwnSurface) {
   const Transform identity{"identity", 1.0, glm::dvec3(0.0)};
+  const int xi = GetParam();
   int points[4] = {}, spawned[4] = {}, self_hits[4] = {}, bad[4] = {};
   for (const std::string& path : shipped_scenes()) {
     Scene original = load_scene(path);
-    for (int xi = 0; xi < 4; ++xi) {
+    {
       const Transform& x = xi < 3 ? kTransforms[xi] : identity;
       Scene scene = transform_scene(original, x);
       BruteForce brute;
@@ -519,10 +529,13 @@ TEST(ScaleInvariance, SpawnedRaysNeverMeetTheirOwnSurfaceAtAnyScale) {
       }
     }
   }
-  for (int xi = 0; xi < 4; ++xi)
-    std::printf("%-13s %5d surface points, %6d spawned rays, %d self-hits, %d disagreements (7 structures)\n",
-                xi < 3 ? kTransforms[xi].name : "identity", points[xi], spawned[xi], self_hits[xi], bad[xi]);
+  std::printf("%-13s %5d surface points, %6d spawned rays, %d self-hits, %d disagreements (7 structures)\n",
+              xi < 3 ? kTransforms[xi].name : "identity", points[xi], spawned[xi], self_hits[xi], bad[xi]);
 }
+
+// Scaled by 1e-6 and 1e6, moved to 1e5; the spawned rays also as shipped.
+INSTANTIATE_TEST_SUITE_P(ScaleInvariance, ScaleInvarianceAt, ::testing::Range(0, 3), transform_test_name);
+INSTANTIATE_TEST_SUITE_P(ScaleInvariance, SpawnedRaysAt, ::testing::Range(0, 4), transform_test_name);
 
 // ---- Regression cases of the fixes these tests found ----
 

@@ -108,7 +108,7 @@ TEST(StructureCompare, MemoryIsTheGridsArrays) {
 TEST(StructureCompare, BadInputThrows) {
   Scene scene = soup_scene(20);
   StructureCompareOptions o = small_options();
-  o.structures = {"grid", "quadtree"};  // an unknown name (the octree exists since issue 16)
+  o.structures = {"grid", "quadtree"};  // an unknown name (the octree is "octree")
   try {
     compare_structures(scene, o);
     FAIL();

@@ -16,6 +16,7 @@
 #include "raystep/trace/grid_trace.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
+#include "test_budget.h"
 #include "test_scenes.h"
 
 namespace raystep {
@@ -92,8 +93,8 @@ TEST(TraceFile, RecordsTheMailboxTrapStepByStep) {
   Trace t = s.trace();
   ASSERT_EQ(t.rays.size(), 2u);
   using E = EventType;
-  std::vector<E> expected = {E::ray_begin, E::cell,     E::prim_test,    E::hit_deferred,
-                             E::cell,      E::mailbox_hit, E::prim_test, E::hit_accepted, E::ray_end};
+  std::vector<E> expected = {E::ray_begin,   E::cell,      E::prim_test,    E::hit_deferred, E::cell,
+                             E::mailbox_hit, E::prim_test, E::hit_accepted, E::ray_end};
   EXPECT_EQ(types(t.rays[0]), expected);
   const Event& deferred = t.rays[0].events[3];
   EXPECT_EQ(deferred.prim, 0);
@@ -104,8 +105,8 @@ TEST(TraceFile, RecordsTheMailboxTrapStepByStep) {
   EXPECT_EQ(accepted.reason, AcceptReason::inside_cell);
   const Event& first_cell = t.rays[0].events[1];
   EXPECT_EQ(first_cell.cell[0], 0);
-  // The grid's entry comes from the slab test, which moves it outward by at most 2 gamma(3) of the distance (Ize's
-  // factor, bounds.h): at most the exact 1, never after it.
+  // The grid's entry comes from the slab test, which moves it outward by at most 2 gamma(3) of the distance
+  // (Ize's factor, bounds.h): at most the exact 1, never after it.
   EXPECT_LE(first_cell.t_enter, 1.f);
   EXPECT_GE(first_cell.t_enter, 1.f - gamma(10));
   EXPECT_FLOAT_EQ(first_cell.t_exit, 2.f);
@@ -188,8 +189,8 @@ TEST(TraceFile, MalformedTracesAreRejectedWithFileLineAndPath) {
   expect_rejected(text, "\"raystep-trace\"", "\"other-trace\"", "not a raystep trace");
   expect_rejected(text, "\"version\": 4", "\"version\": 7", "unsupported trace version 7");
   expect_rejected(text, "\"version\": 4", "\"version\": 0", "unsupported trace version 0");
-  expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"", "unknown event type \"teleport\"",
-                  line_of(text, "\"type\":\"mailbox_hit\""));
+  expect_rejected(text, "\"type\":\"mailbox_hit\"", "\"type\":\"teleport\"",
+                  "unknown event type \"teleport\"", line_of(text, "\"type\":\"mailbox_hit\""));
   expect_rejected(text, "\"prim\":1", "\"prim\":99", "rays[0].events[6].prim: value 99 out of range 0..2");
   expect_rejected(text, "\"cell\":[0,0,0]", "\"cell\":[5,0,0]", "out of range 0..2");
   expect_rejected(text, "\"t_enter\":2.0", "\"t_enter\":null", "t_enter: expected a number, found null");
@@ -463,7 +464,6 @@ std::string new_reader(const std::string& text) {
   }
 }
 
-
 // A kd trace with every kind of tree event, the nodes, and the build events.
 std::string kd_trace_text() {
   Geometry g = test::make_soup(5, 5, 1);
@@ -471,21 +471,22 @@ std::string kd_trace_text() {
   BuildEventCollector build;
   tree.build(g, build);
   std::vector<RayRequest> rays;
-  for (const Ray& r : random_rays(g.bounds(), 3, 4)) rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
+  for (const Ray& r : random_rays(g.bounds(), 3, 4))
+    rays.push_back(RayRequest{r, RayKind::primary, 0, false, {0, 0}});
   rays[1].kind = RayKind::shadow;
   Trace t = record_trace(g, tree, rays, "soup", "fnv1a64:0000000000000000");
   t.build = build.events;
   return trace_to_json(t);
 }
 
-// Random damage to a trace: a token replaced by another value, a token deleted, a member repeated with another
-// value (the last one counts), or bytes changed, cut or inserted. The reader either reads a trace, which then
-// reads back the same, or refuses it with an InputError naming the file (a line where there is one): never
-// another exception, a crash or a hang. (When the reader moved from nlohmann's DOM to the tape, this test also
-// held it to the old reader's exact messages on 4,500 damaged traces, and once on 80,000.)
+// Random damage to a trace: a token replaced by another value, a token deleted, a member repeated with
+// another value (the last one counts), or bytes changed, cut or inserted. The reader either reads a trace,
+// which then reads back the same, or refuses it with an InputError naming the file (a line where there is
+// one): never another exception, a crash or a hang. (When the reader moved from nlohmann's DOM to the tape,
+// this test also held it to the old reader's exact messages on 4,500 damaged traces, and once on 80,000.)
 void expect_reader_survives_damage(const std::string& text, int trials, uint32_t seed) {
   std::vector<std::pair<size_t, size_t>> tokens;  // [begin, end) of strings, numbers, literals
-  std::vector<size_t> keys;                        // where a member's key starts
+  std::vector<size_t> keys;                       // where a member's key starts
   for (size_t i = 0; i < text.size();) {
     char c = text[i];
     size_t j = i + 1;
@@ -582,9 +583,15 @@ void expect_reader_survives_damage(const std::string& text, int trials, uint32_t
         size_t at = rng() % bad.size();
         char c = bytes[rng() % bytes.size()];
         switch (rng() % 3) {
-          case 0: bad[at] = c; break;
-          case 1: bad.erase(at, 1 + rng() % 3); break;
-          case 2: bad.resize(at); break;
+          case 0:
+            bad[at] = c;
+            break;
+          case 1:
+            bad.erase(at, 1 + rng() % 3);
+            break;
+          case 2:
+            bad.resize(at);
+            break;
         }
         break;
       }
@@ -604,19 +611,20 @@ TEST(TraceFile, DamagedTracesAreReadOrRefusedWithTheFileNamed) {
   TrapScene s;
   std::string grid = trace_to_json(s.trace());
   std::string kd = kd_trace_text();
-  for (const char* part : {"\"type\":\"push\"", "\"type\":\"pop\"", "\"type\":\"leaf\"", "\"type\":\"prim_test\"",
-                           "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"",
-                           "\"nodes\": ["})
+  for (const char* part :
+       {"\"type\":\"push\"", "\"type\":\"pop\"", "\"type\":\"leaf\"", "\"type\":\"prim_test\"",
+        "\"type\":\"sah_candidate\"", "\"type\":\"split\"", "\"type\":\"leaf_made\"", "\"nodes\": ["})
     EXPECT_NE(kd.find(part), std::string::npos) << part;
-  for (const char* part : {"\"type\":\"mailbox_hit\"", "\"type\":\"hit_deferred\"", "\"type\":\"sphere\"", "\"pixel\""})
+  for (const char* part :
+       {"\"type\":\"mailbox_hit\"", "\"type\":\"hit_deferred\"", "\"type\":\"sphere\"", "\"pixel\""})
     EXPECT_NE(grid.find(part), std::string::npos) << part;
   EXPECT_EQ(new_reader(grid), "trace " + grid);
   EXPECT_EQ(new_reader(kd), "trace " + kd);
   const std::string bvh = trace_to_json(bvh_trace_by_hand());
   EXPECT_EQ(new_reader(bvh), "trace " + bvh);
-  expect_reader_survives_damage(grid, 3000, 1);
-  expect_reader_survives_damage(kd, 1500, 2);
-  expect_reader_survives_damage(bvh, 1500, 3);
+  expect_reader_survives_damage(grid, test::budget(3000), 1);
+  expect_reader_survives_damage(kd, test::budget(1500), 2);
+  expect_reader_survives_damage(bvh, test::budget(1500), 3);
 }
 
 }  // namespace

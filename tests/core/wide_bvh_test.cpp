@@ -7,17 +7,17 @@
 #include <map>
 #include <random>
 
+#include "ray_battery.h"
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/geometry/icosphere.h"
+#include "raystep/io/scene_loader.h"
+#include "raystep/record/event_recorder.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/scene/triangle_mesh.h"
-#include "raystep/record/event_recorder.h"
 #include "raystep/util/error.h"
-#include "ray_battery.h"
 #include "test_budget.h"
 #include "test_scenes.h"
 
@@ -145,13 +145,14 @@ TEST(WideBvh, WatertightOnEdgeAimedRays) {
   add_to_geometry(make_icosphere(3), g);
   BruteForce brute;
   brute.build(g);
-  std::vector<Ray> rays = edge_rays(g, 30000, 12);
+  std::vector<Ray> rays = edge_rays(g, test::budget(30000), 12);
   for (int width : {4, 8}) {
     auto wide = make_wide(g, width);
     for (WideSimd level : levels()) {
       ASSERT_TRUE(WideBvh::force_simd(level));
       EXPECT_EQ(disagreements(*wide, brute, rays), 0) << width << " " << WideBvh::simd_level();
-      EXPECT_EQ(test::count_leaks(*wide, rays, 10000), 0) << width << " " << WideBvh::simd_level();
+      EXPECT_EQ(test::count_leaks(*wide, rays, test::budget(10000)), 0)
+          << width << " " << WideBvh::simd_level();
     }
   }
 }

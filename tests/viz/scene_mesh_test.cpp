@@ -1,5 +1,5 @@
-// The 3D view's mesh (viz/src/scene_mesh.h), made without a display: triangles share their vertices' points,
-// a sphere is its UV tessellation, and each cell keeps its primitive's id and its material's colour.
+// The 3D view's mesh (viz/src/views/scene_mesh.h), made without a display: triangles share their vertices'
+// points, a sphere is its UV tessellation, and each cell keeps its primitive's id and its material's colour.
 #include <gtest/gtest.h>
 
 #include <cmath>

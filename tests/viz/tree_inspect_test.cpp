@@ -1,4 +1,4 @@
-// The tree inspectors for the octree, the general BSP tree and the wide BVH (issue 16, issue 15), scripted
+// The tree inspectors for the octree, the general BSP tree and the wide BVH, scripted
 // under Xvfb as the other GUI tests: the SAH inspector shows a BSP node's candidate planes by orientation,
 // point for point core's record_bsp_sah_curve (the builder's own decision: the chosen plane is the tree's and
 // the cheapest), its CSV is `raystep sah --accel bsp`'s, the picker shows one group or one direction; a click

@@ -1,17 +1,17 @@
 // Entering a lesson step headless (lesson_runner.h): the same loading, building and tracing as the debugger's
-// session (viz/src/session.cpp: loadSceneData, buildStructureData, tracePixel), the event and node resolved
-// as its scripted mode does, with its messages. Scene, structure and trace are kept while their inputs are
-// unchanged.
+// session (viz/src/app/session.cpp: loadSceneData, buildStructureData, tracePixel), the event and node
+// resolved as its scripted mode does, with its messages. Scene, structure and trace are kept while their
+// inputs are unchanged.
 #include "raystep/lesson/lesson_runner.h"
 
 #include <algorithm>
 #include <cstdio>
 
+#include "raystep/io/scene_loader.h"
 #include "raystep/lesson/lesson_facts.h"
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
-#include "raystep/io/scene_loader.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
@@ -154,7 +154,7 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
     w.trace = cache.trace;
   }
 
-  // The inspector's sample and square, with the scripted mode's messages (viz/src/lesson_enter.cpp).
+  // The inspector's sample and square, with the scripted mode's messages (viz/src/lesson/lesson_enter.cpp).
   int ray = state.ray;
   if (state.sample || state.square) {
     const Trace* t = w.trace.get();
@@ -282,8 +282,9 @@ std::vector<const LessonNumber*> step_numbers(const Lesson& lesson, size_t i, bo
 }
 
 std::string disagreement(const LessonNumber& n, double value) {
-  return n.token + ": the text says " + n.written + ", the tool computes " + format_lesson_number(value, ".6g") +
-         " (agreement asked: within " + format_lesson_number(n.tolerance, ".3g") + ")";
+  return n.token + ": the text says " + n.written + ", the tool computes " +
+         format_lesson_number(value, ".6g") + " (agreement asked: within " +
+         format_lesson_number(n.tolerance, ".3g") + ")";
 }
 
 // The step's failure, pointed at the line of its last responsible setting (else its heading).

@@ -1,6 +1,6 @@
 // A lesson step's state, one `key: value` setting at a time (docs/lesson-format.md), and the raystep-gui
-// command line that shows the same state. Ranges and messages follow the scripted mode (viz/src/script.cpp),
-// so a value a lesson accepts is one the GUI accepts too.
+// command line that shows the same state. Ranges and messages follow the scripted mode
+// (viz/src/app/script.cpp), so a value a lesson accepts is one the GUI accepts too.
 #include "raystep/lesson/lesson_state.h"
 
 #include <algorithm>

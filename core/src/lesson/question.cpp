@@ -1,6 +1,8 @@
 // The quiz's questions (question.h): their names and prompts, the answers computed from the recorded walk or
-// the build, and the check of a typed prediction. The answers re-derive the kernels' decisions from the
-// events in the words of the lecture, with the numbers that decide them (the "Why" text).
+// the build, and the check of a typed prediction. The Why of a walk's decision is the replay's own
+// (replay/explain.h: what the state panel and `raystep replay` say at that event), so every sentence about a
+// step exists once; the octree's next cell out of a leaf, the build's and the pixel's questions are worded
+// here, where they are the only ones to say it.
 #include "raystep/lesson/question.h"
 
 #include <algorithm>
@@ -10,17 +12,19 @@
 #include <cstdlib>
 #include <vector>
 
-#include "raystep/accel/bsp.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_sah_curve.h"
-#include "raystep/accel/octree.h"
 #include "raystep/lesson/tree_nodes.h"
-#include "raystep/trace/node_path.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/render/camera.h"
 #include "raystep/render/whitted.h"
+#include "raystep/replay/explain.h"
+#include "raystep/replay/node_crossing.h"
+#include "raystep/replay/octree_choice.h"
+#include "raystep/replay/replay_state.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/trace/node_path.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -45,7 +49,8 @@ constexpr KindInfo kKinds[] = {
     {QuestionKind::subdivide, "subdivide",
      "Does adaptive sampling subdivide this pixel (more than its 5 first samples)?"},
     {QuestionKind::bvol_kind, "bvol-kind",
-     "Which kind of bounding volume do the rays enter in vain least often: the box, the sphere, the 14-DOP or "
+     "Which kind of bounding volume do the rays enter in vain least often: the box, the sphere, the 14-DOP "
+     "or "
      "the oriented box?"},
 };
 
@@ -53,15 +58,18 @@ constexpr KindInfo kKinds[] = {
   throw InputError("", 0, what);
 }
 
+// The Why of the walk's decision at `event`, as the debugger's state panel and `raystep replay` give it: each
+// sentence about a step exists once, in replay/explain.
+std::string walk_why(const QuestionContext& c, const TracedRay& r, int event) {
+  return replay::explain_rule(c.trace, r, replay::replay_at(r, event));
+}
+
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4g", v);
   return buf;
 }
-const char* axis_name(int axis) {
-  static const char* names[] = {"x", "y", "z"};
-  return axis >= 0 && axis < 3 ? names[axis] : "none";
-}
+using replay::axis_name;
 std::string cell_text(const int* c) {
   return "(" + std::to_string(c[0]) + ", " + std::to_string(c[1]) + ", " + std::to_string(c[2]) + ")";
 }
@@ -121,45 +129,15 @@ Answer grid_answer(QuestionKind kind, const QuestionContext& c) {
   if (next >= 0) std::copy(ev[size_t(next)].cell, ev[size_t(next)].cell + 3, a.cell.begin());
   if (cell < 0) {  // next-cell before the walk: the slab test's first cell, or a miss of the grid's box
     a.text = a.stops ? "the walk stops: the ray misses the grid" : "cell " + cell_text(a.cell.data());
-    a.why = a.stops ? "Slab test: the ray misses the grid's box, so there is no cell to visit."
-                    : "Slab test: the ray enters the grid's box at t = " + num(ev[size_t(next)].t_enter) +
-                          "; the walk starts in the cell that contains that point, " +
-                          cell_text(a.cell.data()) + ".";
+    a.why = walk_why(c, r, 0);  // the ray_begin event: the slab test
     return a;
   }
   const Event& e = ev[size_t(cell)];
   if (next >= 0)
     for (int k = 0; k < 3; ++k)
       if (ev[size_t(next)].cell[k] != e.cell[k]) a.axis = k;
-  const std::string tmax = "tMax = " + triple(e.t_max);
-  // The kernel's choice: the smallest tMax, ties to the lower axis.
-  const int smallest =
-      (e.t_max.x <= e.t_max.y && e.t_max.x <= e.t_max.z) ? 0 : (e.t_max.y <= e.t_max.z ? 1 : 2);
-  const float d = r.ray.direction[smallest];
-  const std::string step = d > 0.f ? "+1" : "-1";
-  if (next >= 0) {
-    a.why = tmax + ": the smallest is " + axis_name(smallest) + ", so the 3D-DDA steps " +
-            axis_name(smallest) + " by " + step + " into cell " + cell_text(a.cell.data()) + ".";
-  } else {
-    // Why the walk ends here: a hit inside the cell, a shadow ray's first hit, or the grid's far side.
-    const Event* accepted = nullptr;
-    for (size_t i = size_t(cell) + 1; i < ev.size() && !accepted; ++i)
-      if (ev[i].type == EventType::hit_accepted) accepted = &ev[i];
-    if (accepted && accepted->reason == AcceptReason::inside_cell)
-      a.why = "The hit at t = " + num(accepted->t) +
-              " lies inside this cell: tmin(next cell) = t_exit = " + num(e.t_exit) +
-              " > tmax(ray) = " + num(accepted->t) + ", so the walk stops here (" + tmax + ").";
-    else if (accepted && accepted->reason == AcceptReason::any_hit)
-      a.why =
-          "A shadow ray stops at its first hit, t = " + num(accepted->t) + ": the walk ends in this cell.";
-    else if (e.next_axis < 0)
-      a.why = tmax + ": the smallest, " + axis_name(smallest) + " = " + num(e.t_max[smallest]) +
-              ", lies beyond where the ray leaves the grid, t = " + num(e.t_exit) +
-              ": the walk ends in this cell.";
-    else
-      a.why = tmax + ": the smallest is " + axis_name(smallest) + ", but stepping " + axis_name(smallest) +
-              " by " + step + " leaves the grid: the walk ends in this cell.";
-  }
+  const std::string step = !a.stops && r.ray.direction[a.axis] > 0.f ? "+1" : "-1";
+  a.why = walk_why(c, r, cell);
   if (kind == QuestionKind::next_cell)
     a.text = a.stops
                  ? "the walk stops: there is no next cell"
@@ -173,19 +151,7 @@ Answer grid_answer(QuestionKind kind, const QuestionContext& c) {
 
 // ---- The kd-tree: first-child and next-pop, from the node, push and pop events.
 
-const TraceNode* find_node(const Trace& trace, int32_t id) {
-  for (const TraceNode& n : trace.nodes)
-    if (n.id == id) return &n;
-  return nullptr;
-}
-
-// The traversal's safety margin: 2^-12 of the larger of |t_min| and |t_max| of the ray in the root's box.
-float tree_margin(const TracedRay& r) {
-  for (const Event& e : r.events)
-    if (e.type == EventType::node)
-      return std::max(std::fabs(e.t_min_node), std::fabs(e.t_max_node)) * (1.f / 4096.f);
-  return 0.f;
-}
+using replay::find_node;
 
 std::string side(bool below) {
   return below ? "below" : "above";
@@ -198,11 +164,7 @@ bool walks_octree(const QuestionContext& c) {
   return c.trace && c.trace->structure.kind == "octree";
 }
 
-std::string octant_name(int octant) {
-  std::string s;
-  for (int a = 0; a < 3; ++a) s += std::string(a ? " " : "") + axis_name(a) + ((octant >> a) & 1 ? "+" : "-");
-  return s;
-}
+using replay::octant_name;
 
 // Which of its parent's eight children a cell is (-1: not found in the trace).
 int octant_of(const Trace& trace, int32_t id, const TraceNode** parent) {
@@ -299,58 +261,7 @@ Answer octree_first_child(QuestionKind kind, const QuestionContext& c, int node_
   a.walk = "octree";
   set_octree_cell(a, *c.trace, ev[size_t(first)].node);
 
-  // Revelles' rule in the frame where every direction component is positive (octree.h's reflection): the
-  // first child is upper on each other axis whose centre plane the ray crossed before it entered the cell.
-  const CellPlanes p = cell_planes(n->box, r.ray);
-  int mask = 0;
-  for (int k = 0; k < 3; ++k) mask |= int(std::signbit(r.ray.direction[k])) << k;
-  const bool inside = p.t_in < e.t_min_node;  // the ray starts inside the cell (t_min is the ray's start)
-  std::string w = "Cell " + std::to_string(e.node) + " (depth " + std::to_string(e.depth) + ") ";
-  if (inside)
-    w += "holds the ray's start, t = " + num(e.t_min_node) + ". ";
-  else
-    w += "is entered at t_in = " + num(p.t_in) + " through its face normal to " + axis_name(p.entry) +
-         " (the largest entry t: " + planes_text(p.t0, p.moving) + "). ";
-  w += "Its centre planes are crossed at " + planes_text(p.mid, p.moving) + ". ";
-  int reflected = Octree::first_child(p.mid, p.t_in, p.entry);
-  std::string halves;
-  for (int b = 0; b < 3; ++b) {
-    if (b == p.entry || !p.moving[b]) continue;
-    const bool far = (reflected >> b) & 1;
-    const bool upper = far != bool((mask >> b) & 1);
-    halves += std::string(halves.empty() ? "" : "; ") + axis_name(b) + " at " + num(p.mid[b]) +
-              (far ? " < t_in: the ray is already in the far half, " : " > t_in: still the near half, ") +
-              axis_name(b) + (upper ? "+" : "-");
-  }
-  if (!inside && p.moving[p.entry])
-    halves += std::string(halves.empty() ? "" : "; ") + axis_name(p.entry) +
-              ", the entry plane's axis: the near half, " + axis_name(p.entry) +
-              (std::signbit(r.ray.direction[p.entry]) ? "+" : "-");
-  if (!halves.empty()) w += "Revelles' first child: " + halves + ". ";
-  // The order by the exit planes (the paper's table), as far as the planes go.
-  std::string order;
-  int count = 0;
-  for (int rc = reflected; rc < 8 && count < 8; ++count) {
-    float ct1[3];
-    for (int k = 0; k < 3; ++k) ct1[k] = (rc >> k) & 1 ? p.t1[k] : p.mid[k];
-    const int exit = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
-    const int octant = rc ^ mask;
-    order += std::string(order.empty() ? "" : ", then ") + octant_name(octant) + " (node " +
-             std::to_string(n->children[size_t(octant)]) + ")";
-    rc = Octree::kNextChild[rc][exit];
-    order += rc == 8 ? std::string(" which leaves the cell across ") + axis_name(exit) +
-                           " at t = " + num(ct1[exit])
-                     : std::string(", across ") + axis_name(exit) + " at t = " + num(ct1[exit]);
-  }
-  w += "Order by the exit planes: " + order + ".";
-  const int planes_first = reflected ^ mask;
-  if (n->children[size_t(planes_first)] != a.node)
-    w += inside ? " The ray starts inside the cell, so the children it has already left are passed over: the "
-                  "walk begins in " +
-                      octant_name(a.octant) + "."
-                : " The walk enters " + octant_name(a.octant) +
-                      " first: a child the ray grazes within rounding is walked too, in entry order.";
-  a.why = w;
+  a.why = walk_why(c, r, node_event);
   return a;
 }
 
@@ -472,76 +383,12 @@ Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
   return a;
 }
 
-// ---- The general BSP tree: first-child and next-pop, the kd-tree's questions with a plane of any
-// orientation (bsp.h): t* = (d - n.o) / (n.dir), near and far by the signed distance along the normal.
+// ---- first-child on a kd-tree or a general BSP tree (bsp.h), next-pop on every tree.
 
-bool walks_bsp(const QuestionContext& c) {
-  return c.trace && c.trace->structure.kind == "bsp";
-}
-
-std::string bsp_plane_text(const TraceNode& n) {
-  return "n = " + triple(n.normal) + ", d = " + num(n.offset);
-}
-
-// The Why of a BSP node's first child, with the kernel's own crossing (bsp_crossing).
 // "node 2 (LL)": the trace's id and the path in the slides' notation (none for a wide BVH's node).
 std::string node_named(const Trace* trace, int32_t id) {
   const std::string path = trace ? trace_node_path_text(*trace, id) : "";
   return "node " + std::to_string(id) + (path.empty() ? "" : " (" + path + ")");
-}
-
-std::string bsp_first_child_why(const TracedRay& r, const Event& e, const TraceNode& n) {
-  const BspPlane plane{n.normal, n.offset};
-  const glm::vec3 o = r.ray.origin, d = r.ray.direction;
-  const BspCrossing x = bsp_crossing(plane, o, d, std::max(std::fabs(e.t_min_node), std::fabs(e.t_max_node)));
-  const double dist =
-      double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z - double(n.offset);
-  const double ndir = double(n.normal.x) * d.x + double(n.normal.y) * d.y + double(n.normal.z) * d.z;
-  const float margin = tree_margin(r);
-  // The near child: the side the ray starts in; when both children are visited, the one visited first (the
-  // same, unless the origin lies on the plane within rounding: then the side the ray moves into).
-  const bool both = x.kind == BspCrossing::undecided ||
-                    (x.kind == BspCrossing::crosses && !(x.t_lo > e.t_max_node + margin) &&
-                     !(x.t_hi < e.t_min_node - margin));
-  const bool near_below = both ? x.below_first : dist < 0 ? true : dist > 0 ? false : x.below_first;
-  const std::string near = side(near_below), far = side(!near_below);
-  const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
-  std::string w = "Node " + std::to_string(e.node) + "'s plane n.p = d: " + bsp_plane_text(n) +
-                  ". The origin's signed distance n.o - d = " + num(dist) + " (" +
-                  (dist < 0   ? "below"
-                   : dist > 0 ? "above"
-                              : "on") +
-                  " the plane); n.dir = " + num(ndir) + ". ";
-  if (x.kind != BspCrossing::crosses) {
-    w += "The ray runs parallel to the plane (within rounding)";
-    if (x.kind == BspCrossing::stays)
-      return w + " and stays " + near + " it over " + interval + ": only the " + near + " child is visited.";
-    return w + " and may lie in it: Intersect(" + near + ") first, the " + far +
-           " child is pushed with the whole " + interval + ".";
-  }
-  const double t_star =
-      (double(n.offset) - (double(n.normal.x) * o.x + double(n.normal.y) * o.y + double(n.normal.z) * o.z)) /
-      ndir;
-  w += std::string("n.dir ") +
-       (ndir > 0 ? "> 0: the ray moves up the normal, from below to above"
-                 : "< 0: the ray moves down the normal, from above to below") +
-       "; the near child is the side the ray starts in, " + near + ". t* = (d - n.o) / (n.dir) = " +
-       num(t_star) + ". ";
-  if (x.t_lo > e.t_max_node + margin)
-    return w + "t* > t_max = " + num(e.t_max_node) +
-           ": the ray leaves the node before the plane. Only the near "
-           "child (" +
-           near + ") is visited; nothing is pushed.";
-  if (x.t_hi < e.t_min_node - margin && t_star < 0)
-    return w + "t* < 0: the plane lies behind the origin and the ray moves away from it. Only the near child (" +
-           near + ") is visited; nothing is pushed.";
-  if (x.t_hi < e.t_min_node - margin)
-    return w + "0 <= t* < t_min = " + num(e.t_min_node) +
-           ": the ray crossed the plane before it entered the node. Only the far child (" + far +
-           ") is visited; nothing is pushed.";
-  return w + "t* within " + interval + ": Intersect(near = " + near + ", t_min, t*) first, the far child (" +
-         far + ") is pushed with (t*, t_max) = (" +
-         num(std::clamp(float(t_star), e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ").";
 }
 
 Answer first_child_answer(const QuestionContext& c) {
@@ -556,8 +403,9 @@ Answer first_child_answer(const QuestionContext& c) {
     fail("first-child: node " + std::to_string(e.node) + " is a leaf, not an inner node");
   const TraceNode* n = c.trace ? find_node(*c.trace, e.node) : nullptr;
   if (walks_bvh(r))
-    fail("first-child: asks which side of a kd-tree's split plane comes first; a BVH has no split plane "
-         "(accel: kd or kd-median; on a BVH ask next-pop)");
+    fail(
+        "first-child: asks which side of a kd-tree's split plane comes first; a BVH has no split plane "
+        "(accel: kd or kd-median; on a BVH ask next-pop)");
   if (!n || n->leaf) fail("first-child: the trace has no split plane for node " + std::to_string(e.node));
 
   Answer a;
@@ -579,56 +427,16 @@ Answer first_child_answer(const QuestionContext& c) {
   auto named = [](int32_t id, const std::string& path) {
     return "node " + std::to_string(id) + (path.empty() ? "" : ", " + path);
   };
-  if (n->has_plane) {                              // a BSP tree's node: a plane of any orientation
+  if (n->has_plane) {  // a BSP tree's node: a plane of any orientation
     a.walk = "bsp";
-    a.why = bsp_first_child_why(r, e, *n);
+    a.why = walk_why(c, r, c.step);
     a.text = side(a.first_is_below) + " (" + named(a.first_child, a.first_child_path) + ")" +
              (a.far_pushed ? ", the far child, " + named(a.far_child, a.far_child_path) + ", is pushed"
                            : ", nothing is pushed");
     return a;
   }
 
-  // The kernel's numbers: t* by the direction's reciprocal, the margin. The near child is the side the ray
-  // starts in (the slides'; an origin on the plane: the side its direction points into). The kernel orders
-  // by the direction's sign bit instead: the same child whenever both are visited.
-  const int axis = n->axis;
-  const std::string an = axis_name(axis);
-  const float o = r.ray.origin[axis], d = r.ray.direction[axis];
-  const float t_star = (n->split - o) * (1.f / d);
-  const float margin = tree_margin(r);
-  // Both children visited (or the ray in the plane): the near one is the one visited first, the side the
-  // direction points into, which is the origin's side unless the origin lies on the plane within rounding.
-  const bool crosses = std::isnan(t_star) || (!(t_star > e.t_max_node + margin) && !(t_star < e.t_min_node - margin));
-  const bool origin_below = o < n->split ? true : o > n->split ? false : !std::signbit(d);
-  const bool near_below = crosses ? !std::signbit(d) : origin_below;
-  const bool on_plane = o == n->split || near_below != origin_below;
-  const std::string interval = "[t_min, t_max] = [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
-  const std::string head =
-      "Node " + node_named(c.trace, e.node).substr(5) + " splits " + an + " at " + num(n->split) + "; the ray starts at o." +
-      an + " = " + num(o) +
-      (on_plane ? std::string(o == n->split ? ", on the plane" : ", on the plane within rounding") +
-                      ", and moves " + (near_below ? "up" : "down") + " (d." + an + " = " + num(d) + ")"
-                : std::string(near_below ? ", below" : ", above") + " the plane") +
-      ", so the " + side(near_below) + " child is the near one. ";
-  if (std::isnan(t_star))
-    a.why = head + "The ray lies in the split plane (t* undefined): Intersect(near = " + side(near_below) +
-            ") first, the far child is pushed with the whole " + interval + ".";
-  else if (t_star > e.t_max_node + margin)
-    a.why = head + "t* = " + num(t_star) + " > t_max = " + num(e.t_max_node) +
-            ": the ray leaves the node before the plane. Only the near child (" + side(near_below) +
-            ") is visited; nothing is pushed.";
-  else if (t_star < e.t_min_node - margin && t_star < 0)
-    a.why = head + "t* = " + num(t_star) +
-            " < 0: the plane lies behind the origin and the ray moves away from it. Only the near child (" +
-            side(near_below) + ") is visited; nothing is pushed.";
-  else if (t_star < e.t_min_node - margin)
-    a.why = head + "0 <= t* = " + num(t_star) + " < t_min = " + num(e.t_min_node) +
-            ": the ray crossed the plane before it entered the node. Only the far child (" + side(!near_below) +
-            ") is visited; nothing is pushed.";
-  else
-    a.why = head + "t* = " + num(t_star) + " within " + interval + ": Intersect(near = " + side(near_below) +
-            ", t_min, t*) first, the far child (t*, t_max) = (" +
-            num(std::clamp(t_star, e.t_min_node, e.t_max_node)) + ", " + num(e.t_max_node) + ") is pushed.";
+  a.why = walk_why(c, r, c.step);
   a.text = side(a.first_is_below) + " (" + named(a.first_child, a.first_child_path) + ")" +
            (a.far_pushed ? ", the far child, " + named(a.far_child, a.far_child_path) + ", is pushed"
                          : ", nothing is pushed");
@@ -684,16 +492,12 @@ Answer next_pop_answer(const QuestionContext& c) {
   a.kind = QuestionKind::next_pop;
   a.stops = true;
   bool any_hit = false;
-  std::vector<const Event*> skipped;  // a BVH's popped entries that start beyond the hit: skipped, the walk goes on
   for (size_t i = after; i < ev.size(); ++i) {
     if (ev[i].type == EventType::hit_accepted) {
       any_hit = ev[i].reason == AcceptReason::any_hit;
       break;
     }
-    if (ev[i].type == EventType::skip) {
-      skipped.push_back(&ev[i]);
-      continue;
-    }
+    if (ev[i].type == EventType::skip) continue;  // a BVH's popped entry beyond the hit: the walk goes on
     if (ev[i].type != EventType::pop) break;
     if (i + 1 < ev.size() && ev[i + 1].type == EventType::skip) continue;
     if (i + 1 < ev.size() && ev[i + 1].type == EventType::node && ev[i + 1].node == ev[i].node) {
@@ -703,80 +507,31 @@ Answer next_pop_answer(const QuestionContext& c) {
     }
   }
 
+  // Why: the leaf's result and the stack, then the replay's Why of each event up to the decision (the pops,
+  // a BVH's skips, the walk's end), as the state panel gives them one step at a time.
   const std::string hit = hit_prim >= 0 ? "the nearest hit so far, t = " + num(hit_t) + " (primitive " +
                                               std::to_string(hit_prim) + ")"
                                         : "no hit yet";
-  const std::string leaf_name = "Leaf " + node_named(c.trace, ev[size_t(leaf)].node).substr(5);
-  if (any_hit) {
-    a.why = leaf_name + ": a shadow ray stops at its first hit, t = " + num(hit_t) + ".";
-  } else if (walks_bsp(c) && !stack.empty()) {
-    // A BSP tree's stack is not ordered by t_min either (t* is an interval): an entry that starts beyond the
-    // hit is popped and dropped on its own, and the popping goes on.
-    const float margin = tree_margin(r);
-    std::string w = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
-                    (stack.size() == 1 ? " node" : " nodes") + ". ";
-    for (size_t i = after; i < ev.size() && ev[i].type == EventType::pop; ++i) {
-      const Event& k = ev[i];
-      if (!a.stops && k.node == a.node) break;
-      w += "Pop " + node_named(c.trace, k.node) + ": it starts at t_min = " + num(k.t_min_node) +
-           " > t(hit) = " + num(hit_t) + " (beyond the margin " + num(margin) +
-           "), so nothing in it can be nearer: drop it. ";
-    }
-    if (a.stops)
-      w += "The stack is empty: the walk stops with " + hit + ".";
-    else
-      w += "Pop " + node_named(c.trace, a.node) + " with [t_min, t_max] = [" + num(stack.back()->t_min_node) +
-           ", " + num(stack.back()->t_max_node) + "]" +
-           (hit_prim < 0 ? ": no hit yet, visit it."
-                         : ": t(hit) = " + num(hit_t) +
-                               " is not before its t_min, "
-                               "so a nearer hit may lie in it: visit it.");
-    a.why = w;
-  } else if (walks_bvh(r) && !stack.empty()) {
-    // A BVH's stack is not ordered by distance (sibling boxes overlap), so the walk does not stop at the first
-    // entry beyond the hit: it skips that one and pops the next.
-    std::string w = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
-                    (stack.size() == 1 ? " node" : " nodes") + ". ";
-    for (const Event* k : skipped)
-      w += "Pop " + node_named(c.trace, k->node) + ": its box starts at t_near = " + num(k->t_min_node) +
-           " > t(hit) = " + num(hit_t) + ", so nothing in it can be nearer: skip it. ";
-    if (a.stops)
-      w += "The stack is empty: the walk stops with " + hit + ".";
-    else
-      w += "Pop " + node_named(c.trace, a.node) + " and visit it: " +
-           (hit_prim < 0 ? std::string("no hit yet") : "its box may hold a hit nearer than t = " + num(hit_t)) +
-           ". (Unlike the kd-tree's, a BVH's stack is not sorted by distance: boxes overlap, so an entry beyond "
-           "the hit is skipped and the walk goes on.)";
-    a.why = w;
-  } else if (stack.empty()) {
-    a.why = leaf_name +
-            ": the stack is empty, every node the ray crosses has been visited. The walk stops with " + hit +
-            ".";
-  } else {
-    const Event& top = *stack.back();
-    const float margin = tree_margin(r);
-    std::string head = leaf_name + " done with " + hit + ". The stack holds " + std::to_string(stack.size()) +
-                       (stack.size() == 1 ? " node" : " nodes") + "; its top is " +
-                       node_named(c.trace, top.node) + " with [t_min, t_max] = [" + num(top.t_min_node) + ", " +
-                       num(top.t_max_node) + "]. ";
-    if (hit_prim < 0)
-      a.why = head + "No hit yet: pop " + node_named(c.trace, top.node) + " and visit it.";
-    else if (hit_t < top.t_min_node - margin)
-      a.why = head + "t(hit) = " + num(hit_t) + " < t_min = " + num(top.t_min_node) +
-              ": the node starts beyond the hit, and every node under it later still. Stop: the hit is final "
-              "(traverse until tmin(next node) > tmax(ray)).";
-    else if (hit_t < top.t_min_node)
-      a.why = head + "t(hit) = " + num(hit_t) + " lies before t_min = " + num(top.t_min_node) +
-              ", but within the walk's rounding margin " + num(margin) + ": pop " +
-              node_named(c.trace, top.node) + " and visit it, so that no hit is lost to rounding.";
-    else
-      a.why = head + "t(hit) = " + num(hit_t) + " >= t_min = " + num(top.t_min_node) +
-              ": a nearer hit may lie in it. Pop " + node_named(c.trace, top.node) + " and visit it.";
+  std::string w = "Leaf " + node_named(c.trace, ev[size_t(leaf)].node).substr(5) + " done with " + hit + ".";
+  if (!any_hit)
+    w += stack.empty() ? " The stack is empty."
+                       : " The stack holds " + std::to_string(stack.size()) +
+                             (stack.size() == 1 ? " node." : " nodes.");
+  for (size_t i = after; i < ev.size(); ++i) {
+    const EventType t = ev[i].type;
+    if (t != EventType::pop && t != EventType::skip && t != EventType::hit_accepted &&
+        t != EventType::ray_end)
+      break;
+    w += "\n" + walk_why(c, r, int(i));
+    const bool visited = t == EventType::pop && i + 1 < ev.size() && ev[i + 1].type == EventType::node &&
+                         ev[i + 1].node == ev[i].node;
+    if (visited || t == EventType::hit_accepted || t == EventType::ray_end) break;
   }
+  a.why = w;
   if (!a.stops && c.trace) a.node_path = trace_node_path_text(*c.trace, a.node);
   a.text = a.stops ? "the walk stops here"
-                   : "node " + std::to_string(a.node) + (a.node_path.empty() ? "" : " (" + a.node_path + ")") +
-                         " is popped and visited";
+                   : "node " + std::to_string(a.node) +
+                         (a.node_path.empty() ? "" : " (" + a.node_path + ")") + " is popped and visited";
   return a;
 }
 
@@ -922,7 +677,8 @@ Answer bvol_kind_answer(const QuestionContext& c) {
                   r.false_positives_per_ray, r.entered_per_ray, 100.0 * r.false_positive_rate);
     per += (per.empty() ? "" : "; ") + std::string(buf);
   }
-  for (const std::string& v : a.volumes) a.text += (a.text.empty() ? "" : " and ") + std::string(volume_words(v));
+  for (const std::string& v : a.volumes)
+    a.text += (a.text.empty() ? "" : " and ") + std::string(volume_words(v));
   a.text += a.volumes.size() == 1 ? ": it is entered in vain least often" : ": they tie";
   a.why = "Per ray, over " + std::to_string(rows.front().rays) + " camera rays (one per pixel): " + per +
           ". A volume is entered in vain when the ray enters it but misses the object inside: the emptier "
@@ -1071,7 +827,8 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
     case QuestionKind::sah_plane: {
       if (p == "leaf") return answer.axis < 0;
       std::vector<std::string> parts = split_commas(p);
-      const char* forms = "x, y or z, optionally ,POSITION (world units) or ,PERCENT% (across the node), or leaf";
+      const char* forms =
+          "x, y or z, optionally ,POSITION (world units) or ,PERCENT% (across the node), or leaf";
       if (parts.size() > 2 || axis_of(parts[0]) < 0) return bad(forms);
       if (answer.axis != axis_of(parts[0])) return false;
       if (parts.size() == 1) return true;
@@ -1094,12 +851,12 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
       if (p == "no") return !answer.subdivided;
       return bad("yes or no");
     case QuestionKind::bvol_kind: {
-      const std::string kind = p == "box" || p == "aabb" || p == "bvol" ? "bvol"
-                               : p == "sphere" || p == "bvol-sphere"   ? "bvol-sphere"
-                               : p == "14-dop" || p == "kdop" || p == "k-dop" || p == "dop" || p == "bvol-kdop"
-                                   ? "bvol-kdop"
-                               : p == "orientedbox" || p == "obb" || p == "oriented" || p == "bvol-obb" ? "bvol-obb"
-                                                                                                       : "";
+      const std::string kind =
+          p == "box" || p == "aabb" || p == "bvol"                                         ? "bvol"
+          : p == "sphere" || p == "bvol-sphere"                                            ? "bvol-sphere"
+          : p == "14-dop" || p == "kdop" || p == "k-dop" || p == "dop" || p == "bvol-kdop" ? "bvol-kdop"
+          : p == "orientedbox" || p == "obb" || p == "oriented" || p == "bvol-obb"         ? "bvol-obb"
+                                                                                           : "";
       if (kind.empty()) return bad("box, sphere, 14-dop or oriented box");
       return std::find(answer.volumes.begin(), answer.volumes.end(), kind) != answer.volumes.end();
     }
@@ -1117,25 +874,31 @@ std::string prediction_feedback(const Answer& answer, const std::string& predict
         return "The walk stops in a cell only once a hit lies inside it (t of the hit <= the cell's exit t): "
                "traverse until tmin(next cell) > tmax(ray). Is there such a hit yet?";
       if (answer.stops)
-        return "A hit found in this cell lies before the cell's exit, so no later cell can hold a nearer one: "
+        return "A hit found in this cell lies before the cell's exit, so no later cell can hold a nearer "
+               "one: "
                "the walk stops here.";
       if (answer.walk == "octree")
-        return "The next cell lies across the face the ray leaves through: the exit plane with the smallest t "
+        return "The next cell lies across the face the ray leaves through: the exit plane with the smallest "
+               "t "
                "(t_exit per axis), not the nearest cell centre.";
       return "The 3D-DDA steps to the neighbour across the face the ray leaves through: the axis with the "
              "smallest tMax, which need not be the direction's largest component.";
     case QuestionKind::dda_axis:
       if (p == "none")
-        return "The walk ends in this cell only with a hit before the cell's exit or when it leaves the grid.";
-      return "Compare the three tMax values (the t where the ray reaches the next boundary on each axis): the "
+        return "The walk ends in this cell only with a hit before the cell's exit or when it leaves the "
+               "grid.";
+      return "Compare the three tMax values (the t where the ray reaches the next boundary on each axis): "
+             "the "
              "smallest decides, not the largest direction component nor the nearest boundary in space.";
     case QuestionKind::first_child: {
       std::vector<std::string> parts = split_commas(p);
       const bool said_push = parts.size() == 2 && parts[1] == "push";
       const bool said_no_push = parts.size() == 2 && parts[1] == "nopush";
       if (answer.walk == "octree")
-        return "Of the children the ray crosses, it enters first the one at its entry point: the entry plane is "
-               "the one with the largest entry t; on each other axis it starts in the far half when it reaches "
+        return "Of the children the ray crosses, it enters first the one at its entry point: the entry plane "
+               "is "
+               "the one with the largest entry t; on each other axis it starts in the far half when it "
+               "reaches "
                "that axis's centre plane before it enters the cell.";
       if (said_push && !answer.far_pushed)
         return "A far child is pushed only when the ray meets the plane inside the node: t* within "
@@ -1149,10 +912,12 @@ std::string prediction_feedback(const Answer& answer, const std::string& predict
     }
     case QuestionKind::next_pop:
       if (said_stop)
-        return "The walk stops only when the stack is empty or the top's t_min lies beyond the nearest hit: a "
+        return "The walk stops only when the stack is empty or the top's t_min lies beyond the nearest hit: "
+               "a "
                "node that starts before the hit may still hold a nearer one.";
       if (answer.stops)
-        return "Every entry on the stack starts beyond the nearest hit (or none is left): nothing in them can "
+        return "Every entry on the stack starts beyond the nearest hit (or none is left): nothing in them "
+               "can "
                "be nearer, so the walk stops with the stack as it is.";
       return "The stack is last in, first out: the next node is the one pushed most recently (the top), the "
              "far child of the nearest split still open, not the first one pushed.";
@@ -1174,7 +939,8 @@ std::string prediction_feedback(const Answer& answer, const std::string& predict
       if (p == "sphere" || p == "bvol-sphere")
         return "The smallest sphere around a flat or a long object is mostly empty: a ray that enters it "
                "usually passes beside the object. A sphere fits only round objects well.";
-      return "Picture the empty space between each kind of volume and the object it encloses: the axis-aligned "
+      return "Picture the empty space between each kind of volume and the object it encloses: the "
+             "axis-aligned "
              "box fits walls in the axis planes exactly but not a turned or slanted object; more slabs (the "
              "14-DOP's diagonals) cut corners off; a box turned with the object (the oriented box) fits long "
              "slanted shapes.";

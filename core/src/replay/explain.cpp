@@ -162,6 +162,44 @@ std::string mailbox_stamp(const Trace* trace, const TracedRay& ray, int32_t prim
          "rays.";
 }
 
+std::string cell_name(const int* c) {
+  return "(" + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," + std::to_string(c[2]) + ")";
+}
+
+// The 3D-DDA's step out of the cell of event `cell`: tMax, the smallest of it (the kernel's choice, ties to
+// the lower axis), the next cell; or why the walk ends in this cell. The events after it are the truth.
+std::string explain_dda_step(const TracedRay& ray, int cell) {
+  const std::vector<Event>& ev = ray.events;
+  const Event& e = ev[size_t(cell)];
+  const std::string tmax = "tMax = " + vec(e.t_max);
+  const int smallest = e.next_axis >= 0                                     ? e.next_axis
+                       : (e.t_max.x <= e.t_max.y && e.t_max.x <= e.t_max.z) ? 0
+                       : e.t_max.y <= e.t_max.z                             ? 1
+                                                                            : 2;
+  const std::string axis = axis_name(smallest);
+  const std::string step = ray.ray.direction[smallest] > 0.f ? "+1" : "-1";
+  const int next = find_event(ray, cell, EventType::cell, true);
+  if (next >= 0)
+    return tmax + ": the smallest is " + axis + ", so the 3D-DDA steps " + axis + " by " + step +
+           " into cell " + cell_name(ev[size_t(next)].cell) + ".";
+  // Why the walk ends here: a hit inside the cell, a shadow ray's first hit, or the grid's far side.
+  const int accepted = find_event(ray, cell, EventType::hit_accepted, true);
+  const Event* a = accepted >= 0 ? &ev[size_t(accepted)] : nullptr;
+  const std::string would = tmax + ": the 3D-DDA would step " + axis + " by " + step + " next, but ";
+  if (a && a->reason == AcceptReason::inside_cell)
+    return would + "the hit at t = " + num(a->t) +
+           " lies inside this cell: tmin(next cell) = t_exit = " + num(e.t_exit) +
+           " > tmax(ray) = " + num(a->t) + ", so the walk ends in this cell.";
+  if (a && a->reason == AcceptReason::any_hit)
+    return would + "a shadow ray stops at its first hit, t = " + num(a->t) + ": the walk ends in this cell.";
+  if (e.next_axis < 0)
+    return tmax + ": the smallest, " + axis + " = " + num(e.t_max[smallest]) +
+           ", lies beyond where the ray leaves the grid, t = " + num(e.t_exit) +
+           ": the walk ends in this cell.";
+  return tmax + ": the smallest is " + axis + ", but stepping " + axis + " by " + step +
+         " leaves the grid: the walk ends in this cell.";
+}
+
 std::string explain_grid_rule(const Trace* trace, const TracedRay& ray, const ReplayState& s) {
   const Event& e = *s.event;
   const Event* cell = s.cell_event >= 0 ? &ray.events[size_t(s.cell_event)] : nullptr;
@@ -180,24 +218,13 @@ std::string explain_grid_rule(const Trace* trace, const TracedRay& ray, const Re
       if (e.prim < 0) return "Miss: the walk left the grid without a hit.";
       return "Result: primitive " + std::to_string(e.prim) + " at t = " + num(e.t) + ".";
     case EventType::cell:
-      if (e.next_axis < 0)
-        return "min t_max = " + num(std::min({e.t_max.x, e.t_max.y, e.t_max.z})) +
-               " > t_exit(grid) = " + num(e.t_exit) + ": the walk ends in this cell.";
-      // The kernel picks the axis on entering the cell; a hit found in the cell may end the walk before the
-      // step.
-      if (find_event(ray, s.step, EventType::cell, true) < 0 &&
-          find_event(ray, s.step, EventType::hit_accepted, true) >= 0)
-        return "The 3D-DDA would step along " + std::string(axis_name(e.next_axis)) + " next (t_max." +
-               axis_name(e.next_axis) + " = " + num(e.t_max[e.next_axis]) +
-               " is the smallest t_max), but the walk ends in this cell: a hit found here lies before its "
-               "exit.";
-      return "Step along " + std::string(axis_name(e.next_axis)) + ": t_max." + axis_name(e.next_axis) +
-             " = " + num(e.t_max[e.next_axis]) + " is the smallest t_max.";
+      return explain_dda_step(ray, s.step);
     case EventType::ray_begin: {
       int first = find_event(ray, 0, EventType::cell, true);
-      if (first < 0) return "The ray misses the grid's box (slab test): no cell to visit.";
-      return "Slab test: the ray enters the grid's box at t = " + num(ray.events[size_t(first)].t_enter) +
-             "; the walk starts in the cell that contains that point.";
+      if (first < 0) return "Slab test: the ray misses the grid's box, so there is no cell to visit.";
+      const Event& c = ray.events[size_t(first)];
+      return "Slab test: the ray enters the grid's box at t = " + num(c.t_enter) +
+             "; the walk starts in the cell that contains that point, " + cell_name(c.cell) + ".";
     }
     case EventType::prim_test: {
       std::string where = cell ? " in cell (" + std::to_string(cell->cell[0]) + "," +

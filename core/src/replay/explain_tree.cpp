@@ -231,9 +231,20 @@ std::string explain_tree_rule(const Trace* trace, const TracedRay& ray, const Re
       NodeCrossing c = trace ? node_crossing(*trace, ray, s) : NodeCrossing{};
       if (!c.valid) return "Inner " + node_name(trace, e.node) + ": the walk goes on in its children.";
       std::string a = axis_name(c.axis);
-      std::string head = "Inner " + node_name(trace, c.node) + " splits " + a + " at " + num(c.split) +
-                         ". t* = (split - o." + a + ") / d." + a + " = " + num(c.t_star) + ".\n";
       if (c.general) return explain_bsp_node(trace, c);
+      // The near child: the side the ray starts in (the slides'); an origin on the plane, or on it within
+      // rounding when both children are visited, starts in the side its direction points into.
+      const float o = ray.ray.origin[c.axis], d = ray.ray.direction[c.axis];
+      const bool starts_below = o < c.split;
+      const std::string near_why =
+          o != c.split && starts_below == c.near_is_below
+              ? "The ray starts " + side(starts_below) + " (o." + a + " = " + num(o) +
+                    "): that is the near side."
+              : "The ray starts on the plane" + std::string(o == c.split ? "" : " within rounding") + " (o." +
+                    a + " = " + num(o) + ") and moves " + (c.near_is_below ? "up" : "down") + " (d." + a +
+                    " = " + num(d) + "): the near side is " + side(c.near_is_below) + ".";
+      std::string head = "Inner " + node_name(trace, c.node) + " splits " + a + " at " + num(c.split) + ". " +
+                         near_why + "\nt* = (split - o." + a + ") / d." + a + " = " + num(c.t_star) + ".\n";
       std::string near_name = node_name(trace, c.near_child) + " (" + side(c.near_is_below) + ")";
       std::string far_name = node_name(trace, c.far_child) + " (" + side(!c.near_is_below) + ")";
       switch (c.crossing) {

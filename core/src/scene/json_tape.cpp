@@ -47,7 +47,7 @@ struct JsonTapeBuilder {
   }
   void begin(Kind kind) {
     uint32_t id = add(kind, 0);
-    open.push_back(Open{id, pending.size()});
+    open.push_back(Open{id, pending.size(), 0, std::string()});
   }
   void begin(Kind kind, const std::string& key) {
     begin(kind);
@@ -76,17 +76,21 @@ struct JsonTapeBuilder {
 
 namespace {
 
-// nlohmann's SAX events into the builder; errors are thrown as json::parse would throw them. Inside a streamed
-// array every value goes to a second builder, one element at a time, and each finished element to the handler.
+// nlohmann's SAX events into the builder; errors are thrown as json::parse would throw them. Inside a
+// streamed array every value goes to a second builder, one element at a time, and each finished element to
+// the handler.
 struct SaxToTape {
   using json = nlohmann::json;
   JsonTapeBuilder* b;
-  JsonStreamHandler* handler = nullptr;
-  JsonTapeBuilder element;     // the streamed element being built
-  bool streaming = false;      // the innermost open container of b is a streamed array
-  size_t streams = 0;          // streamed arrays so far
-  std::string key_;            // the last key of b's innermost object
+  JsonStreamHandler* handler;
+  JsonTapeBuilder element;  // the streamed element being built
+  bool streaming = false;   // the innermost open container of b is a streamed array
+  size_t streams = 0;       // streamed arrays so far
+  std::string key_;         // the last key of b's innermost object
   std::vector<size_t> where;
+
+  SaxToTape(JsonTapeBuilder* builder, JsonStreamHandler* stream_handler)
+      : b(builder), handler(stream_handler) {}
 
   JsonTapeBuilder& to() { return streaming ? element : *b; }
   // After a value of the streamed array's element: the element is done once its builder has nothing open.
@@ -104,9 +108,15 @@ struct SaxToTape {
 
   bool null() { return to().add(Kind::null, 0), scalar_done(); }
   bool boolean(bool v) { return to().add(Kind::boolean, v), scalar_done(); }
-  bool number_integer(json::number_integer_t v) { return to().add(Kind::number_integer, uint64_t(v)), scalar_done(); }
-  bool number_unsigned(json::number_unsigned_t v) { return to().add(Kind::number_unsigned, v), scalar_done(); }
-  bool number_float(json::number_float_t v, const json::string_t&) { return to().add_double(v), scalar_done(); }
+  bool number_integer(json::number_integer_t v) {
+    return to().add(Kind::number_integer, uint64_t(v)), scalar_done();
+  }
+  bool number_unsigned(json::number_unsigned_t v) {
+    return to().add(Kind::number_unsigned, v), scalar_done();
+  }
+  bool number_float(json::number_float_t v, const json::string_t&) {
+    return to().add_double(v), scalar_done();
+  }
   bool string(json::string_t& s) { return to().add_string(s), scalar_done(); }
   bool binary(json::binary_t&) { return false; }  // not produced by the JSON text parser
   bool start_object(std::size_t) {
@@ -167,35 +177,42 @@ JsonTape JsonTape::parse(std::string_view text, JsonStreamHandler* handler) {
     b.tape.nodes_.reserve(text.size() / 10);
     b.tape.children_.reserve(text.size() / 10);
   }
-  SaxToTape sax{&b, handler};
+  SaxToTape sax(&b, handler);
   nlohmann::json::sax_parse(text.begin(), text.end(), &sax);
   return std::move(b.tape);
 }
 
 JsonTape JsonTape::parse_file(std::FILE* file, JsonStreamHandler* handler) {
   JsonTapeBuilder b;
-  SaxToTape sax{&b, handler};
+  SaxToTape sax(&b, handler);
   nlohmann::json::sax_parse(file, &sax);
   return std::move(b.tape);
 }
 
 // ---- reading ----
 
-Kind JsonValue::kind() const { return tape_ ? tape_->nodes_[id_].kind : Kind::null; }  // absent: null
+Kind JsonValue::kind() const {
+  return tape_ ? tape_->nodes_[id_].kind : Kind::null;
+}  // absent: null
 
-bool JsonValue::get_bool() const { return tape_->nodes_[id_].bits != 0; }
+bool JsonValue::get_bool() const {
+  return tape_->nodes_[id_].bits != 0;
+}
 
 double JsonValue::get_double() const {
   const JsonTape::Node& n = tape_->nodes_[id_];
   switch (n.kind) {
-    case Kind::number_integer: return double(int64_t(n.bits));
-    case Kind::number_unsigned: return double(n.bits);
+    case Kind::number_integer:
+      return double(int64_t(n.bits));
+    case Kind::number_unsigned:
+      return double(n.bits);
     case Kind::number_float: {
       double d;
       std::memcpy(&d, &n.bits, sizeof d);
       return d;
     }
-    default: return 0.0;
+    default:
+      return 0.0;
   }
 }
 
@@ -211,9 +228,13 @@ std::string_view JsonValue::get_string() const {
   return std::string_view(tape_->strings_).substr(n.bits, n.count);
 }
 
-bool JsonValue::is_streamed() const { return tape_ && tape_->nodes_[id_].streamed; }
+bool JsonValue::is_streamed() const {
+  return tape_ && tape_->nodes_[id_].streamed;
+}
 
-size_t JsonValue::stream_number() const { return size_t(tape_->nodes_[id_].bits); }
+size_t JsonValue::stream_number() const {
+  return size_t(tape_->nodes_[id_].bits);
+}
 
 size_t JsonValue::size() const {
   const JsonTape::Node& n = tape_->nodes_[id_];

@@ -12,28 +12,25 @@ Trace record_bsp_trace(const Geometry& geometry, const BspTree& tree, const std:
   t.structure.bounds = data.bounds;
   size_t leaves = 0;
   for (const BspNode& n : data.nodes) leaves += n.is_leaf();
-  auto param = [&](const char* key, double number) {
-    t.structure.params.push_back({key, false, number, ""});
-  };
-  auto text = [&](const char* key, const char* value) {
-    t.structure.params.push_back({key, true, 0.0, value});
-  };
-  text("directions", bsp_directions_name(o.directions));
-  param("candidates", o.candidates);
-  param("t_i", o.t_i);
-  param("t_t", o.t_t);
-  param("max_depth", bsp_max_depth(o, geometry.size()));
-  param("leaf_size", o.leaf_size);
-  text("mailboxes", tree.mailboxes() ? "on" : "off");
-  param("nodes", double(data.nodes.size()));
-  param("leaves", double(leaves));
-  param("references", double(data.prim_index.size()));
+  detail::add_text_param(&t.structure, "directions", bsp_directions_name(o.directions));
+  detail::add_param(&t.structure, "candidates", o.candidates);
+  detail::add_param(&t.structure, "t_i", o.t_i);
+  detail::add_param(&t.structure, "t_t", o.t_t);
+  detail::add_param(&t.structure, "max_depth", bsp_max_depth(o, geometry.size()));
+  detail::add_param(&t.structure, "leaf_size", o.leaf_size);
+  detail::add_text_param(&t.structure, "mailboxes", tree.mailboxes() ? "on" : "off");
+  detail::add_param(&t.structure, "nodes", double(data.nodes.size()));
+  detail::add_param(&t.structure, "leaves", double(leaves));
+  detail::add_param(&t.structure, "references", double(data.prim_index.size()));
   // How adaptive the tree is: its inner nodes by where their planes came from.
   const BspTreeStats stats = bsp_tree_stats(data, o);
-  param("planes_axis", double(stats.inner_by_source[int(BspPlaneSource::axis)]));
-  param("planes_face_diagonal", double(stats.inner_by_source[int(BspPlaneSource::face_diagonal)]));
-  param("planes_body_diagonal", double(stats.inner_by_source[int(BspPlaneSource::body_diagonal)]));
-  param("planes_primitive", double(stats.inner_by_source[int(BspPlaneSource::primitive)]));
+  detail::add_param(&t.structure, "planes_axis", double(stats.inner_by_source[int(BspPlaneSource::axis)]));
+  detail::add_param(&t.structure, "planes_face_diagonal",
+                    double(stats.inner_by_source[int(BspPlaneSource::face_diagonal)]));
+  detail::add_param(&t.structure, "planes_body_diagonal",
+                    double(stats.inner_by_source[int(BspPlaneSource::body_diagonal)]));
+  detail::add_param(&t.structure, "planes_primitive",
+                    double(stats.inner_by_source[int(BspPlaneSource::primitive)]));
   detail::sort_params(&t.structure);
 
   detail::record_traversals(geometry, rays, tree, &t);

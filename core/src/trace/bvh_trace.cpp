@@ -14,14 +14,13 @@ const char* builder_name(BvhBuilder b) {
 
 // The build options every BVH trace states (bvh_build.h's BvhOptions).
 void bvh_params(const BvhOptions& o, TraceStructure* s) {
-  auto param = [&](const char* key, double number) { s->params.push_back({key, false, number, ""}); };
-  s->params.push_back({"builder", true, 0.0, builder_name(o.builder)});
-  param("t_i", o.t_i);
-  param("t_t", o.t_t);
-  param("bins", o.bins);
-  param("leaf_size", o.leaf_size);
-  param("max_leaf_size", o.max_leaf_size);
-  param("max_depth", o.max_depth);
+  detail::add_text_param(s, "builder", builder_name(o.builder));
+  detail::add_param(s, "t_i", o.t_i);
+  detail::add_param(s, "t_t", o.t_t);
+  detail::add_param(s, "bins", o.bins);
+  detail::add_param(s, "leaf_size", o.leaf_size);
+  detail::add_param(s, "max_leaf_size", o.max_leaf_size);
+  detail::add_param(s, "max_depth", o.max_depth);
 }
 
 }  // namespace
@@ -34,10 +33,10 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
   size_t leaves = 0;
   for (const BvhNode& n : data.nodes) leaves += n.is_leaf();
   bvh_params(bvh.options(), &t.structure);
-  t.structure.params.push_back(
-      {"order", true, 0.0, bvh.order() == BvhOrder::split_axis ? "split_axis" : "entry_distance"});
-  t.structure.params.push_back({"nodes", false, double(data.nodes.size()), ""});
-  t.structure.params.push_back({"leaves", false, double(leaves), ""});
+  detail::add_text_param(&t.structure, "order",
+                         bvh.order() == BvhOrder::split_axis ? "split_axis" : "entry_distance");
+  detail::add_param(&t.structure, "nodes", double(data.nodes.size()));
+  detail::add_param(&t.structure, "leaves", double(leaves));
   detail::sort_params(&t.structure);
 
   detail::record_traversals(geometry, rays, bvh, &t);
@@ -65,9 +64,9 @@ Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const 
   size_t leaves = 0;
   for (const WideBvhView::Node& n : view.nodes) leaves += n.leaf;
   bvh_params(bvh.options(), &t.structure);
-  t.structure.params.push_back({"width", false, double(bvh.width()), ""});
-  t.structure.params.push_back({"nodes", false, double(view.nodes.size()), ""});
-  t.structure.params.push_back({"leaves", false, double(leaves), ""});
+  detail::add_param(&t.structure, "width", double(bvh.width()));
+  detail::add_param(&t.structure, "nodes", double(view.nodes.size()));
+  detail::add_param(&t.structure, "leaves", double(leaves));
   detail::sort_params(&t.structure);
 
   detail::record_rays(

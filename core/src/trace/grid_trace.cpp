@@ -14,19 +14,15 @@ Trace record_grid_trace(const Geometry& geometry, const UniformGrid& grid,
   Trace t = detail::begin_trace(geometry, "grid", scene_path, scene_hash);
   t.structure.bounds = grid.bounds();
   t.structure.resolution = grid.resolution();
-  auto param = [&](const char* key, double number) {
-    t.structure.params.push_back({key, false, number, ""});
-  };
-  param("density", grid.options().density);
-  t.structure.params.push_back(
-      {"resolution_from", true, 0.0, grid.options().resolution ? "explicit" : "density"});
-  t.structure.params.push_back({"insert", true, 0.0, grid.options().exact_insert ? "exact" : "bbox"});
-  param("references", double(grid.reference_count()));
+  detail::add_param(&t.structure, "density", grid.options().density);
+  detail::add_text_param(&t.structure, "resolution_from", grid.options().resolution ? "explicit" : "density");
+  detail::add_text_param(&t.structure, "insert", grid.options().exact_insert ? "exact" : "bbox");
+  detail::add_param(&t.structure, "references", double(grid.reference_count()));
   if (grid.coarsened()) {
     std::array<int, 3> r = grid.requested_resolution();
     std::string from = std::to_string(r[0]) + "x" + std::to_string(r[1]) + "x" + std::to_string(r[2]);
-    t.structure.params.push_back({"coarsened_from", true, 0.0, from});
-    t.structure.params.push_back({"coarsening", true, 0.0, to_string(grid.coarsening())});
+    detail::add_text_param(&t.structure, "coarsened_from", from);
+    detail::add_text_param(&t.structure, "coarsening", to_string(grid.coarsening()));
   }
   detail::sort_params(&t.structure);
 

@@ -20,22 +20,16 @@ Trace record_kd_trace(const Geometry& geometry, const KdTree& tree, const std::v
   t.structure.bounds = data.bounds;
   size_t leaves = 0;
   for (const KdNode& n : data.nodes) leaves += n.is_leaf();
-  auto param = [&](const char* key, double number) {
-    t.structure.params.push_back({key, false, number, ""});
-  };
-  auto text = [&](const char* key, const char* value) {
-    t.structure.params.push_back({key, true, 0.0, value});
-  };
-  text("builder", builder_name(o.builder));
-  param("t_i", o.t_i);
-  param("t_t", o.t_t);
-  param("empty_bonus", o.empty_bonus);
-  param("max_depth", kd_max_depth(o, geometry.size()));
-  param("leaf_size", o.leaf_size);
-  text("mailboxes", tree.mailboxes() ? "on" : "off");
-  param("nodes", double(data.nodes.size()));
-  param("leaves", double(leaves));
-  param("references", double(data.prim_index.size()));
+  detail::add_text_param(&t.structure, "builder", builder_name(o.builder));
+  detail::add_param(&t.structure, "t_i", o.t_i);
+  detail::add_param(&t.structure, "t_t", o.t_t);
+  detail::add_param(&t.structure, "empty_bonus", o.empty_bonus);
+  detail::add_param(&t.structure, "max_depth", kd_max_depth(o, geometry.size()));
+  detail::add_param(&t.structure, "leaf_size", o.leaf_size);
+  detail::add_text_param(&t.structure, "mailboxes", tree.mailboxes() ? "on" : "off");
+  detail::add_param(&t.structure, "nodes", double(data.nodes.size()));
+  detail::add_param(&t.structure, "leaves", double(leaves));
+  detail::add_param(&t.structure, "references", double(data.prim_index.size()));
   detail::sort_params(&t.structure);
 
   detail::record_traversals(geometry, rays, tree, &t);

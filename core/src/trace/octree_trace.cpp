@@ -12,15 +12,12 @@ Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const st
   Trace t = detail::begin_trace(geometry, tree.name(), scene_path, scene_hash);
   t.structure.bounds = data.bounds;
   const OctreeStats st = octree_stats(data);
-  auto param = [&](const char* key, double number) {
-    t.structure.params.push_back({key, false, number, ""});
-  };
-  param("leaf_size", tree.options().leaf_size);
-  param("max_depth", octree_max_depth(tree.options(), geometry.size()));
-  param("nodes", double(st.nodes));
-  param("leaves", double(st.leaves));
-  param("references", double(st.references));
-  t.structure.params.push_back({"mailboxes", true, 0.0, "on"});
+  detail::add_param(&t.structure, "leaf_size", tree.options().leaf_size);
+  detail::add_param(&t.structure, "max_depth", octree_max_depth(tree.options(), geometry.size()));
+  detail::add_param(&t.structure, "nodes", double(st.nodes));
+  detail::add_param(&t.structure, "leaves", double(st.leaves));
+  detail::add_param(&t.structure, "references", double(st.references));
+  detail::add_text_param(&t.structure, "mailboxes", "on");
   detail::sort_params(&t.structure);
 
   detail::record_traversals(geometry, rays, tree, &t);

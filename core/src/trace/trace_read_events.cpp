@@ -1,7 +1,7 @@
-// Reading a trace's events: each event object checked as it is parsed (trace_reader.h's EventStreams gets them
-// one at a time from the JSON parser, so a ray of ten million events is never held as text or as a parse tape),
-// then the numbers that depend on the rest of the document (the grid's resolution, the node and primitive
-// counts, the version) checked once it is read.
+// Reading a trace's events: each event object checked as it is parsed (trace_reader.h's EventStreams gets
+// them one at a time from the JSON parser, so a ray of ten million events is never held as text or as a parse
+// tape), then the numbers that depend on the rest of the document (the grid's resolution, the node and
+// primitive counts, the version) checked once it is read.
 #include <string>
 #include <vector>
 
@@ -19,8 +19,7 @@ int axis_index(const Reader& rd, const Value& v, const Path& path) {
 Event read_event(const Reader& rd, const Value& je, const Path& ep, size_t i, const EventLimits& lim) {
   Event e;
   e.seq = uint32_t(rd.integer_at(je, ep, "seq", 0, 1ll << 32));
-  if (e.seq != i)
-    rd.fail(ep.key("seq"), "expected " + std::to_string(i) + " (events are numbered in order)");
+  if (e.seq != i) rd.fail(ep.key("seq"), "expected " + std::to_string(i) + " (events are numbered in order)");
   std::string_view type = rd.view_at(je, ep, "type");
   int type_index = name_index(type, kEventNames);
   if (type_index < 0) rd.fail(ep.key("type"), "unknown event type \"" + std::string(type) + "\"");
@@ -111,7 +110,8 @@ void check_events(const Reader& rd, const std::vector<Event>& events, const Path
   // As Reader::integer says it.
   auto range = [&](int64_t v, int64_t lo, int64_t hi, const Path& p) {
     if (v < lo || v > hi)
-      rd.fail(p, "value " + std::to_string(v) + " out of range " + std::to_string(lo) + ".." + std::to_string(hi));
+      rd.fail(p, "value " + std::to_string(v) + " out of range " + std::to_string(lo) + ".." +
+                     std::to_string(hi));
   };
   for (size_t i = 0; i < events.size(); ++i) {
     const Event& e = events[i];
@@ -162,15 +162,13 @@ void EventStreams::element(size_t array, const std::vector<size_t>& where, const
     s.chunks.emplace_back();
     s.chunks.back().reserve(kChunk);
   }
+  // The element's path, for an error's message: "rays[r].events[i]" (versions 1 to 4) or
+  // "walks[w].rays[r].events[i]" (version 5).
   const size_t i = where.back();
-  if (where.size() == 2) {
-    const Path rays("rays"), rp = rays.at(where[0]), ev = rp.key("events"), ep = ev.at(i);
-    s.chunks.back().push_back(read_event(rd_, value, ep, i, EventLimits{}));
-  } else {
-    const Path walks("walks"), wp = walks.at(where[0]), rays = wp.key("rays"), rp = rays.at(where[1]),
-        ev = rp.key("events"), ep = ev.at(i);
-    s.chunks.back().push_back(read_event(rd_, value, ep, i, EventLimits{}));
-  }
+  const Path rays("rays"), walks("walks"), wp = walks.at(where[0]), walk_rays = wp.key("rays");
+  const Path rp = where.size() == 2 ? rays.at(where[0]) : walk_rays.at(where[1]);
+  const Path ev = rp.key("events"), ep = ev.at(i);
+  s.chunks.back().push_back(read_event(rd_, value, ep, i, EventLimits{}));
 }
 
 void EventStreams::end(size_t array, size_t count) {

@@ -126,6 +126,14 @@ inline TraceNode trace_node(int32_t id, int32_t parent, int depth, const Bounds3
   return tn;
 }
 
+// A structure's parameter as traces give it, a number or a text ("builder": "sah").
+inline void add_param(TraceStructure* s, const char* key, double number) {
+  s->params.push_back({key, false, number, ""});
+}
+inline void add_text_param(TraceStructure* s, const char* key, std::string text) {
+  s->params.push_back({key, true, 0.0, std::move(text)});
+}
+
 inline void sort_params(TraceStructure* s) {
   std::sort(s->params.begin(), s->params.end(),
             [](const TraceParam& a, const TraceParam& b) { return a.key < b.key; });

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trace_file_detail.h"
+
 namespace raystep {
 
 CostModel structure_cost_model(const TraceStructure& structure) {
@@ -27,19 +29,11 @@ WalkCost walk_cost(const TracedRay& ray, const CostModel& model) {
         const float enter = e.type == EventType::cell ? e.t_enter : e.t_min_node;
         position = std::max(position, enter);
         c.points.push_back({position, c.total});
-        ++c.steps;
         c.total += model.t_t;
         break;
       }
       case EventType::prim_test:
-        ++c.prim_tests;
         c.total += model.t_i;
-        break;
-      case EventType::mailbox_hit:
-        ++c.mailbox_hits;
-        break;
-      case EventType::box_test:
-        ++c.box_tests;
         break;
       case EventType::ray_end:
         c.hit = e.prim >= 0;
@@ -50,6 +44,11 @@ WalkCost walk_cost(const TracedRay& ray, const CostModel& model) {
     }
   }
   c.points.push_back({std::max(position, c.t_hit), c.total});
+  const RayCounters n = detail::count_events(ray.events);  // the counters every trace summary gives
+  c.steps = n.cells + n.nodes;
+  c.prim_tests = n.prim_tests;
+  c.mailbox_hits = n.mailbox_hits;
+  c.box_tests = n.box_tests;
   return c;
 }
 

@@ -10,24 +10,24 @@
 #include <QTemporaryDir>
 #include <QThread>
 
+#include "app/main_window.h"
+#include "app/session.h"
+#include "inspect/pixel_inspector.h"
+#include "inspect/sah_chart.h"
+#include "lesson/lesson_pane.h"
+#include "lesson/presenter.h"
+#include "lesson/tree_diagram.h"
+#include "raystep/lesson/lesson_figure.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/util/atomic_file.h"
+#include "raystep/util/error.h"
 #include "reports/aa_report_view.h"
 #include "reports/bvol_report_view.h"
 #include "reports/grid_sweep_view.h"
 #include "views/image_view.h"
-#include "lesson/lesson_pane.h"
-#include "app/main_window.h"
-#include "inspect/pixel_inspector.h"
-#include "lesson/presenter.h"
-#include "raystep/lesson/lesson_figure.h"
-#include "raystep/util/error.h"
-#include "raystep/util/atomic_file.h"
-#include "raystep/replay/replay_state.h"
-#include "inspect/sah_chart.h"
-#include "views/scene_view.h"
-#include "app/session.h"
-#include "views/state_panel.h"
 #include "views/kd_tree_model.h"
-#include "lesson/tree_diagram.h"
+#include "views/scene_view.h"
+#include "views/state_panel.h"
 #include "views/tree_view.h"
 
 namespace raystep::viz {
@@ -75,7 +75,8 @@ QImage statePanelImage(MainWindow& w) {
 // One image above the other, left-aligned, on white: a wide figure and its panel.
 QImage aboveEachOther(const QImage& top, const QImage& bottom) {
   const int gap = 8;
-  QImage out(std::max(top.width(), bottom.width()), top.height() + gap + bottom.height(), QImage::Format_RGB32);
+  QImage out(std::max(top.width(), bottom.width()), top.height() + gap + bottom.height(),
+             QImage::Format_RGB32);
   out.fill(Qt::white);
   QPainter painter(&out);
   painter.drawImage(0, 0, top);
@@ -130,7 +131,8 @@ QImage figureOf(MainWindow& w, const LessonState& state, bool* withState) {
       if (!ray) return tree;
       *withState = true;
       // A wide tree: the panel below it, so that the page keeps the tree's boxes readable.
-      return tree.width() > 1100 ? aboveEachOther(tree, statePanelImage(w)) : besideEachOther({tree, statePanelImage(w)});
+      return tree.width() > 1100 ? aboveEachOther(tree, statePanelImage(w))
+                                 : besideEachOther({tree, statePanelImage(w)});
     }
     case LessonFigure::picture:
     default: {
@@ -195,8 +197,8 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
       html += "<div class=\"question\">\n<p><b>Predict:</b> " +
               esc(question_prompt(*step.ask, step.state.accel)) + "</p>\n";
       if (const auto& a = presenter.answer())
-        html += "<details><summary>Answer</summary>\n<p>" + esc(a->text) + "</p>\n<p>" + esc(a->why) +
-                "</p>\n</details>\n";
+        html += "<details><summary>Answer</summary>\n<p>" + esc(a->text) + "</p>\n<p>" +
+                esc(a->why).replace("\n", "<br>\n") + "</p>\n</details>\n";
       html += "</div>\n";
     }
     html += "</section>\n";

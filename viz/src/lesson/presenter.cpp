@@ -2,18 +2,18 @@
 
 #include <QShortcut>
 
-#include "views/event_list.h"
+#include "app/main_window.h"
+#include "app/session.h"
+#include "inspect/sah_chart.h"
 #include "lesson/lesson_enter.h"
 #include "lesson/lesson_pane.h"
-#include "app/main_window.h"
 #include "lesson/quiz_answers.h"
 #include "lesson/quiz_panel.h"
-#include "raystep/util/error.h"
-#include "raystep/replay/replay_state.h"
 #include "raystep/replay/explain.h"
-#include "inspect/sah_chart.h"
+#include "raystep/replay/replay_state.h"
+#include "raystep/util/error.h"
+#include "views/event_list.h"
 #include "views/scene_view.h"
-#include "app/session.h"
 #include "views/state_panel.h"
 #include "views/timeline.h"
 
@@ -56,8 +56,8 @@ Presenter::Presenter(MainWindow& window, LessonPane* pane, Lesson lesson)
   connect(quiz, &QuizPanel::predictStepRequested, this, &Presenter::predictNext);
   connect(quiz, &QuizPanel::predictToggled, this, [this](bool on) {
     const TracedRay* r = window_.session()->ray();
-    bool tree =
-        r ? replay::is_tree_ray(*r) : window_.session()->structure() && window_.session()->structure()->kind != "grid";
+    bool tree = r ? replay::is_tree_ray(*r)
+                  : window_.session()->structure() && window_.session()->structure()->kind != "grid";
     pane_->quiz()->setPredicting(on, tree ? tr("node") : tr("cell"));
   });
   // A cell picked in the 3D view answers "which cell next" (the cell holding the picked point).
@@ -139,9 +139,8 @@ void Presenter::goTo(int index) {
     if (next.scene == step.state.scene) window_.prefetchStructure(next.accel, next.structure);
   }
   // A question about the walk's next move: the panels that say it wait for Reveal.
-  const bool walkQuestion =
-      step.ask && *step.ask != QuestionKind::sah_plane && *step.ask != QuestionKind::subdivide &&
-      *step.ask != QuestionKind::bvol_kind;
+  const bool walkQuestion = step.ask && *step.ask != QuestionKind::sah_plane &&
+                            *step.ask != QuestionKind::subdivide && *step.ask != QuestionKind::bvol_kind;
   concealWalk(walkQuestion);
   window_.arrangeForStep(step.state);
   if (step.ask) {
@@ -214,7 +213,7 @@ void Presenter::predictAndReveal(const QString& prediction) {
   // A wrong answer first gets a sentence aimed at its likely misconception, then the answer and its reasons.
   QString text;
   if (!ok) text = "<i>" + html(predictionFeedback(*answer_, prediction.toStdString())) + "</i><br>";
-  text += tr("Answer: ") + html(answer_->text) + "<br>" + html(answer_->why);
+  text += tr("Answer: ") + html(answer_->text) + "<br>" + html(answer_->why).replace("\n", "<br>");
   // Then the walk goes where the question looked: the debugger's own Why there says it once more, labelled
   // as the walk's next step (not as a verdict on the prediction).
   Session* s = window_.session();

@@ -22,7 +22,6 @@ struct TracedRay;
 
 namespace raystep::viz {
 
-struct replay::ReplayState;
 class Session;
 class MailboxModel;
 
