@@ -32,7 +32,8 @@ if ! command -v clang++ > /dev/null; then
   exit 0
 fi
 
-export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+# Paths below the clone hashed relative to it, as scripts/build.sh: clones in other folders share the cache.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD} CCACHE_NOHASHDIR=1
 launcher=()
 if command -v ccache > /dev/null; then
   launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)

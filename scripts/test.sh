@@ -6,13 +6,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
-launcher=()  # ccache, as scripts/build.sh uses it
+
+bash scripts/setup.sh
+# ccache, as scripts/build.sh uses it; looked for after the setup, which installs it on a fresh machine (so
+# that the first run's sanitizer builds fill the cache for the next run too).
+launcher=()
 if command -v ccache > /dev/null; then
   launcher=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1  # clones in other folders share the cache
 fi
-
-bash scripts/setup.sh
 bash scripts/build.sh
 (cd build && ctest --output-on-failure -j "$jobs")
 
