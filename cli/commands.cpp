@@ -355,6 +355,17 @@ int run_info(const InfoArgs& a) {
               g.size() - g.triangle_count());
   std::printf("degenerate triangles: %zu\n", degenerate);
   std::printf("bounds: [%g, %g, %g] .. [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+  if (scene.flat) {  // a 2D scene: its shapes, and the walls they stand as
+    size_t by_kind[4] = {0, 0, 0, 0};
+    for (const FlatShape& s : scene.flat->shapes) ++by_kind[int(s.kind)];
+    std::printf(
+        "2D scene: %zu shapes (%zu segments, %zu polylines, %zu polygons, %zu circles) in [%g, %g] .. [%g, "
+        "%g]; "
+        "walls across z in [-%g, %g]\n",
+        scene.flat->shapes.size(), by_kind[0], by_kind[1], by_kind[2], by_kind[3], scene.flat->lo.x,
+        scene.flat->lo.y, scene.flat->hi.x, scene.flat->hi.y, scene.flat->half_height,
+        scene.flat->half_height);
+  }
   std::printf("objects: %zu\n", g.objects().size());
   for (const Object& o : g.objects())
     std::printf("  %-28s primitives %u..%u  material %s\n", o.name.c_str(), o.first_prim,

@@ -282,8 +282,8 @@ TEST(SceneLoader, EveryErrorNamesFileLineAndPath) {
       {scene_with("\"render\": {\"seed\": 1,\n \"seed\": 2}"), 3, "render.seed: duplicate key"},
       {"[1, 2]", 1, "expected an object"},
       // unknown keys, at every level
-      {scene_with("\"lihgts\": []"), 2, "lihgts: unknown key 'lihgts' (expected description, camera, lights, "
-                                        "materials, objects, render)"},
+      {scene_with("\"lihgts\": []"), 2, "lihgts: unknown key 'lihgts' (expected description, dimensions, "
+                                        "camera, lights, materials, objects, render, ray, frame)"},
       {scene_with("\"camera\": {\"fov\": 30,\n\"height\": 2}"), 3,
        "camera.height: unknown key 'height' (expected type, eye, look_at, up, fov)"},
       {scene_with("\"camera\": {\"type\": \"orthographic\",\n\"fov\": 30}"), 3, "camera.fov: unknown key 'fov'"},

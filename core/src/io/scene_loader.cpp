@@ -22,6 +22,7 @@
 
 #include "raystep/io/obj.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/scene/flatland.h"
 #include "raystep/scene/json_locate.h"
 #include "raystep/scene/triangle_mesh.h"
 #include "raystep/util/error.h"
@@ -39,7 +40,9 @@ constexpr int kMaxDepth = 32;
 // The keys each part of the file may have. Anything else is an error, so that a misspelt key never
 // silently leaves a default in place.
 using Keys = std::vector<const char*>;
-const Keys kTopKeys = {"description", "camera", "lights", "materials", "objects", "render"};
+const Keys kTopKeys = {"description", "dimensions", "camera", "lights", "materials",
+                       "objects",     "render",     "ray",    "frame"};
+const Keys kFlatRayKeys = {"origin", "direction"};
 const Keys kMaterialKeys = {"diffuse", "specular", "shininess", "mirror", "transparency", "ior"};
 const Keys kRenderKeys = {"size", "aa", "max_depth", "min_weight", "background", "ambient", "seed"};
 const Keys kTransformKeys = {"translate", "rotate", "scale", "matrix"};
@@ -70,9 +73,7 @@ struct Range {
   double lo, hi;
   bool lo_open, hi_open;
   const char* expected;
-  bool contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
+  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
 };
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const Range kAnyNumber{-kInf, kInf, false, false, "a number"};
@@ -109,8 +110,17 @@ class SceneReader {
     Scene scene;
     scene.path = path_;
     read_materials(top, &scene);
-    read_objects(top, &scene);
-    if (top.has("camera")) scene.camera = read_camera(top.at("camera"));
+    const int dimensions = top.has("dimensions") ? integer(top.at("dimensions"), 2, 3) : 3;
+    if (dimensions == 2) {
+      if (top.has("render")) scene.render = read_render(top.at("render"));  // the camera frames its size
+      read_flat(top, &scene);
+    } else {
+      for (const char* key : {"ray", "frame"})
+        if (top.has(key))
+          fail(top.path.child(key), std::string("'") + key + "' belongs to a 2D scene (\"dimensions\": 2)");
+      read_objects(top, &scene);
+      if (top.has("camera")) scene.camera = read_camera(top.at("camera"));
+    }
     read_lights(top, &scene);
     if (top.has("render")) scene.render = read_render(top.at("render"));
     return scene;
@@ -128,7 +138,8 @@ class SceneReader {
     if (!n.value.is_object()) fail(n.path, "expected an object");
     for (auto it = n.value.begin(); it != n.value.end(); ++it) {
       bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* k) { return it.key() == k; });
-      if (!known) fail(n.path.child(it.key()), "unknown key '" + it.key() + "' (expected " + join(allowed) + ")");
+      if (!known)
+        fail(n.path.child(it.key()), "unknown key '" + it.key() + "' (expected " + join(allowed) + ")");
     }
   }
 
@@ -150,13 +161,24 @@ class SceneReader {
     fail(n.path.child("type"), "unknown type '" + type + "' (expected one of " + names + ")");
   }
 
+  // A scene's object or shape: its kind, and its keys checked (the kind's own, type, name and material).
+  template <class Kind, size_t N>
+  const Kind& object_kind(const Node& n, const Kind (&kinds)[N]) const {
+    const Kind& kind = kind_of(n, kinds, nullptr);
+    Keys keys = kind.keys;
+    keys.insert(keys.end(), {"type", "name", "material"});
+    check_keys(n, keys);
+    return kind;
+  }
+
   // Converters -------------------------------------------------------------------------------------
 
   float number(const Node& n, const Range& r) const {
     if (!n.value.is_number()) fail(n.path, std::string("expected ") + r.expected);
     double v = n.value.get<double>();  // nlohmann rejects NaN, Inf and doubles that overflow; floats may
     if (std::fabs(v) > std::numeric_limits<float>::max())
-      fail(n.path, std::string("expected ") + r.expected + " (" + n.value.dump() + " is not finite in single precision)");
+      fail(n.path, std::string("expected ") + r.expected + " (" + n.value.dump() +
+                       " is not finite in single precision)");
     if (!r.contains(v)) fail(n.path, std::string("expected ") + r.expected);
     return float(v);
   }
@@ -199,7 +221,8 @@ class SceneReader {
     if (!obj.has(key)) return fallback;
     Node n = obj.at(key);
     if (n.value.is_number()) return glm::vec3(number(n, r));
-    if (!n.value.is_array() || n.value.size() != 3) fail(n.path, std::string("expected [r, g, b] or one number"));
+    if (!n.value.is_array() || n.value.size() != 3)
+      fail(n.path, std::string("expected [r, g, b] or one number"));
     return vec3(n, r);
   }
 
@@ -223,8 +246,10 @@ class SceneReader {
       m.mirror = number(n, "mirror", m.mirror, kUnit);
       m.transparency = number(n, "transparency", m.transparency, kUnit);
       m.ior = number(n, "ior", m.ior, kPositive);
-      if (m.name == "default") scene->materials[0] = m;
-      else scene->materials.push_back(m);
+      if (m.name == "default")
+        scene->materials[0] = m;
+      else
+        scene->materials.push_back(m);
     }
   }
 
@@ -239,10 +264,12 @@ class SceneReader {
     c.fov_deg = number(n, "fov", c.fov_deg, kFov);
     c.ortho_height = number(n, "height", c.ortho_height, kPositive);
     glm::vec3 view = c.look_at - c.eye;
-    if (view == glm::vec3(0.f)) fail(n.has("look_at") ? n.path.child("look_at") : n.path, "look_at must differ from eye");
+    if (view == glm::vec3(0.f))
+      fail(n.has("look_at") ? n.path.child("look_at") : n.path, "look_at must differ from eye");
     // |view x up| relative to |view| |up|: zero when up is parallel to the view direction.
     float s = glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up)));
-    if (!(s > 1e-4f)) fail(n.has("up") ? n.path.child("up") : n.path, "up must not be parallel to look_at - eye");
+    if (!(s > 1e-4f))
+      fail(n.has("up") ? n.path.child("up") : n.path, "up must not be parallel to look_at - eye");
     return c;
   }
 
@@ -295,7 +322,8 @@ class SceneReader {
     r.ambient = color(n, "ambient", r.ambient, kNonNegative);
     if (n.has("seed")) {
       Node seed = n.at("seed");
-      if (!seed.value.is_number_integer() || (!seed.value.is_number_unsigned() && seed.value.get<int64_t>() < 0))
+      if (!seed.value.is_number_integer() ||
+          (!seed.value.is_number_unsigned() && seed.value.get<int64_t>() < 0))
         fail(seed.path, "expected a non-negative integer");
       r.seed = seed.value.get<uint64_t>();
     }
@@ -316,10 +344,7 @@ class SceneReader {
     if (!all.value.is_array() || all.value.empty()) fail(all.path, "expected a non-empty array of objects");
     for (size_t i = 0; i < all.value.size(); ++i) {
       Node n = all.at(i);
-      const ObjectKind& kind = kind_of(n, kObjectKinds, nullptr);
-      Keys keys = kind.keys;
-      keys.insert(keys.end(), {"type", "name", "material"});
-      check_keys(n, keys);
+      const ObjectKind& kind = object_kind(n, kObjectKinds);
       uint32_t material = 0;
       if (n.has("material")) material = material_index(n.at("material"), *scene);
       std::string name = n.has("name") ? text_value(n.at("name")) : std::string(kind.type);
@@ -353,7 +378,8 @@ class SceneReader {
       for (size_t r = 0; r < 4; ++r) {
         Node row = rows.at(r);
         if (!row.value.is_array() || row.value.size() != 4) fail(row.path, "expected a row of 4 numbers");
-        for (size_t c = 0; c < 4; ++c) m[int(c)][int(r)] = number(row.at(c), kAnyNumber);  // glm: m[column][row]
+        for (size_t c = 0; c < 4; ++c)
+          m[int(c)][int(r)] = number(row.at(c), kAnyNumber);  // glm: m[column][row]
       }
       if (glm::vec4(m[0][3], m[1][3], m[2][3], m[3][3]) != glm::vec4(0, 0, 0, 1))
         fail(rows.path.child(3), "expected [0, 0, 0, 1]: only affine transforms are allowed");
@@ -384,10 +410,11 @@ class SceneReader {
     fs::path resolved = fs::path(name).is_absolute() ? fs::path(name) : folder_ / name;
     std::error_code ec;
     if (!fs::is_regular_file(resolved, ec))
-      fail(file.path, "cannot open mesh '" + resolved.string() + "': " +
-                          (fs::exists(resolved, ec) ? "not a regular file" : "no such file"));
+      fail(file.path, "cannot open mesh '" + resolved.string() +
+                          "': " + (fs::exists(resolved, ec) ? "not a regular file" : "no such file"));
     auto cached = meshes_.find(resolved.string());
-    if (cached == meshes_.end()) cached = meshes_.emplace(resolved.string(), load_obj(resolved.string())).first;
+    if (cached == meshes_.end())
+      cached = meshes_.emplace(resolved.string(), load_obj(resolved.string())).first;
     add_mesh(g, cached->second, transform(n));
   }
 
@@ -420,14 +447,131 @@ class SceneReader {
 
   void add_box_object(const Node& n, Geometry& g) {
     glm::vec3 lo = vec3(required(n, "min")), hi = vec3(required(n, "max"));
-    if (hi.x < lo.x || hi.y < lo.y || hi.z < lo.z) fail(n.path.child("max"), "expected max >= min on every axis");
+    if (hi.x < lo.x || hi.y < lo.y || hi.z < lo.z)
+      fail(n.path.child("max"), "expected max >= min on every axis");
     add_mesh(g, make_box(lo, hi), transform(n));
+  }
+
+  // 2D scenes (flatland.h) ---------------------------------------------------------------------------
+
+  struct FlatKind {
+    const char* type;
+    FlatShape::Kind kind;
+    Keys keys;  // besides type, name and material
+  };
+  static const FlatKind kFlatKinds[4];
+
+  glm::vec2 vec2(const Node& n) const {
+    if (!n.value.is_array() || n.value.size() != 2) fail(n.path, "expected [x, y]");
+    return glm::vec2(number(n.at(size_t(0)), kAnyNumber), number(n.at(1), kAnyNumber));
+  }
+
+  // "points": at least `min` points [x, y], no two in a row the same (a wall of no width).
+  std::vector<glm::vec2> flat_points(const Node& n, size_t min, bool closed) const {
+    Node v = required(n, "points");
+    if (!v.value.is_array() || v.value.size() < min)
+      fail(v.path, "expected at least " + std::to_string(min) + " points [x, y]");
+    std::vector<glm::vec2> out;
+    for (size_t i = 0; i < v.value.size(); ++i) {
+      out.push_back(vec2(v.at(i)));
+      if (i > 0 && out[i] == out[i - 1]) fail(v.path.child(i), "the same point as the one before it");
+    }
+    if (closed && out.back() == out.front())
+      fail(v.path.child(out.size() - 1), "the same point as the first (a polygon closes itself)");
+    return out;
+  }
+
+  // The shapes, then their walls and circles as geometry; the camera looks straight down on the plane.
+  void read_flat(const Node& top, Scene* scene) {
+    if (top.has("camera"))
+      fail(top.path.child("camera"), "a 2D scene has no camera: it is seen from above, framed by its shapes");
+    Flatland flat;
+    Node all = required(top, "objects");
+    if (!all.value.is_array() || all.value.empty()) fail(all.path, "expected a non-empty array of shapes");
+    for (size_t i = 0; i < all.value.size(); ++i) {
+      Node n = all.at(i);
+      const FlatKind& kind = object_kind(n, kFlatKinds);
+      FlatShape s;
+      s.kind = kind.kind;
+      s.name = n.has("name") ? text_value(n.at("name")) : std::string(kind.type) + " " + std::to_string(i);
+      if (n.has("material")) s.material = material_index(n.at("material"), *scene);
+      switch (s.kind) {
+        case FlatShape::Kind::segment:
+          s.points = flat_points(n, 2, false);
+          if (s.points.size() != 2)
+            fail(n.path.child("points"), "expected 2 points [x, y] (a polyline has more)");
+          break;
+        case FlatShape::Kind::polyline:
+          s.points = flat_points(n, 2, false);
+          break;
+        case FlatShape::Kind::polygon: {
+          s.points = flat_points(n, 3, true);
+          double area = 0.0;
+          for (size_t k = 0; k < s.points.size(); ++k) {
+            const glm::vec2 &a = s.points[k], &b = s.points[(k + 1) % s.points.size()];
+            area += double(a.x) * b.y - double(b.x) * a.y;
+          }
+          if (!(std::fabs(area) > 0.0)) fail(n.path.child("points"), "the polygon has no area");
+          if (n.has("fill")) {
+            Node f = n.at("fill");
+            if (!f.value.is_boolean()) fail(f.path, "expected true or false");
+            s.filled = f.value.get<bool>();
+          }
+          break;
+        }
+        case FlatShape::Kind::circle:
+          s.center = vec2(required(n, "center"));
+          s.radius = number(required(n, "radius"), kPositive);
+          break;
+      }
+      if (std::string problem = flat_shape_problem(s); !problem.empty())
+        fail(n.path.child("points"), problem);
+      flat.shapes.push_back(std::move(s));
+    }
+    add_flat_shapes(&flat, &scene->geometry);
+    if (top.has("ray")) {
+      Node r = top.at("ray");
+      check_keys(r, kFlatRayKeys);
+      flat.has_ray = true;
+      flat.ray_origin = vec2(required(r, "origin"));
+      flat.ray_direction = vec2(required(r, "direction"));
+      if (flat.ray_direction == glm::vec2(0.f)) fail(r.path.child("direction"), "expected a non-zero vector");
+    }
+    // Orthographic, straight down, on the frame: the scene's "frame" [[x0, y0], [x1, y1]] (the picture's
+    // height spans y0..y1, its width follows from the render size), or the shapes' bounds with a 5% margin,
+    // the larger of the two spans fitted.
+    glm::vec2 centre = 0.5f * (flat.lo + flat.hi);
+    float height =
+        1.05f * std::max(flat.hi.y - flat.lo.y,
+                         (flat.hi.x - flat.lo.x) * float(scene->render.height) / float(scene->render.width));
+    if (top.has("frame")) {
+      Node f = top.at("frame");
+      if (!f.value.is_array() || f.value.size() != 2) fail(f.path, "expected [[x0, y0], [x1, y1]]");
+      const glm::vec2 a = vec2(f.at(size_t(0))), b = vec2(f.at(1));
+      if (!(b.x > a.x && b.y > a.y)) fail(f.path.child(1), "expected x1 > x0 and y1 > y0");
+      centre = 0.5f * (a + b);
+      height = b.y - a.y;
+    }
+    Camera& c = scene->camera;
+    c.type = CameraType::orthographic;
+    c.look_at = glm::vec3(centre, 0.f);
+    c.eye = glm::vec3(centre, 4.f * flat.half_height);
+    c.up = glm::vec3(0.f, 1.f, 0.f);
+    c.ortho_height = std::max(height, 2e-6f * flat.half_height);
+    scene->flat = std::move(flat);
   }
 
   const std::string& text_;
   std::string path_;
   fs::path folder_;
   std::map<std::string, TriangleMesh> meshes_;  // a mesh used twice is read once
+};
+
+const SceneReader::FlatKind SceneReader::kFlatKinds[4] = {
+    {"segment", FlatShape::Kind::segment, {"points"}},
+    {"polyline", FlatShape::Kind::polyline, {"points"}},
+    {"polygon", FlatShape::Kind::polygon, {"points", "fill"}},
+    {"circle", FlatShape::Kind::circle, {"center", "radius"}},
 };
 
 const SceneReader::ObjectKind SceneReader::kObjectKinds[5] = {
@@ -474,8 +618,10 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   bool duplicate = false;
   std::vector<std::unordered_set<std::string>> keys;
   json::parser_callback_t note_duplicates = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keys.emplace_back();
-    else if (event == json::parse_event_t::object_end) keys.pop_back();
+    if (event == json::parse_event_t::object_start)
+      keys.emplace_back();
+    else if (event == json::parse_event_t::object_end)
+      keys.pop_back();
     else if (event == json::parse_event_t::key && !keys.back().insert(parsed.get<std::string>()).second)
       duplicate = true;
     return true;
@@ -496,7 +642,8 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   }
   if (duplicate) {
     JsonDuplicateKey dup;
-    if (json_find_duplicate_key(text, &dup)) throw InputError(path, dup.line, dup.display + ": duplicate key");
+    if (json_find_duplicate_key(text, &dup))
+      throw InputError(path, dup.line, dup.display + ": duplicate key");
   }
   return SceneReader(text, path).read(root);
 }

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "raystep/scene/flatland.h"
 #include "raystep/scene/geometry.h"
 
 namespace raystep {
@@ -75,6 +77,9 @@ struct Scene {
   std::vector<Material> materials;  // at least one; primitives refer to them by index
   Geometry geometry;
   RenderSettings render;
+  // A 2D scene ("dimensions": 2): its shapes in the plane z = 0, of which `geometry` is the extrusion
+  // (flatland.h); the camera looks down on the plane.
+  std::optional<Flatland> flat;
 };
 
 }  // namespace raystep
