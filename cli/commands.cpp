@@ -377,9 +377,25 @@ int run_info(const InfoArgs& a) {
   return 0;
 }
 
+RayRequest trace_ray_by_hand(const TraceArgs& a, const Scene& scene) {
+  RayRequest r;
+  if (a.ray) {
+    const RayText t = parse_ray(*a.ray, scene.flat.has_value());
+    r.ray.origin = glm::vec3(t.origin[0], t.origin[1], t.origin[2]);
+    r.ray.direction = glm::vec3(t.direction[0], t.direction[1], t.direction[2]);
+  } else if (scene.flat && scene.flat->has_ray) {
+    r.ray = flat_ray(scene.flat->ray_origin, scene.flat->ray_direction);
+  } else {
+    throw InputError(
+        "", 0,
+        std::string("trace: give --pixel X,Y or --ray ") +
+            (scene.flat ? "ox,oy,dx,dy (the scene has no ray of its own)" : "ox,oy,oz,dx,dy,dz"));
+  }
+  return r;
+}
+
 int run_trace(const TraceArgs& a) {
   if (a.structure.accel.find(',') != std::string::npos) return run_multi_trace(a);
-  if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
   if (a.aa && !a.pixel) throw InputError("", 0, "trace: --aa goes with --pixel");
   if (a.seed && !a.aa) throw InputError("", 0, "trace: --seed goes with --aa");
@@ -406,12 +422,8 @@ int run_trace(const TraceArgs& a) {
   // The rays to record, checked before the (possibly long) build; pixel rays need the built structure.
   std::optional<RayRequest> by_hand;
   int w = scene.render.width, h = scene.render.height, px = 0, py = 0;
-  if (a.ray) {
-    std::vector<float> v = parse_numbers("--ray", *a.ray, 6);
-    by_hand.emplace();
-    by_hand->ray.origin = glm::vec3(v[0], v[1], v[2]);
-    by_hand->ray.direction = glm::vec3(v[3], v[4], v[5]);
-    if (by_hand->ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
+  if (!a.pixel) {
+    by_hand = trace_ray_by_hand(a, scene);
   } else {
     if (a.size) parse_size(*a.size, &w, &h);
     std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "raystep/accel/structure_options.h"
+#include "raystep/scene/scene.h"
 #include "raystep/trace/multi_trace.h"
+#include "raystep/trace/ray_request.h"
 #include "value_parsers.h"
 
 namespace raystep {
@@ -43,13 +45,14 @@ struct StructureArgs {
 };
 
 struct RenderArgs {
-  std::string scene;  // scene JSON or bare OBJ mesh
+  std::string scene;   // scene JSON or bare OBJ mesh
   std::string output;  // .png or .pfm
   StructureArgs structure;
-  std::string heatmap;  // cells | tests | mailbox | boxes: a heat map of per-pixel work instead of the picture
-  std::optional<std::string> aa;  // overrides the scene's anti-aliasing
+  std::string
+      heatmap;  // cells | tests | mailbox | boxes: a heat map of per-pixel work instead of the picture
+  std::optional<std::string> aa;    // overrides the scene's anti-aliasing
   std::optional<std::string> size;  // "WxH", overrides the scene's size
-  int threads = 0;  // 0: all cores
+  int threads = 0;                  // 0: all cores
   std::optional<uint64_t> seed;
   std::string samples_map;  // optional PNG of per-pixel sample counts
 };
@@ -114,9 +117,9 @@ struct TraceInfoArgs {
 // replay_commands.cpp: the replay states of a trace (the storyboard).
 struct ReplayArgs {
   std::string trace;
-  std::optional<int> step;  // none: every step
-  std::optional<int> walk;  // a multi-walk trace's walk; none: all
-  std::optional<int> ray;   // none: all
+  std::optional<int> step;      // none: every step
+  std::optional<int> walk;      // a multi-walk trace's walk; none: all
+  std::optional<int> ray;       // none: all
   std::string format = "text";  // text | json
   std::string output;           // empty: stdout
 };
@@ -142,7 +145,7 @@ struct AaReportArgs {
   int seeds = 5;                       // seeds of each random method (jitter, random)
   int threads = 0;                     // 0: all cores
   std::string accel = "grid";
-  std::string output;                  // the report folder
+  std::string output;  // the report folder
 };
 
 // structure_commands.cpp: the structures and the cost formula measured, each into a report folder.
@@ -152,7 +155,7 @@ struct CompareArgs {
   uint64_t rays = 65536;            // random rays
   std::optional<std::string> size;  // camera rays "WxH" (default: the scene's, capped at 512)
   int reps = 3;
-  std::string output;  // report folder
+  std::string output;       // report folder
   StructureArgs structure;  // the BSP tree's options (--bsp-directions, --bsp-candidates); the others default
 };
 struct GridSweepArgs {
@@ -187,7 +190,8 @@ struct EntryNode {
 // kd-stats' and bvh-stats' entry probabilities, predicted against measured (entry, one per node): the top
 // of the tree, then all nodes at once, the summary line ending in rays_note; every node to csv unless empty.
 void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
-                              uint64_t lines, size_t rays_cast, const char* rays_note, const std::string& csv);
+                              uint64_t lines, size_t rays_cast, const char* rays_note,
+                              const std::string& csv);
 KdOptions kd_options(const StructureArgs& s);
 BspOptions bsp_options(const StructureArgs& s);
 BvhOptions bvh_options(const StructureArgs& s);  // InputError naming the option for a bad value
@@ -196,6 +200,9 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);
 int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
+// The ray of `trace` without --pixel: --ray (in a 2D scene also ox,oy,dx,dy), else a 2D scene's own ray;
+// InputError when there is neither.
+RayRequest trace_ray_by_hand(const TraceArgs& args, const Scene& scene);
 int run_trace_info(const TraceInfoArgs& args);
 int run_replay(const ReplayArgs& args);
 // multi_trace_commands.cpp: `trace --accel A,B,...` (run_trace hands a list over) and trace-info on its file.
@@ -233,6 +240,17 @@ struct ExportVtkArgs {
   std::string output;                // the folder (replaced atomically)
 };
 int run_export_vtk(const ExportVtkArgs& args);
+
+// figure_commands.cpp: `raystep figure`, a 2D scene's structure and a walk at a step as SVG, PDF or PNG.
+struct FigureArgs {
+  std::string scene;
+  StructureArgs structure;
+  std::optional<std::string> ray;  // "ox,oy,dx,dy" (or six numbers); none: the scene's own ray
+  std::optional<int> step;         // the event the walk is drawn after; none: its end
+  int width = 640;                 // points (SVG, PDF) or pixels (PNG)
+  std::string output;              // .svg, .pdf or .png
+};
+int run_figure(const FigureArgs& args);
 
 // bvol_commands.cpp: `raystep bvol-report`, the kinds of bounding volumes on each scene's camera rays.
 struct BvolReportArgs {

@@ -29,7 +29,8 @@ void add_structure_options(CLI::App* cmd, raystep::cli::StructureArgs& s, const 
   cmd->add_option("--grid-res", s.grid_res, "grid: explicit resolution NX,NY,NZ");
   cmd->add_option("--grid-density", s.grid_density, "grid: d in max(nx,ny,nz) = d * cbrt(primitives)")
       ->capture_default_str();
-  cmd->add_option("--grid-insert", s.grid_insert, "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
+  cmd->add_option("--grid-insert", s.grid_insert,
+                  "grid: exact (triangle-box overlap) | bbox (bounding boxes)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "bbox"}));
   add_kd_options(cmd, s);
@@ -91,15 +92,19 @@ int main(int argc, char** argv) {
   RenderArgs render;
   CLI::App* render_cmd = app.add_subcommand("render", "Render a scene (or a bare OBJ mesh) to an image");
   render_cmd->add_option("scene", render.scene, "scene .json or mesh .obj")->required();
-  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")->required();
+  render_cmd->add_option("-o,--output", render.output, "output image (.png, or .pfm for linear floats)")
+      ->required();
   add_structure_options(render_cmd, render.structure, "bvh8");
-  render_cmd->add_option("--heatmap", render.heatmap,
-                         "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox"
-                         " | boxes (bvh: bounding-box tests)")
+  render_cmd
+      ->add_option(
+          "--heatmap", render.heatmap,
+          "write a heat map of per-pixel work instead of the picture: cells (or nodes) | tests | mailbox"
+          " | boxes (bvh: bounding-box tests)")
       ->check(CLI::IsMember({"cells", "nodes", "tests", "mailbox", "boxes"}));
-  render_cmd->add_option("--aa", render.aa,
-                         "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]; +tent after any but "
-                         "adaptive: the tent filter over the neighbours' samples too");
+  render_cmd->add_option(
+      "--aa", render.aa,
+      "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D]; +tent after any but "
+      "adaptive: the tent filter over the neighbours' samples too");
   render_cmd->add_option("--size", render.size, "image size WxH (default: the scene's)");
   render_cmd->add_option("--threads", render.threads, "threads, 0..256 (0: all cores)")
       ->capture_default_str();
@@ -127,7 +132,8 @@ int main(int argc, char** argv) {
   rays_cmd->add_option("-o,--output", rays.output, "output .rays file")->required();
 
   InfoArgs info;
-  CLI::App* info_cmd = app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
+  CLI::App* info_cmd =
+      app.add_subcommand("info", "Describe a scene or mesh: primitives, bounds, degenerate triangles");
   info_cmd->add_option("scene", info.scene, "scene .json or mesh .obj")->required();
 
   TraceArgs trace;
@@ -137,10 +143,14 @@ int main(int argc, char** argv) {
       "structures, one file)");
   trace_cmd->add_option("scene", trace.scene, "scene .json or mesh .obj")->required();
   add_structure_options(trace_cmd, trace.structure, "grid");
-  auto* pixel_opt = trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
-  auto* ray_opt = trace_cmd->add_option("--ray", trace.ray, "a ray given by hand: ox,oy,oz,dx,dy,dz");
+  auto* pixel_opt =
+      trace_cmd->add_option("--pixel", trace.pixel, "the primary ray of pixel X,Y (0,0: top left)");
+  auto* ray_opt = trace_cmd->add_option(
+      "--ray", trace.ray,
+      "a ray given by hand: ox,oy,oz,dx,dy,dz (a 2D scene: ox,oy,dx,dy; none: its own ray)");
   pixel_opt->excludes(ray_opt);
-  trace_cmd->add_flag("--secondary", trace.secondary, "with --pixel: also the shadow, reflected, refracted rays");
+  trace_cmd->add_flag("--secondary", trace.secondary,
+                      "with --pixel: also the shadow, reflected, refracted rays");
   trace_cmd->add_flag("--build-events", trace.build_events,
                       "kd: also log the whole build (every candidate, split and leaf), streamed to the file");
   trace_cmd->add_option("--size", trace.size, "image size WxH for --pixel (default: the scene's)");
@@ -156,24 +166,30 @@ int main(int argc, char** argv) {
 
   SahArgs sah;
   CLI::App* sah_cmd =
-      app.add_subcommand("sah", "Write the SAH cost curve of one kd-tree or BVH node (x, y and z), or of one "
-                                "BSP node by orientation (13 k-DOP directions and the primitives' own planes)");
+      app.add_subcommand("sah",
+                         "Write the SAH cost curve of one kd-tree or BVH node (x, y and z), or of one "
+                         "BSP node by orientation (13 k-DOP directions and the primitives' own planes)");
   sah_cmd->add_option("scene", sah.scene, "scene .json or mesh .obj")->required();
   sah.structure.accel = "kd";
-  sah_cmd->add_option("--accel", sah.structure.accel, "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median | bsp")
+  sah_cmd
+      ->add_option("--accel", sah.structure.accel,
+                   "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median | bsp")
       ->capture_default_str()
       ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median", "bsp"}));
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
-  auto* path_opt = sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
+  auto* path_opt =
+      sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
   node_opt->excludes(path_opt);
   add_kd_options(sah_cmd, sah.structure);
   add_bvh_options(sah_cmd, sah.structure);
   sah_cmd->add_option("--bsp-directions", sah.structure.bsp_directions, "bsp: both | kdop | autopartition")
       ->capture_default_str();
-  sah_cmd->add_option("--bsp-candidates", sah.structure.bsp_candidates,
-                      "bsp: candidate positions per direction per node (a quarter as many own planes), 1..4096")
+  sah_cmd
+      ->add_option("--bsp-candidates", sah.structure.bsp_candidates,
+                   "bsp: candidate positions per direction per node (a quarter as many own planes), 1..4096")
       ->capture_default_str();
-  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")->required();
+  sah_cmd->add_option("-o,--output", sah.output, "output curve: .csv (one row per candidate) or .json")
+      ->required();
 
   KdStatsArgs kd_stats;
   CLI::App* kd_stats_cmd = app.add_subcommand(
@@ -187,7 +203,8 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
-  kd_stats_cmd->add_option("--csv", kd_stats.csv, "also write every node's row (id, depth, predicted, measured)");
+  kd_stats_cmd->add_option("--csv", kd_stats.csv,
+                           "also write every node's row (id, depth, predicted, measured)");
 
   KdStatsArgs bvh_stats;
   CLI::App* bvh_stats_cmd = app.add_subcommand(
@@ -226,14 +243,16 @@ int main(int argc, char** argv) {
       ->add_option("--bsp-directions", compare.structure.bsp_directions, "bsp: both | kdop | autopartition")
       ->capture_default_str();
   compare_cmd
-      ->add_option("--bsp-candidates", compare.structure.bsp_candidates,
-                   "bsp: candidate positions per direction per node (a quarter as many primitive planes), 1..4096")
+      ->add_option(
+          "--bsp-candidates", compare.structure.bsp_candidates,
+          "bsp: candidate positions per direction per node (a quarter as many primitive planes), 1..4096")
       ->capture_default_str();
 
   BvolReportArgs bvol_report;
   CLI::App* bvol_report_cmd = app.add_subcommand(
-      "bvol-report", "Kinds of bounding volumes (bvol, bvol-sphere, bvol-kdop, bvol-obb) on camera rays: volume "
-                     "tests, false positives, primitive tests, build time and time per ray");
+      "bvol-report",
+      "Kinds of bounding volumes (bvol, bvol-sphere, bvol-kdop, bvol-obb) on camera rays: volume "
+      "tests, false positives, primitive tests, build time and time per ray");
   bvol_report_cmd->add_option("scenes", bvol_report.scenes, "scene .json files (default: scenes/*.json)");
   bvol_report_cmd->add_option("--size", bvol_report.size,
                               "camera rays: image size WxH (default: the scene's, at most 160 on a side)");
@@ -264,8 +283,9 @@ int main(int argc, char** argv) {
       "The lecture's cost formula m^2 k^2 n 2^d against the tests counted, and what each technique cuts");
   cost_cmd->add_option("scene", cost.scene, "scene .json or mesh .obj")->required();
   cost_cmd->add_option("--size", cost.size, "image size WxH (default: the scene's)");
-  cost_cmd->add_option("--aa", cost.aa,
-                       "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D] (+tent: the tent filter)");
+  cost_cmd->add_option(
+      "--aa", cost.aa,
+      "anti-aliasing: none | regular:K | jitter:K | random:N | adaptive:T[:D] (+tent: the tent filter)");
   cost_cmd->add_option("--accel", cost.accel, "comma-separated structures (default: all but brute)");
   cost_cmd->add_option("--threads", cost.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
   cost_cmd->add_option("-o,--output", cost.output,
@@ -279,17 +299,32 @@ int main(int argc, char** argv) {
       "a multi-walk trace: cost each walk by its structure's own t_t, t_i (default 1, 80)");
 
   ReplayArgs replay;
-  CLI::App* replay_cmd = app.add_subcommand(
-      "replay", "A trace's replay states, event by event, as the debugger's state panel shows them (docs/replay-format.md)");
+  CLI::App* replay_cmd = app.add_subcommand("replay",
+                                            "A trace's replay states, event by event, as the debugger's "
+                                            "state panel shows them (docs/replay-format.md)");
   replay_cmd->add_option("trace", replay.trace, "trace .json")->required();
-  CLI::Option* replay_step = replay_cmd->add_option("--step", replay.step, "only the state after this event (0-based)");
+  CLI::Option* replay_step =
+      replay_cmd->add_option("--step", replay.step, "only the state after this event (0-based)");
   replay_cmd->add_flag("--all", "every step (the default)")->excludes(replay_step);
   replay_cmd->add_option("--walk", replay.walk, "a multi-walk trace: only this walk (0-based)");
   replay_cmd->add_option("--ray", replay.ray, "only this ray (0-based)");
   replay_cmd->add_option("--format", replay.format, "text (for reading) | json (the storyboard)")
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
-  replay_cmd->add_option("-o,--output", replay.output, "write to this file (atomically) instead of standard output");
+  replay_cmd->add_option("-o,--output", replay.output,
+                         "write to this file (atomically) instead of standard output");
+
+  FigureArgs figure;
+  CLI::App* figure_cmd = app.add_subcommand(
+      "figure",
+      "A 2D scene's structure and one ray's walk at a step, as a figure for slides (SVG, PDF or PNG)");
+  figure_cmd->add_option("scene", figure.scene, "a 2D scene .json (\"dimensions\": 2)")->required();
+  add_structure_options(figure_cmd, figure.structure, "kd");
+  figure_cmd->add_option("--ray", figure.ray, "the ray ox,oy,dx,dy (default: the scene's own)");
+  figure_cmd->add_option("--step", figure.step, "draw the walk after this event (0-based; default: its end)");
+  figure_cmd->add_option("--width", figure.width, "the figure's width in points (PNG: pixels)")
+      ->capture_default_str();
+  figure_cmd->add_option("-o,--output", figure.output, "fig.svg, fig.pdf or fig.png")->required();
 
   CLI::App* lesson_cmd =
       app.add_subcommand("lesson", "Lessons (docs/lesson-format.md): check them, show a step as a command");
@@ -317,20 +352,27 @@ int main(int argc, char** argv) {
 
   AaReportArgs aa_report;
   CLI::App* aa_report_cmd = app.add_subcommand(
-      "aa-report", "Anti-aliasing speed against error: every method rendered, timed and measured, with plots");
+      "aa-report",
+      "Anti-aliasing speed against error: every method rendered, timed and measured, with plots");
   aa_report_cmd->add_option("scene", aa_report.scene, "scene .json or mesh .obj")->required();
-  aa_report_cmd->add_option("--methods", aa_report.methods,
-                            "comma-separated anti-aliasing specs, e.g. none,jitter:2,jitter:4,adaptive:0.1:3 "
-                            "(default: none, regular:2..8, jitter:2..8, random:4..64, adaptive at 5 thresholds)");
-  aa_report_cmd->add_option("--reference", aa_report.reference,
-                            "exact (area coverage) | jitter:K (two seeds) | auto (exact where possible, else jitter:16)")
+  aa_report_cmd->add_option(
+      "--methods", aa_report.methods,
+      "comma-separated anti-aliasing specs, e.g. none,jitter:2,jitter:4,adaptive:0.1:3 "
+      "(default: none, regular:2..8, jitter:2..8, random:4..64, adaptive at 5 thresholds)");
+  aa_report_cmd
+      ->add_option(
+          "--reference", aa_report.reference,
+          "exact (area coverage) | jitter:K (two seeds) | auto (exact where possible, else jitter:16)")
       ->capture_default_str();
   aa_report_cmd->add_option("--size", aa_report.size, "image size WxH (default: the scene's)");
-  aa_report_cmd->add_option("--seeds", aa_report.seeds, "seeds of each jitter and random method")->capture_default_str();
-  aa_report_cmd->add_option("--threads", aa_report.threads, "threads, 0..256 (0: all cores)")->capture_default_str();
+  aa_report_cmd->add_option("--seeds", aa_report.seeds, "seeds of each jitter and random method")
+      ->capture_default_str();
+  aa_report_cmd->add_option("--threads", aa_report.threads, "threads, 0..256 (0: all cores)")
+      ->capture_default_str();
   aa_report_cmd->add_option("--accel", aa_report.accel, accel_help())->capture_default_str();
-  aa_report_cmd->add_option("-o,--output", aa_report.output,
-                            "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
+  aa_report_cmd
+      ->add_option("-o,--output", aa_report.output,
+                   "report folder (replaced): report.csv, report.md, images/*.pfm, *.png plots")
       ->required();
 
   ExportVtkArgs export_vtk;
@@ -399,6 +441,7 @@ int main(int argc, char** argv) {
     if (*trace_cmd) return run_trace(trace);
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*replay_cmd) return run_replay(replay);
+    if (*figure_cmd) return run_figure(figure);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
     if (*bvh_stats_cmd) return run_bvh_stats(bvh_stats);

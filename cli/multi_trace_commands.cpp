@@ -19,7 +19,6 @@
 namespace raystep::cli {
 
 int run_multi_trace(const TraceArgs& a) {
-  if (!a.pixel && !a.ray) throw InputError("", 0, "trace: give --pixel X,Y or --ray ox,oy,oz,dx,dy,dz");
   if (a.secondary && !a.pixel) throw InputError("", 0, "trace: --secondary goes with --pixel");
   if (a.aa) throw InputError("", 0, "trace: --aa records one structure's pixel (give one --accel name)");
   if (a.build_events)
@@ -38,13 +37,8 @@ int run_multi_trace(const TraceArgs& a) {
 
   std::vector<RayRequest> requests;
   int w = scene.render.width, h = scene.render.height, px = 0, py = 0;
-  if (a.ray) {
-    std::vector<float> v = parse_numbers("--ray", *a.ray, 6);
-    RayRequest r;
-    r.ray.origin = glm::vec3(v[0], v[1], v[2]);
-    r.ray.direction = glm::vec3(v[3], v[4], v[5]);
-    if (r.ray.direction == glm::vec3(0.f)) throw InputError("", 0, "--ray: the direction is zero");
-    requests.push_back(r);
+  if (!a.pixel) {
+    requests.push_back(trace_ray_by_hand(a, scene));
   } else {
     if (a.size) parse_size(*a.size, &w, &h);
     std::vector<float> p = parse_numbers("--pixel", *a.pixel, 2);

@@ -28,6 +28,26 @@ std::vector<float> parse_numbers(const std::string& option, const std::string& s
   return out;
 }
 
+RayText parse_ray(const std::string& spec, bool plane) {
+  const long commas = std::count(spec.begin(), spec.end(), ',');
+  RayText r{};
+  if (commas == 3) {
+    if (!plane)
+      throw InputError("", 0,
+                       "--ray '" + spec +
+                           "': four numbers are a ray in the plane of a 2D scene; this scene is 3D: give "
+                           "ox,oy,oz,dx,dy,dz");
+    const std::vector<float> v = parse_numbers("--ray", spec, 4);
+    r = RayText{{v[0], v[1], 0.f}, {v[2], v[3], 0.f}};
+  } else {
+    const std::vector<float> v = parse_numbers("--ray", spec, 6);
+    r = RayText{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+  }
+  if (r.direction[0] == 0.f && r.direction[1] == 0.f && r.direction[2] == 0.f)
+    throw InputError("", 0, "--ray: the direction is zero");
+  return r;
+}
+
 // "WxH" with 1 <= W, H <= 16384.
 void parse_size(const std::string& spec, int* w, int* h) {
   static const std::regex re("([0-9]{1,5})x([0-9]{1,5})");

@@ -13,6 +13,12 @@ namespace raystep::cli {
 void parse_size(const std::string& spec, int* w, int* h);
 // "a,b,c,..." as exactly n finite numbers; InputError naming the option otherwise.
 std::vector<float> parse_numbers(const std::string& option, const std::string& spec, size_t n);
+// --ray: "ox,oy,oz,dx,dy,dz", or in the plane of a 2D scene (plane = true) also "ox,oy,dx,dy" (z = 0); a
+// non-zero direction. InputError naming the option otherwise.
+struct RayText {
+  float origin[3], direction[3];
+};
+RayText parse_ray(const std::string& spec, bool plane);
 // "a,b,c": one or more non-empty names; InputError naming the option otherwise.
 std::vector<std::string> parse_names(const std::string& option, const std::string& spec);
 // --densities "d1,d2,...": finite numbers in (0, 64].

@@ -18,6 +18,8 @@ PACKAGES=(
   libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev valgrind
   # the reports' plots (gnuplot draws PNG without a display)
   gnuplot-nox
+  # flatland figures as PDF and PNG (cairo), and the check that their SVG is well-formed (xmllint)
+  libcairo2-dev libxml2-utils
   # the step-debugger (Qt5 + VTK 9.1) and GUI tests under a virtual X server
   libvtk9-qt-dev libgl1-mesa-dri xvfb xauth x11-apps imagemagick
 )

@@ -138,17 +138,22 @@ void validate(const Geometry& geometry, const BspOptions& o) {
   }
 }
 
-// The 13 k-DOP directions, unit length in float, in the tie order: axes, face diagonals, body diagonals.
+// The 13 k-DOP directions, unit length in float, in the tie order: axes, face diagonals, body diagonals; in
+// the plane the four that are vertical planes (x, y, x+y, x-y). `index` is the direction's number.
 struct Direction {
   glm::vec3 normal;
   BspPlaneSource source;
+  int index;
 };
-std::vector<Direction> kdop_directions() {
+std::vector<Direction> kdop_directions(SplitSpace space) {
   std::vector<Direction> out;
   for (int i = 0; i < kBspKdopDirections; ++i)
-    out.push_back({bsp_kdop_direction(i), i < 3   ? BspPlaneSource::axis
-                                          : i < 9 ? BspPlaneSource::face_diagonal
-                                                  : BspPlaneSource::body_diagonal});
+    if (!space.plane() || bsp_kdop_direction(i).z == 0.f)
+      out.push_back({bsp_kdop_direction(i),
+                     i < 3   ? BspPlaneSource::axis
+                     : i < 9 ? BspPlaneSource::face_diagonal
+                             : BspPlaneSource::body_diagonal,
+                     i});
   return out;
 }
 
@@ -187,7 +192,7 @@ class Builder {
     max_depth_ = bsp_max_depth(o, g.size());
     double budget = std::ceil(double(o.reference_budget) * double(g.size()));
     budget_ = std::max(g.size(), size_t(std::min(budget, double(BspNode::kInner - 1))));
-    if (o.directions != BspDirections::autopartition) directions_ = kdop_directions();
+    if (o.directions != BspDirections::autopartition) directions_ = kdop_directions(g.split_space());
     // Every primitive as the points whose convex hull contains it: a triangle's vertices, a sphere's box.
     point_start_.push_back(0);
     for (uint32_t id = 0; id < g.size(); ++id) {
@@ -205,6 +210,7 @@ class Builder {
 
   BspTreeData build() {
     tree_.bounds = geometry_.bounds();
+    tree_.space = geometry_.split_space();
     std::vector<uint32_t> all(geometry_.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
     build_node(ConvexCell::box(tree_.bounds), -1, 0, budget_, std::move(all));
@@ -245,7 +251,7 @@ class Builder {
       if (bounded) return;
     }
     double ab, aa;
-    cell.split_areas(glm::dvec3(plane.normal), double(plane.offset), &ab, &aa);
+    cell.split_measures(glm::dvec3(plane.normal), double(plane.offset), tree_.space, &ab, &aa);
     if (!(ab > 0.0 && aa > 0.0)) return;  // the plane does not cut the cell
     double c = cost(ab, aa, area, nb, na);
     if constexpr (Recorder::enabled) {
@@ -345,6 +351,7 @@ class Builder {
       glm::dvec3 nd = glm::cross(p1 - p0, p2 - p0);
       double len = glm::length(nd);
       if (!(len > 0.0) || !std::isfinite(len)) continue;  // a degenerate triangle has no plane
+      if (tree_.space.plane() && nd.z != 0.0) continue;   // in the plane only a wall's plane cuts it
       BspPlane plane;
       plane.normal = round_to_float(nd / len);
       plane.offset = float(glm::dot(glm::dvec3(plane.normal), (p0 + p1 + p2) / 3.0));
@@ -407,7 +414,7 @@ class Builder {
 
   void build_node(const ConvexCell& cell, int32_t parent, int32_t depth, size_t budget,
                   std::vector<uint32_t> prims) {
-    const double area = cell.area();
+    const double area = cell.measure(tree_.space);
     const uint32_t node = add_node(cell, area, parent, depth);
     const uint32_t N = uint32_t(prims.size());
     const double leaf_cost = double(options_.t_i) * N;
@@ -424,7 +431,7 @@ class Builder {
     Candidate best;
     best.cost = leaf_cost;  // a split must be strictly cheaper than the leaf
     for (size_t i = 0; i < directions_.size(); ++i)
-      direction_candidates(cell, area, int(i), directions_[i], prims, &best);
+      direction_candidates(cell, area, directions_[i].index, directions_[i], prims, &best);
     if (options_.directions != BspDirections::kdop) primitive_candidates(cell, area, prims, &best);
     if (!(best.cost < leaf_cost)) return leaf(node, prims, BspLeafReason::no_cheaper_split);
 

@@ -67,6 +67,26 @@ double ConvexCell::area() const {
   return s;
 }
 
+double ConvexCell::perimeter() const {
+  // The top face: the largest upward area vector (the bottom's points down, the sides' are horizontal).
+  size_t top = 0;
+  double top_z = -kInfinity;
+  for (size_t f = 0; f < face_count(); ++f) {
+    const double z = area_vector(face(f), face_size(f)).z;
+    if (z > top_z) top_z = z, top = f;
+  }
+  if (empty()) return 0.0;
+  double s = 0.0;
+  const glm::dvec3* v = face(top);
+  const size_t n = face_size(top);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::dvec3& a = v[i];
+    const glm::dvec3& b = v[(i + 1) % n];
+    s += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  return s;
+}
+
 Bounds3 ConvexCell::bounds() const {
   Bounds3 b;
   for (const glm::dvec3& v : verts_) {
@@ -235,6 +255,15 @@ void ConvexCell::split_areas(const glm::dvec3& n, double d, double* below, doubl
   }
   *below = area_below + glm::length(sum_below);
   *above = area_above + glm::length(sum_above);
+}
+
+void ConvexCell::split_measures(const glm::dvec3& n, double d, SplitSpace space, double* below,
+                                double* above) const {
+  if (!space.plane()) return split_areas(n, d, below, above);
+  ConvexCell b, a;
+  split(n, d, &b, &a);
+  *below = b.perimeter();
+  *above = a.perimeter();
 }
 
 }  // namespace raystep

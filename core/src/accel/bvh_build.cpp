@@ -55,7 +55,8 @@ struct Slots {
 
 class Builder {
  public:
-  Builder(const BvhOptions& o, bvh::PrimRef* refs, Slots& slots) : o_(o), refs_(refs), slots_(slots) {}
+  Builder(const BvhOptions& o, SplitSpace space, bvh::PrimRef* refs, Slots& slots)
+      : o_(o), space_(space), refs_(refs), slots_(slots) {}
 
   void build(uint32_t slot, uint32_t begin, uint32_t end, int depth, int32_t parent_slot) {
     using namespace bvh;
@@ -63,7 +64,7 @@ class Builder {
     PrimRef* refs = refs_ + begin;
     Bounds3 box, centroids;
     range_bounds(refs, n, &box, &centroids);
-    NodePlan plan = plan_node(refs, n, box, centroids, depth, o_, nullptr);
+    NodePlan plan = plan_node(refs, n, box, centroids, depth, o_, space_, nullptr);
     BvhNodeInfo& info = slots_.info[slot];
     info.parent = parent_slot;
     info.depth = depth;
@@ -90,6 +91,7 @@ class Builder {
 
  private:
   const BvhOptions& o_;
+  SplitSpace space_;
   bvh::PrimRef* refs_;
   Slots& slots_;
 };
@@ -98,6 +100,7 @@ BvhData build(const Geometry& geometry, const BvhOptions& options) {
   validate(geometry, options);
   const uint32_t n = uint32_t(geometry.size());
   BvhData out;
+  out.space = geometry.split_space();
   if (n == 0) {
     out.nodes.push_back(BvhNode::make_leaf(Bounds3(), 0, 0));
     out.info.push_back(BvhNodeInfo{});
@@ -115,7 +118,7 @@ BvhData build(const Geometry& geometry, const BvhOptions& options) {
   slots.nodes.resize(capacity);
   slots.info.resize(capacity);
   slots.used.assign(capacity, 0);
-  Builder builder(options, refs.data(), slots);
+  Builder builder(options, out.space, refs.data(), slots);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] { builder.build(0, 0, n, 0, -1); });
 
@@ -165,7 +168,7 @@ void replay(const Geometry& geometry, const BvhOptions& options, const BvhData& 
     bool wants = listener.wants_candidates(uint32_t(i));
     candidates.clear();
     bvh::NodePlan plan = bvh::plan_node(refs.data(), info.prims, box, centroids, info.depth, options,
-                                        wants ? &candidates : nullptr);
+                                        bvh.space, wants ? &candidates : nullptr);
     for (const BvhCandidate& c : candidates) listener.candidate(uint32_t(i), c);
     if (plan.leaf)
       listener.leaf_made(uint32_t(i), bvh.nodes[i], info, plan.leaf_cost, plan.reason);
@@ -204,9 +207,10 @@ BvhStats bvh_stats(const BvhData& bvh, const BvhOptions& options) {
   BvhStats s;
   s.nodes = bvh.nodes.size();
   if (bvh.nodes.empty()) return s;
-  const double root_area = bvh.nodes[0].box.surface_area();
+  const SplitSpace space = bvh.space;
+  const double root_area = space.measure(bvh.nodes[0].box);
   auto weight = [&](const Bounds3& b) {
-    return root_area > 0.0 ? double(b.surface_area()) / root_area : 1.0;
+    return root_area > 0.0 ? double(space.measure(b)) / root_area : 1.0;
   };
   size_t leaf_prims = 0;
   for (size_t i = 0; i < bvh.nodes.size(); ++i) {
@@ -225,8 +229,8 @@ BvhStats bvh_stats(const BvhData& bvh, const BvhOptions& options) {
       Bounds3 both;  // the intersection of the children's boxes
       both.lo = glm::max(l.lo, r.lo);
       both.hi = glm::min(l.hi, r.hi);
-      double own = node.box.surface_area();
-      if (!both.empty() && own > 0.0) s.overlap += p * double(both.surface_area()) / own;
+      double own = space.measure(node.box);
+      if (!both.empty() && own > 0.0) s.overlap += p * double(space.measure(both)) / own;
     }
   }
   s.mean_leaf_prims = s.leaves ? double(leaf_prims) / double(s.leaves) : 0.0;

@@ -27,10 +27,11 @@ struct NodePlan {
   float leaf_cost = 0.f;
 };
 
-// Decides a node of refs[0..n) (its box and its centroids' box given). Fills *candidates (when not null) with
-// every candidate the builder evaluates, `chosen` set on the one taken. Does not reorder refs.
+// Decides a node of refs[0..n) (its box and its centroids' box given), cutting the axes of `space` and
+// weighing boxes by its measure (geometry/split_space.h). Fills *candidates (when not null) with every
+// candidate the builder evaluates, `chosen` set on the one taken. Does not reorder refs.
 NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids, int depth,
-                   const BvhOptions& options, std::vector<BvhCandidate>* candidates);
+                   const BvhOptions& options, SplitSpace space, std::vector<BvhCandidate>* candidates);
 
 // Reorders refs[0..n) so that the plan's left side comes first; returns the left count (plan.chosen.n_left).
 uint32_t apply_split(PrimRef* refs, uint32_t n, const Bounds3& centroids, const NodePlan& plan,

@@ -75,7 +75,7 @@ struct BinSet {
 // Binned SAH (Wald 2007): bin the centroids, sweep the bin boundaries from both ends. Candidate `bin` b puts
 // slots 0..b on the left.
 bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
-                 const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
+                 const BvhOptions& o, SplitSpace space, std::vector<BvhCandidate>* out, BvhCandidate* best) {
   const int bins = o.bins;
   BinMap map(centroids, bins);
   // The bins live on the stack (about 20 kB; the recursion does not hold them); big nodes are binned in
@@ -95,11 +95,11 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
   } else {
     set.add(refs, 0, n, map);
   }
-  const float area_node = box.surface_area();
+  const float area_node = space.measure(box);
   bool found = false;
   float right_area[256];
   uint32_t right_count[256];
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < space.axes; ++a) {
     if (!map.usable[a]) continue;
     const Bounds3* bb = &set.box[a * bins];
     const uint32_t* bc = &set.count[a * bins];
@@ -109,7 +109,7 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
     for (int b = bins - 1; b > 0; --b) {
       acc.extend(bb[b]);
       cnt += bc[b];
-      right_area[b - 1] = acc.surface_area();
+      right_area[b - 1] = space.measure(acc);
       right_count[b - 1] = cnt;
     }
     // Sweep from the left, evaluating each boundary.
@@ -124,7 +124,7 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
       c.position = map.lo[a] + float(b + 1) / map.scale[a];
       c.n_left = n_left;
       c.n_right = right_count[b];
-      c.area_left = left.surface_area();
+      c.area_left = space.measure(left);
       c.area_right = right_area[b];
       c.area_node = area_node;
       c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
@@ -148,21 +148,21 @@ bool centroid_less(const PrimRef& x, const PrimRef& y, int a) {
 // Full sweep SAH: on each axis sort by centroid (ties by id) and evaluate every boundary between neighbours.
 // Candidate `bin` i puts sorted positions 0..i on the left.
 bool best_sweep(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
-                const BvhOptions& o, std::vector<BvhCandidate>* out, BvhCandidate* best) {
+                const BvhOptions& o, SplitSpace space, std::vector<BvhCandidate>* out, BvhCandidate* best) {
   thread_local std::vector<PrimRef> sorted;
   thread_local std::vector<float> right_area;
   sorted.assign(refs, refs + n);
   right_area.resize(n);
-  const float area_node = box.surface_area();
+  const float area_node = space.measure(box);
   bool found = false;
-  for (int a = 0; a < 3; ++a) {
+  for (int a = 0; a < space.axes; ++a) {
     if (!(centroids.hi[a] > centroids.lo[a])) continue;  // as the binned builder: an axis without spread
     std::sort(sorted.begin(), sorted.end(),
               [a](const PrimRef& x, const PrimRef& y) { return centroid_less(x, y, a); });
     Bounds3 acc;
     for (uint32_t i = n - 1; i > 0; --i) {
       acc.extend(sorted[i].box);
-      right_area[i - 1] = acc.surface_area();
+      right_area[i - 1] = space.measure(acc);
     }
     Bounds3 left;
     for (uint32_t i = 0; i + 1 < n; ++i) {
@@ -173,7 +173,7 @@ bool best_sweep(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bound
       c.position = 0.5f * (sorted[i].centroid(a) + sorted[i + 1].centroid(a));
       c.n_left = i + 1;
       c.n_right = n - i - 1;
-      c.area_left = left.surface_area();
+      c.area_left = space.measure(left);
       c.area_right = right_area[i];
       c.area_node = area_node;
       c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
@@ -189,10 +189,10 @@ bool best_sweep(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bound
 
 // Object median: the longest axis of the centroids' box, the lower half of the centroids (ties by id) left.
 BvhCandidate median_split(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
-                          const BvhOptions& o) {
+                          const BvhOptions& o, SplitSpace space) {
   thread_local std::vector<PrimRef> sorted;
   sorted.assign(refs, refs + n);
-  int a = centroids.max_axis();
+  int a = space.longest_axis(centroids);
   uint32_t m = n / 2;
   std::nth_element(sorted.begin(), sorted.begin() + m, sorted.end(),
                    [a](const PrimRef& x, const PrimRef& y) { return centroid_less(x, y, a); });
@@ -205,16 +205,16 @@ BvhCandidate median_split(const PrimRef* refs, uint32_t n, const Bounds3& box, c
   c.position = sorted[m].centroid(a);
   c.n_left = m;
   c.n_right = n - m;
-  c.area_left = left.surface_area();
-  c.area_right = right.surface_area();
-  c.area_node = box.surface_area();
+  c.area_left = space.measure(left);
+  c.area_right = space.measure(right);
+  c.area_node = space.measure(box);
   c.cost = split_cost(o, c.area_node, m, c.area_left, n - m, c.area_right);
   return c;
 }
 
 // All centroids at one point: no plane separates them, so the ids are halved (the lower ids left).
 BvhCandidate forced_split(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids,
-                          const BvhOptions& o) {
+                          const BvhOptions& o, SplitSpace space) {
   thread_local std::vector<PrimRef> sorted;
   sorted.assign(refs, refs + n);
   uint32_t m = n / 2;
@@ -224,14 +224,14 @@ BvhCandidate forced_split(const PrimRef* refs, uint32_t n, const Bounds3& box, c
   for (uint32_t i = 0; i < m; ++i) left.extend(sorted[i].box);
   for (uint32_t i = m; i < n; ++i) right.extend(sorted[i].box);
   BvhCandidate c;
-  c.axis = box.max_axis();
+  c.axis = space.longest_axis(box);
   c.bin = int(m) - 1;
   c.position = centroids.lo[c.axis];
   c.n_left = m;
   c.n_right = n - m;
-  c.area_left = left.surface_area();
-  c.area_right = right.surface_area();
-  c.area_node = box.surface_area();
+  c.area_left = space.measure(left);
+  c.area_right = space.measure(right);
+  c.area_node = space.measure(box);
   c.cost = split_cost(o, c.area_node, m, c.area_left, n - m, c.area_right);
   return c;
 }
@@ -271,7 +271,7 @@ void range_bounds(const PrimRef* refs, uint32_t n, Bounds3* box, Bounds3* centro
 }
 
 NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bounds3& centroids, int depth,
-                   const BvhOptions& o, std::vector<BvhCandidate>* candidates) {
+                   const BvhOptions& o, SplitSpace space, std::vector<BvhCandidate>* candidates) {
   NodePlan plan;
   plan.leaf_cost = o.t_i * float(n);
   if (n <= uint32_t(o.leaf_size)) {
@@ -282,23 +282,23 @@ NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bo
     plan.reason = BvhLeafReason::max_depth;
     return plan;
   }
-  const bool spread =
-      centroids.hi.x > centroids.lo.x || centroids.hi.y > centroids.lo.y || centroids.hi.z > centroids.lo.z;
+  bool spread = false;
+  for (int a = 0; a < space.axes; ++a) spread |= centroids.hi[a] > centroids.lo[a];
   BvhCandidate best;
   bool found = false;
   if (spread) {
     switch (o.builder) {
       case BvhBuilder::sweep:
-        found = best_sweep(refs, n, box, centroids, o, candidates, &best);
+        found = best_sweep(refs, n, box, centroids, o, space, candidates, &best);
         break;
       case BvhBuilder::median:
-        best = median_split(refs, n, box, centroids, o);
+        best = median_split(refs, n, box, centroids, o, space);
         if (candidates) candidates->push_back(best);
         found = true;
         break;
       case BvhBuilder::binned:
       default:
-        found = best_binned(refs, n, box, centroids, o, candidates, &best);
+        found = best_binned(refs, n, box, centroids, o, space, candidates, &best);
         break;
     }
   }
@@ -308,7 +308,7 @@ NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bo
       plan.reason = BvhLeafReason::no_candidate;
       return plan;
     }
-    best = forced_split(refs, n, box, centroids, o);
+    best = forced_split(refs, n, box, centroids, o, space);
     if (candidates) candidates->push_back(best);
     plan.forced = true;
   } else if (o.builder != BvhBuilder::median && !(best.cost < plan.leaf_cost) &&

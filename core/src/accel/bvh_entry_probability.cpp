@@ -11,6 +11,7 @@ struct BvhView {
   const BvhData& data;
   size_t size() const { return data.nodes.size(); }
   const Bounds3& root() const { return data.nodes[0].box; }
+  SplitSpace space() const { return data.space; }
   const Bounds3& box(uint32_t id) const { return data.nodes[id].box; }
   bool is_leaf(uint32_t id) const { return data.nodes[id].is_leaf(); }
   uint32_t second_child(uint32_t id) const { return data.nodes[id].second_child(); }

@@ -45,7 +45,8 @@ void cross(const View& tree, const SlabRay& line, uint32_t id, std::vector<uint3
 }
 
 // The measurement of kdtree_entry_probability.h on any tree: View has size(), root() (the box the lines
-// pass through), box(id), is_leaf(id) and second_child(id); Accel has traverse(ray, hit, any, recorder).
+// pass through), space() (in space or in the plane), box(id), is_leaf(id) and second_child(id); Accel has
+// traverse(ray, hit, any, recorder).
 template <class View, class Accel>
 std::vector<KdNodeEntry> measure(const View& tree, const Accel& accel, size_t lines, uint64_t seed,
                                  size_t* rays_cast, uint64_t max_ray_tests) {
@@ -55,23 +56,25 @@ std::vector<KdNodeEntry> measure(const View& tree, const Accel& accel, size_t li
   const Bounds3& root = tree.root();
   // Every line through the root enters the root; below a root of zero area (a point, a segment) the ratio is
   // 0/0 and says nothing.
-  double s_root = root.surface_area();
+  const SplitSpace space = tree.space();
+  double s_root = space.measure(root);
   for (size_t i = 0; i < out.size(); ++i)
     out[i].predicted = i == 0       ? 1.0
-                       : s_root > 0 ? double(tree.box(uint32_t(i)).surface_area()) / s_root
+                       : s_root > 0 ? double(space.measure(tree.box(uint32_t(i)))) / s_root
                                     : std::nan("");
 
   std::vector<uint32_t> crossed(out.size(), 0), entered(out.size(), 0);
   NodeVisitCounter counter;
   counter.counts = &entered;
   glm::vec3 centre = root.center();
-  float radius = 0.5f * glm::length(root.extent());
+  const glm::vec3 e = root.extent();
+  float radius = 0.5f * (space.plane() ? std::hypot(e.x, e.y) : glm::length(e));
   Pcg32 rng(seed, 0);
   size_t kept = 0, cast = 0;
   for (size_t attempts = 0; kept < lines && attempts < 64 * lines; ++attempts) {
     // Crofton's lines (random_lines.h) through the bounding sphere (the same lines for every tree for the
     // same seed and root box).
-    const Ray ray = random_line(rng, centre, radius);
+    const Ray ray = random_line(rng, centre, radius, space);
     SlabRay line(ray);
     if (!intersect_slabs(root, line, nullptr, nullptr)) continue;
     ++kept;

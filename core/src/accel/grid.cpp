@@ -28,8 +28,10 @@ std::string resolution_text(const std::array<int, 3>& n) {
 
 const char* to_string(GridCoarsening c) {
   switch (c) {
-    case GridCoarsening::none: return "none";
-    case GridCoarsening::reference_budget: return "reference budget";
+    case GridCoarsening::none:
+      return "none";
+    case GridCoarsening::reference_budget:
+      return "reference budget";
   }
   return "?";
 }
@@ -38,13 +40,17 @@ size_t UniformGrid::reference_budget(size_t prim_count) {
   return std::min(kMaxReferences, std::max(kBudgetFloor, kBudgetPerPrimitive * prim_count));
 }
 
-std::array<int, 3> UniformGrid::resolution_for(const Bounds3& bounds, size_t prim_count, float density) {
-  // max(nx, ny, nz) = d * cbrt(n); the other axes in proportion to the box's extents, each at least 1.
+std::array<int, 3> UniformGrid::resolution_for(const Bounds3& bounds, size_t prim_count, float density,
+                                               SplitSpace space) {
+  // max(nx, ny, nz) = d * cbrt(n); the other axes in proportion to the box's extents, each at least 1. In the
+  // plane max(nx, ny) = d * sqrt(n) and nz = 1: n objects in d^2 n cells, as n in d^3 n cells in space.
   glm::vec3 e = bounds.extent();
+  if (space.plane()) e.z = 0.f;
   float max_extent = std::max({e.x, e.y, e.z});
-  float n_max = std::max(1.f, std::round(density * std::cbrt(float(std::max<size_t>(prim_count, 1)))));
-  std::array<int, 3> n;
-  for (int a = 0; a < 3; ++a) {
+  const float count = float(std::max<size_t>(prim_count, 1));
+  float n_max = std::max(1.f, std::round(density * (space.plane() ? std::sqrt(count) : std::cbrt(count))));
+  std::array<int, 3> n = {1, 1, 1};
+  for (int a = 0; a < space.axes; ++a) {
     float share = max_extent > 0.f ? e[a] / max_extent : 1.f;
     n[a] = int(std::clamp(std::round(n_max * share), 1.f, 4096.f));
   }
@@ -128,7 +134,8 @@ void UniformGrid::build(const Geometry& geometry) {
   }
 
   std::array<int, 3> n = options_.resolution ? *options_.resolution
-                                             : resolution_for(bounds_, geometry.size(), options_.density);
+                                             : resolution_for(bounds_, geometry.size(), options_.density,
+                                                              geometry.split_space());
   for (int a = 0; a < 3; ++a)
     if (n[a] < 1 || n[a] > 4096) throw InputError("", 0, "grid resolution must be 1..4096 per axis");
   if (size_t(n[0]) * n[1] * n[2] > kMaxCells)
@@ -139,8 +146,8 @@ void UniformGrid::build(const Geometry& geometry) {
   set_resolution(n);
 
   // Reference budget. Coarsening shrinks all axes alike by the factor that would fit if the count fell with
-  // the cube of the resolution (it falls no faster, so one step never overshoots), at least 5%; an explicit
-  // resolution is refused instead.
+  // the cube of the resolution, its square in the plane (it falls no faster, so one step never overshoots),
+  // at least 5%; an explicit resolution is refused instead.
   const size_t budget = reference_budget(geometry.size());
   if (geometry.size() > budget)
     throw InputError("", 0, "grid: more than " + std::to_string(budget) + " primitives");
@@ -152,7 +159,8 @@ void UniformGrid::build(const Geometry& geometry) {
                            std::to_string(geometry.size()) +
                            " primitives; ask for fewer cells, or let the density rule choose (it coarsens "
                            "to fit)");
-    double scale = std::min(0.95, std::cbrt(double(limit) / double(count)));
+    const double ratio = double(limit) / double(count);
+    double scale = std::min(0.95, geometry.split_space().plane() ? std::sqrt(ratio) : std::cbrt(ratio));
     for (int& v : n) v = std::max(1, int(double(v) * scale));
     set_resolution(n);
     coarsening_ = GridCoarsening::reference_budget;

@@ -14,7 +14,9 @@ namespace raystep {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& what) { throw InputError("", 0, "kd-tree: " + what); }
+[[noreturn]] void fail(const std::string& what) {
+  throw InputError("", 0, "kd-tree: " + what);
+}
 
 void validate(const Geometry& geometry, const KdOptions& o) {
   if (o.builder != KdBuilder::sah && o.builder != KdBuilder::sah_reference && o.builder != KdBuilder::median)
@@ -81,11 +83,16 @@ size_t kd_reference_budget(const KdOptions& options, size_t prim_count) {
 
 const char* leaf_reason_name(LeafReason reason) {
   switch (reason) {
-    case LeafReason::few_primitives: return "few_primitives";
-    case LeafReason::max_depth: return "max_depth";
-    case LeafReason::no_cheaper_split: return "no_cheaper_split";
-    case LeafReason::no_candidate: return "no_candidate";
-    case LeafReason::budget: return "budget";
+    case LeafReason::few_primitives:
+      return "few_primitives";
+    case LeafReason::max_depth:
+      return "max_depth";
+    case LeafReason::no_cheaper_split:
+      return "no_cheaper_split";
+    case LeafReason::no_candidate:
+      return "no_candidate";
+    case LeafReason::budget:
+      return "budget";
   }
   return "unknown";
 }
@@ -104,12 +111,12 @@ KdTreeStats kd_tree_stats(const KdTreeData& tree, const KdOptions& options) {
   KdTreeStats s;
   s.nodes = tree.nodes.size();
   s.references = tree.prim_index.size();
-  double root_area = tree.bounds.surface_area();
+  double root_area = tree.space.measure(tree.bounds);
   for (size_t i = 0; i < tree.nodes.size(); ++i) {
     const KdNode& node = tree.nodes[i];
     const KdNodeInfo& info = tree.info[i];
     s.max_depth = std::max(s.max_depth, int(info.depth));
-    double p = root_area > 0.0 ? double(info.box.surface_area()) / root_area : 1.0;
+    double p = root_area > 0.0 ? double(tree.space.measure(info.box)) / root_area : 1.0;
     if (node.is_leaf()) {
       ++s.leaves;
       if (node.prim_count() == 0) ++s.empty_leaves;
@@ -126,8 +133,8 @@ namespace kd {
 
 Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& box) {
   if (geometry.type(prim) == PrimType::triangle)
-    return without_negative_zero(
-        clip_triangle_bounds(geometry.vertex(prim, 0), geometry.vertex(prim, 1), geometry.vertex(prim, 2), box));
+    return without_negative_zero(clip_triangle_bounds(geometry.vertex(prim, 0), geometry.vertex(prim, 1),
+                                                      geometry.vertex(prim, 2), box));
   return without_negative_zero(intersection_of(geometry.prim_bounds(prim), box));
 }
 
@@ -137,8 +144,8 @@ Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3&
   return b;
 }
 
-void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis, float position,
-                            Bounds3* below, Bounds3* above) {
+void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis,
+                            float position, Bounds3* below, Bounds3* above) {
   Bounds3 below_box = box, above_box = box;
   below_box.hi[axis] = position;
   above_box.lo[axis] = position;
@@ -147,8 +154,8 @@ void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bound
     *above = straddler_bounds(geometry, prim, above_box);
     return;
   }
-  clip_triangle_bounds_split(geometry.vertex(prim, 0), geometry.vertex(prim, 1), geometry.vertex(prim, 2), box, axis,
-                             position, below, above);
+  clip_triangle_bounds_split(geometry.vertex(prim, 0), geometry.vertex(prim, 1), geometry.vertex(prim, 2),
+                             box, axis, position, below, above);
   *below = below->empty() ? intersection_of(geometry.prim_bounds(prim), below_box) : *below;
   *above = above->empty() ? intersection_of(geometry.prim_bounds(prim), above_box) : *above;
   *below = without_negative_zero(*below);
@@ -157,7 +164,8 @@ void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bound
 
 std::vector<PrimRef> root_prim_refs(const Geometry& geometry) {
   std::vector<PrimRef> prims(geometry.size());
-  for (uint32_t id = 0; id < geometry.size(); ++id) prims[id] = {id, clipped_bounds(geometry, id, geometry.bounds())};
+  for (uint32_t id = 0; id < geometry.size(); ++id)
+    prims[id] = {id, clipped_bounds(geometry, id, geometry.bounds())};
   return prims;
 }
 
@@ -185,6 +193,7 @@ TreeWriter::TreeWriter(const Geometry& geometry, const KdOptions& options)
       max_depth_(kd_max_depth(options, geometry.size())),
       budget_(kd_reference_budget(options, geometry.size())) {
   tree_.bounds = geometry.bounds();
+  tree_.space = geometry.split_space();
   // Reserved once: SAH trees of meshes have about 13 nodes per primitive (the bunny: 13.05), and the leaves
   // never hold more references than the budget; growing instead copied the arrays three times.
   const size_t n = geometry.size();

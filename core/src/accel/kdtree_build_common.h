@@ -21,26 +21,10 @@ Bounds3 clipped_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& b
 // A straddling primitive's bounds in one child. When in doubt, both: should clipping leave nothing (the
 // primitive reaches the child only within rounding), it keeps its own bounds intersected with the child.
 Bounds3 straddler_bounds(const Geometry& geometry, uint32_t prim, const Bounds3& child);
-// The same for both children of `box` cut at `position` on `axis`, at once (the sweep's split step): bit for bit
-// straddler_bounds(.., below child) and straddler_bounds(.., above child), by clip_triangle_bounds_split.
-void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis, float position,
-                            Bounds3* below, Bounds3* above);
-
-// The surface areas of the two children of a node box cut on one axis: S = 2 (e_u e_v + e_a (e_u + e_v)) with
-// e_a the child's extent on the axis (the other two extents are the node's).
-struct SplitAreas {
-  int axis;
-  float lo, hi, cross, sum, node;
-  SplitAreas(const Bounds3& box, int a) : axis(a), lo(box.lo[a]), hi(box.hi[a]) {
-    glm::vec3 e = box.extent();
-    float eu = e[(a + 1) % 3], ev = e[(a + 2) % 3];
-    cross = eu * ev;
-    sum = eu + ev;
-    node = box.surface_area();
-  }
-  float below(float position) const { return 2.f * (cross + (position - lo) * sum); }
-  float above(float position) const { return 2.f * (cross + (hi - position) * sum); }
-};
+// The same for both children of `box` cut at `position` on `axis`, at once (the sweep's split step): bit for
+// bit straddler_bounds(.., below child) and straddler_bounds(.., above child), by clip_triangle_bounds_split.
+void straddler_bounds_split(const Geometry& geometry, uint32_t prim, const Bounds3& box, int axis,
+                            float position, Bounds3* below, Bounds3* above);
 
 // The SAH cost model: C = t_t + t_i (p_b N_b + p_a N_a), p = S_child / S_node; with an empty child and
 // empty_bonus > 0, C = t_t + (1 - bonus) t_i (p_b N_b + p_a N_a) (pbrt's form). A leaf costs N t_i.
@@ -58,7 +42,7 @@ struct SahModel {
 
   // The candidate at `position` on `axis`: n_left primitives reach below the plane, n_right above, n_planar
   // lie in it. The planar ones are tried on both sides and put on the cheaper one; below on a tie.
-  SahCandidate candidate(const SplitAreas& areas, float position, uint32_t n_left, uint32_t n_right,
+  SahCandidate candidate(const SplitMeasure& areas, float position, uint32_t n_left, uint32_t n_right,
                          uint32_t n_planar) const {
     SahCandidate c;
     c.axis = areas.axis;
@@ -86,7 +70,9 @@ struct SahModel {
 
 // The tie rule, given candidates offered in the order axis x, y, z and increasing position: a later
 // candidate replaces the best only when strictly cheaper.
-inline bool cheaper(const SahCandidate& c, const SahCandidate& best) { return c.cost < best.cost; }
+inline bool cheaper(const SahCandidate& c, const SahCandidate& best) {
+  return c.cost < best.cost;
+}
 
 // The reference budget, shared out down the tree: the root has kd_reference_budget(N); a node may split only
 // if its children's primitives fit, n_below + n_above <= its budget. The below child (built first) gets a
@@ -105,6 +91,7 @@ class TreeWriter {
 
   const KdOptions& options() const { return options_; }
   const SahModel& model() const { return model_; }
+  SplitSpace space() const { return tree_.space; }
   int max_depth() const { return max_depth_; }
 
   // A new node (its kind is set later); throws InputError when the node array is full.
@@ -140,10 +127,11 @@ class TreeWriter {
 };
 
 // A split node's children, built depth first with the budget shared out as described above:
-// build_below(budget) then build_above(budget), each building its whole subtree. Returns the above child's id.
+// build_below(budget) then build_above(budget), each building its whole subtree. Returns the above child's
+// id.
 template <class BuildBelow, class BuildAbove>
-uint32_t build_children(TreeWriter& out, size_t budget, uint32_t n_below, uint32_t n_above, BuildBelow build_below,
-                        BuildAbove build_above) {
+uint32_t build_children(TreeWriter& out, size_t budget, uint32_t n_below, uint32_t n_above,
+                        BuildBelow build_below, BuildAbove build_above) {
   const size_t refs_before = out.reference_count();
   build_below(size_t(uint64_t(budget) * n_below / (uint64_t(n_below) + n_above)));
   const size_t used_below = out.reference_count() - refs_before;
@@ -177,7 +165,8 @@ class PrimRefBuilder {
       : geometry_(geometry), out_(geometry, options), rec_(rec) {}
 
   KdTreeData build() {
-    static_cast<Derived*>(this)->build_node(geometry_.bounds(), -1, 0, out_.root_budget(), root_prim_refs(geometry_));
+    static_cast<Derived*>(this)->build_node(geometry_.bounds(), -1, 0, out_.root_budget(),
+                                            root_prim_refs(geometry_));
     return out_.finish();
   }
 

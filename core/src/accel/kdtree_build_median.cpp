@@ -24,17 +24,19 @@ class MedianBuilder : public PrimRefBuilder<MedianBuilder<Recorder>, Recorder> {
   using Base::Base;
 
  private:
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, std::vector<PrimRef> prims) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget,
+                  std::vector<PrimRef> prims) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const uint32_t n = uint32_t(prims.size());
     const float leaf_cost = out_.model().leaf_cost(n);
-    if (n <= uint32_t(out_.options().leaf_size)) return make_leaf(node, prims, leaf_cost, LeafReason::few_primitives);
+    if (n <= uint32_t(out_.options().leaf_size))
+      return make_leaf(node, prims, leaf_cost, LeafReason::few_primitives);
     if (depth >= out_.max_depth()) return make_leaf(node, prims, leaf_cost, LeafReason::max_depth);
 
     // The plane: the middle of the node's longest axis.
-    const int axis = box.max_axis();
+    const int axis = out_.space().longest_axis(box);
     const float position = box.center()[axis];
-    const float area_node = box.surface_area();
+    const float area_node = out_.space().measure(box);
     if (!(box.lo[axis] < position && position < box.hi[axis]) || !(area_node > 0.f))
       return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);
 
@@ -46,11 +48,13 @@ class MedianBuilder : public PrimRefBuilder<MedianBuilder<Recorder>, Recorder> {
       if (lo < position) ++n_left;
       if (hi > position) ++n_right;
     }
-    SahCandidate c = out_.model().candidate(SplitAreas(box, axis), position, n_left, n_right, n_planar);
+    SahCandidate c =
+        out_.model().candidate(SplitMeasure(box, axis, out_.space()), position, n_left, n_right, n_planar);
     if constexpr (Recorder::enabled)
       if (rec_.wants_candidates(node)) rec_.sah_candidate(node, c);
     if (c.n_below == n && c.n_above == n) return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);
-    if (!budget_allows(budget, c.n_below, c.n_above)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, c.n_below, c.n_above))
+      return make_leaf(node, prims, leaf_cost, LeafReason::budget);
 
     // Split, then build below, then above.
     out_.set_split_cost(node, c.cost);
@@ -59,7 +63,8 @@ class MedianBuilder : public PrimRefBuilder<MedianBuilder<Recorder>, Recorder> {
     below_box.hi[axis] = position;
     above_box.lo[axis] = position;
     std::vector<PrimRef> below, above;
-    classify_prim_refs(geometry_, prims, axis, position, c.planar_below, below_box, above_box, &below, &above);
+    classify_prim_refs(geometry_, prims, axis, position, c.planar_below, below_box, above_box, &below,
+                       &above);
     std::vector<PrimRef>().swap(prims);
     uint32_t above_child = build_children(
         out_, budget, c.n_below, c.n_above,
@@ -67,7 +72,6 @@ class MedianBuilder : public PrimRefBuilder<MedianBuilder<Recorder>, Recorder> {
         [&](size_t b) { build_node(above_box, int32_t(node), depth + 1, b, std::move(above)); });
     out_.set_inner(node, axis, position, above_child);
   }
-
 };
 
 }  // namespace

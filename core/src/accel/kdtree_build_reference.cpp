@@ -23,25 +23,28 @@ class ReferenceBuilder : public PrimRefBuilder<ReferenceBuilder<Recorder>, Recor
   using Base::Base;
 
  private:
-  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget, std::vector<PrimRef> prims) {
+  void build_node(const Bounds3& box, int32_t parent, int32_t depth, size_t budget,
+                  std::vector<PrimRef> prims) {
     const uint32_t node = out_.add_node(box, parent, depth);
     const SahModel& model = out_.model();
     const uint32_t n = uint32_t(prims.size());
     const float leaf_cost = model.leaf_cost(n);
 
     // 1. Leaves made without a search.
-    if (n <= uint32_t(out_.options().leaf_size)) return make_leaf(node, prims, leaf_cost, LeafReason::few_primitives);
+    if (n <= uint32_t(out_.options().leaf_size))
+      return make_leaf(node, prims, leaf_cost, LeafReason::few_primitives);
     if (depth >= out_.max_depth()) return make_leaf(node, prims, leaf_cost, LeafReason::max_depth);
 
-    // 2. Every candidate plane: the distinct clipped bounds strictly inside the node, in the order axis x, y, z
+    // 2. Every candidate plane: the distinct clipped bounds strictly inside the node, in the order axis x, y,
+    // z
     //    and increasing position; each one counted against every primitive.
     bool record = false;
     if constexpr (Recorder::enabled) record = rec_.wants_candidates(node);
-    const float area_node = box.surface_area();
+    const float area_node = out_.space().measure(box);
     SahCandidate best;
     bool found = false;
-    for (int axis = 0; axis < 3 && area_node > 0.f; ++axis) {
-      const SplitAreas areas(box, axis);
+    for (int axis = 0; axis < out_.space().axes && area_node > 0.f; ++axis) {
+      const SplitMeasure areas(box, axis, out_.space());
       std::vector<float> positions;
       for (const PrimRef& r : prims)
         for (float x : {r.bounds.lo[axis], r.bounds.hi[axis]})
@@ -70,7 +73,8 @@ class ReferenceBuilder : public PrimRefBuilder<ReferenceBuilder<Recorder>, Recor
     // 3. Leaves decided by the search.
     if (!found) return make_leaf(node, prims, leaf_cost, LeafReason::no_candidate);
     if (!(best.cost < leaf_cost)) return make_leaf(node, prims, leaf_cost, LeafReason::no_cheaper_split);
-    if (!budget_allows(budget, best.n_below, best.n_above)) return make_leaf(node, prims, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, best.n_below, best.n_above))
+      return make_leaf(node, prims, leaf_cost, LeafReason::budget);
 
     // 4. Split: classify into the children, then build below, then above (depth-first preorder).
     out_.set_split_cost(node, best.cost);
@@ -79,8 +83,8 @@ class ReferenceBuilder : public PrimRefBuilder<ReferenceBuilder<Recorder>, Recor
     below_box.hi[best.axis] = best.position;
     above_box.lo[best.axis] = best.position;
     std::vector<PrimRef> below, above;
-    classify_prim_refs(geometry_, prims, best.axis, best.position, best.planar_below, below_box, above_box, &below,
-                       &above);
+    classify_prim_refs(geometry_, prims, best.axis, best.position, best.planar_below, below_box, above_box,
+                       &below, &above);
     std::vector<PrimRef>().swap(prims);
     uint32_t above_child = build_children(
         out_, budget, best.n_below, best.n_above,
@@ -88,7 +92,6 @@ class ReferenceBuilder : public PrimRefBuilder<ReferenceBuilder<Recorder>, Recor
         [&](size_t b) { build_node(above_box, int32_t(node), depth + 1, b, std::move(above)); });
     out_.set_inner(node, best.axis, best.position, above_child);
   }
-
 };
 
 }  // namespace

@@ -16,8 +16,8 @@ namespace {
 enum EventType : uint32_t { kEnd = 0, kPlanar = 1, kStart = 2 };
 
 // One event on one axis, packed in 64 bits so that events sort and merge as integers: above, the position's
-// bits made order-preserving; below, the key, the type above the primitive id. Ordering the packed bits is the
-// paper's order by (position, type), made total by the id. (Positions are finite and never -0, see
+// bits made order-preserving; below, the key, the type above the primitive id. Ordering the packed bits is
+// the paper's order by (position, type), made total by the id. (Positions are finite and never -0, see
 // kd::clipped_bounds, so equal positions are equal bits.)
 struct Event {
   uint64_t bits;
@@ -39,11 +39,14 @@ struct Event {
     const uint32_t u = float_to_bits(f);
     return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
   }
-  static float from_ordered_bits(uint32_t o) { return bits_to_float((o & 0x80000000u) ? (o & 0x7fffffffu) : ~o); }
+  static float from_ordered_bits(uint32_t o) {
+    return bits_to_float((o & 0x80000000u) ? (o & 0x7fffffffu) : ~o);
+  }
 };
 
 // The merge of two sorted runs of distinct events into out; returns the end of the output.
-inline Event* merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end, Event* out) {
+inline Event* merge_events(const Event* a, const Event* a_end, const Event* b, const Event* b_end,
+                           Event* out) {
   while (a != a_end && b != b_end) {
     const bool take_b = b->bits < a->bits;
     *out++ = take_b ? *b : *a;
@@ -147,7 +150,7 @@ class SweepBuilder {
     bool record = false;
     if constexpr (Recorder::enabled) record = rec_.wants_candidates(node);
     const SahModel& model = out_.model();
-    const float area_node = box.surface_area();
+    const float area_node = out_.space().measure(box);
     if (!(area_node > 0.f)) return false;  // a segment or a point: no ray can tell the children apart
     // A lower bound on a candidate's cost, cheap to compute (a reciprocal for the divisions, and the largest
     // bonus): a candidate whose bound is not below the best cost cannot be strictly cheaper, so its exact
@@ -155,23 +158,24 @@ class SweepBuilder {
     // absolute, is far beyond the rounding of either computation, so the tree is the same.
     const float inv_area_node = 1.f / area_node;
     const float bound_scale = (1.f - model.empty_bonus) * model.t_i;
-    // Only where the bound's products stay finite (neither huge boxes times many primitives nor boxes so small
-    // that 1 / area overflows): else every candidate is evaluated exactly.
+    // Only where the bound's products stay finite (neither huge boxes times many primitives nor boxes so
+    // small that 1 / area overflows): else every candidate is evaluated exactly.
     const bool may_skip = std::isfinite(inv_area_node) && area_node * float(ev.n_prims) < 1e37f;
     const bool packed_counts = ev.n_prims < (1u << 21);
     constexpr uint64_t kCountMask = (uint64_t(1) << 21) - 1;
     bool found = false;
-    for (int axis = 0; axis < 3; ++axis) {
-      const SplitAreas areas(box, axis);
+    for (int axis = 0; axis < out_.space().axes; ++axis) {
+      const SplitMeasure areas(box, axis, out_.space());
       const Event* e = events_[axis].data() + ev.begin[axis];
       const size_t count = ev.end[axis] - ev.begin[axis];
       // The node's interior on this axis as ordered bits (positions are never -0; the box's faces are made +0
       // so that comparing bits is comparing floats).
-      const uint32_t lo_bits = Event::ordered_bits(box.lo[axis] + 0.f), hi_bits = Event::ordered_bits(box.hi[axis] + 0.f);
+      const uint32_t lo_bits = Event::ordered_bits(box.lo[axis] + 0.f),
+                     hi_bits = Event::ordered_bits(box.hi[axis] + 0.f);
       uint32_t n_left = 0, n_right = ev.n_prims;
       for (size_t i = 0; i < count;) {
-        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the type:
-        // in three 21-bit fields of one integer while fewer primitives than 2^21 cannot overflow them).
+        // p-, p|, p+: how many events of each type lie at this position (counted without branches on the
+        // type: in three 21-bit fields of one integer while fewer primitives than 2^21 cannot overflow them).
         const uint32_t at_position = e[i].position_bits();
         uint32_t ends = 0, planars = 0, starts = 0;
         if (packed_counts) {
@@ -200,7 +204,8 @@ class SweepBuilder {
           if (!evaluate) {
             const float a_below = areas.below(position), a_above = areas.above(position);
             const float weighted = (a_below * float(n_left) + a_above * float(n_right) +
-                                    std::min(a_below, a_above) * float(planars)) * inv_area_node;
+                                    std::min(a_below, a_above) * float(planars)) *
+                                   inv_area_node;
             const float bound = (model.t_t + bound_scale * weighted) * (1.f - 1.f / 65536.f) - 1e-30f;
             evaluate = !(bound >= best->cost);
           }
@@ -230,17 +235,20 @@ class SweepBuilder {
     //    or before p below only, anything else both; planar ones by their position and the chosen side. The
     //    straddlers are collected in the same pass: an end after p of a primitive whose start was before it.
     //    (Their order does not matter: their new events are sorted.)
-    const uint32_t p_bits = Event::ordered_bits(p);  // p is an event's position: comparing bits is comparing floats
+    const uint32_t p_bits =
+        Event::ordered_bits(p);  // p is an event's position: comparing bits is comparing floats
     if (straddlers_.size() < ev.end[k] - ev.begin[k]) straddlers_.resize(ev.end[k] - ev.begin[k]);
     size_t n_straddlers = 0;
-    for (size_t i = ev.begin[k]; i < ev.end[k]; ++i) {  // selects, not branches: the types come in random order
+    for (size_t i = ev.begin[k]; i < ev.end[k];
+         ++i) {  // selects, not branches: the types come in random order
       const Event& e = events_[k][i];
       const uint32_t x = e.position_bits();
       const EventType type = e.type();
       const uint32_t prim = e.prim();
       Side& side = side_[prim];
       const Side start_side = x >= p_bits ? Side::above : Side::both;
-      const Side planar_side = (x < p_bits || (x == p_bits && plane.planar_below)) ? Side::below : Side::above;
+      const Side planar_side =
+          (x < p_bits || (x == p_bits && plane.planar_below)) ? Side::below : Side::above;
       const Side end_side = x <= p_bits ? Side::below : side;
       straddlers_[n_straddlers] = prim;
       n_straddlers += type == kEnd && x > p_bits && side == Side::both;
@@ -255,7 +263,8 @@ class SweepBuilder {
     box.hi[k] = above_box.hi[k];
     for (size_t i = 0; i < n_straddlers; ++i) {
       // The triangles are scattered in memory: ask for the vertices a few clips ahead.
-      if (i + kPrefetchAhead < n_straddlers && geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
+      if (i + kPrefetchAhead < n_straddlers &&
+          geometry_.type(straddlers_[i + kPrefetchAhead]) == PrimType::triangle)
         __builtin_prefetch(&geometry_.vertex(straddlers_[i + kPrefetchAhead], 0));
       const uint32_t prim = straddlers_[i];
       Bounds3 below_bounds, above_bounds;
@@ -264,13 +273,14 @@ class SweepBuilder {
       append_events(above_bounds, prim, above_out);
     }
 
-
-    // 3. The primitives on one side keep their events, spliced out in order: the above ones moved down in place
+    // 3. The primitives on one side keep their events, spliced out in order: the above ones moved down in
+    // place
     //    (never past where they are read), the below ones to scratch; 4. merged with the new ones. The above
     //    child goes to the arena first, the below child on top of it (it is built first).
     for (int a = 0; a < 3; ++a) {
       const Event *new_below = new_below_[a].data(), *new_above = new_above_[a].data();
-      const size_t n_new_below = size_t(below_out[a] - new_below), n_new_above = size_t(above_out[a] - new_above);
+      const size_t n_new_below = size_t(below_out[a] - new_below),
+                   n_new_above = size_t(above_out[a] - new_above);
       std::sort(new_below_[a].data(), below_out[a]);
       std::sort(new_above_[a].data(), above_out[a]);
       const size_t base = ev.begin[a], count = ev.end[a] - ev.begin[a];
@@ -307,14 +317,16 @@ class SweepBuilder {
     const float leaf_cost = out_.model().leaf_cost(n);
 
     // 1. Leaves made without a search.
-    if (n <= uint32_t(out_.options().leaf_size)) return make_leaf(node, ev, leaf_cost, LeafReason::few_primitives);
+    if (n <= uint32_t(out_.options().leaf_size))
+      return make_leaf(node, ev, leaf_cost, LeafReason::few_primitives);
     if (depth >= out_.max_depth()) return make_leaf(node, ev, leaf_cost, LeafReason::max_depth);
 
     // 2. The best plane by the sweep; 3. leaves decided by it.
     SahCandidate best;
     if (!find_plane(node, box, ev, &best)) return make_leaf(node, ev, leaf_cost, LeafReason::no_candidate);
     if (!(best.cost < leaf_cost)) return make_leaf(node, ev, leaf_cost, LeafReason::no_cheaper_split);
-    if (!budget_allows(budget, best.n_below, best.n_above)) return make_leaf(node, ev, leaf_cost, LeafReason::budget);
+    if (!budget_allows(budget, best.n_below, best.n_above))
+      return make_leaf(node, ev, leaf_cost, LeafReason::budget);
 
     // 4. Split the events, then build below, then above (depth-first preorder).
     out_.set_split_cost(node, best.cost);

@@ -12,6 +12,7 @@ struct KdView {
   const KdTreeData& data;
   size_t size() const { return data.nodes.size(); }
   const Bounds3& root() const { return data.bounds; }
+  SplitSpace space() const { return data.space; }
   const Bounds3& box(uint32_t id) const { return data.info[id].box; }
   bool is_leaf(uint32_t id) const { return data.nodes[id].is_leaf(); }
   uint32_t second_child(uint32_t id) const { return data.nodes[id].above_child(); }

@@ -22,18 +22,30 @@ Ray random_line(Pcg32& rng, const glm::vec3& centre, float radius) {
   return ray;
 }
 
-LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t seed) {
+Ray random_plane_line(Pcg32& rng, const glm::vec3& centre, float radius) {
+  // A uniform direction in the plane, then an offset uniform across the disc's diameter perpendicular to it.
+  const float phi = 6.2831853f * rng.uniform(), r = radius * (2.f * rng.uniform() - 1.f);
+  const glm::vec3 d(std::cos(phi), std::sin(phi), 0.f), across(-d.y, d.x, 0.f);
+  Ray ray;
+  ray.origin = centre + r * across - 2.f * radius * d;
+  ray.direction = d;
+  return ray;
+}
+
+LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t seed, SplitSpace space) {
   LinesMeetingBox out;
   if (box.empty()) return out;
   const glm::vec3 centre = box.center();
-  const float radius = 0.5f * glm::length(box.extent());
+  const glm::vec3 e = box.extent();
+  const float radius = 0.5f * (space.plane() ? std::hypot(e.x, e.y) : glm::length(e));
   if (!(radius > 0.f)) return out;
-  out.predicted = double(box.surface_area()) / 4.0 / (M_PI * double(radius) * double(radius));
+  out.predicted = space.plane() ? double(space.measure(box)) / (2.0 * M_PI * double(radius))
+                                : double(box.surface_area()) / 4.0 / (M_PI * double(radius) * double(radius));
   if (lines == 0) return out;
   Pcg32 rng(seed, 0);
   size_t met = 0;
   for (size_t i = 0; i < lines; ++i)
-    met += intersect_slabs(box, SlabRay(random_line(rng, centre, radius)), nullptr, nullptr);
+    met += intersect_slabs(box, SlabRay(random_line(rng, centre, radius, space)), nullptr, nullptr);
   out.measured = double(met) / double(lines);
   return out;
 }

@@ -69,7 +69,7 @@ class Collapser {
       for (int i = 0; i < n; ++i) {
         if (leaf_like(kids[i])) continue;
         const BvhNode& k = bin_.nodes[kids[i]];
-        float a = k.box.surface_area();
+        float a = bin_.space.measure(k.box);
         if (a > best_area) best_area = a, best = i;
       }
       if (best < 0) break;

@@ -1,4 +1,5 @@
 #include "raystep/replay/storyboard.h"
+#include "raystep/replay/slide_stack.h"
 
 #include <cmath>
 
@@ -317,6 +318,8 @@ void write_storyboard_text(std::ostream& out, const MultiTrace& trace, const Sto
         for (const StackEntry& st : s.stack) out << " " << st.node;
         out << "\n";
       }
+      const std::string slides = slide_stack_text(t, ray, s);
+      if (!slides.empty()) out << "  as the slides write it: " << slides << "\n";
       if (s.nearest_prim >= 0)
         out << "  nearest: prim " << s.nearest_prim << " at t = " << s.nearest_t
             << (s.accepted   ? " (accepted)"

@@ -143,6 +143,7 @@ std::string flat_shape_problem(const FlatShape& s) {
 void add_flat_shapes(Flatland* flat, Geometry* geometry) {
   flat_bounds(flat->shapes, &flat->lo, &flat->hi);
   const float h = flat->half_height = flat_half_height(flat->lo, flat->hi);
+  geometry->set_split_space(SplitSpace{2});  // the structures cut the plane only
   for (FlatShape& s : flat->shapes) {
     s.object = geometry->begin_object(s.name, s.material);
     s.first_prim = uint32_t(geometry->size());

@@ -38,10 +38,10 @@
 #include <vtkTextProperty.h>
 #include <vtkVector.h>
 
+#include "app/session.h"
 #include "common/chart_util.h"
 #include "raystep/accel/grid.h"
 #include "raystep/util/error.h"
-#include "app/session.h"
 
 namespace raystep::viz {
 namespace {
@@ -399,7 +399,7 @@ void GridSweepView::updateChosenText() {
     return;
   }
   const Geometry& g = scene->scene.geometry;
-  const auto res = UniformGrid::resolution_for(g.bounds(), g.size(), dd);
+  const auto res = UniformGrid::resolution_for(g.bounds(), g.size(), dd, g.split_space());
   const GridSweepRow* measured = nullptr;
   for (const GridSweepRow& r : sweep_.rows)
     if (r.density == dd) measured = &r;

@@ -14,6 +14,7 @@
 
 #include "raystep/accel/bsp_node.h"
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/split_space.h"
 
 namespace raystep {
 
@@ -30,6 +31,11 @@ class ConvexCell {
   size_t face_size(size_t f) const { return face_start_[f + 1] - face_start_[f]; }
 
   double area() const;
+  // The perimeter of its top face in the plane: a flatland tree's cell is a prism over a convex polygon
+  // (every cut is vertical), and that polygon's perimeter weighs it in the SAH (Crofton in the plane).
+  double perimeter() const;
+  // area() in space, perimeter() in the plane.
+  double measure(SplitSpace space) const { return space.plane() ? perimeter() : area(); }
   Bounds3 bounds() const;  // rounded outward to floats
   // The cell's extent along a direction: min and max of dot(n, vertex).
   void extent(const glm::dvec3& n, double* lo, double* hi) const;
@@ -42,6 +48,8 @@ class ConvexCell {
   // Their surface areas without building them (the SAH's inner loop): each face clipped as above, and the
   // cap by the closed surface's zero total area vector (the cap's is minus the sum of the others').
   void split_areas(const glm::dvec3& n, double d, double* below, double* above) const;
+  // split_areas in space; in the plane the two parts' perimeters (of the parts split() makes).
+  void split_measures(const glm::dvec3& n, double d, SplitSpace space, double* below, double* above) const;
 
  private:
   double tolerance(const glm::dvec3& n, double d) const;

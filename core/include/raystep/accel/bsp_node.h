@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/split_space.h"
 
 namespace raystep {
 
@@ -62,6 +63,7 @@ struct BspNodeInfo {
 // A built tree. nodes[0] is the root (the scene's box); ids are positions in `nodes`.
 struct BspTreeData {
   Bounds3 bounds;
+  SplitSpace space;  // cut in space, or in the plane by vertical planes only (a flatland scene)
   std::vector<BspNode> nodes;
   std::vector<BspNodeInfo> info;
   std::vector<uint32_t> prim_index;  // leaves' primitive ids, increasing within a leaf

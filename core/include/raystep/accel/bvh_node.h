@@ -1,13 +1,15 @@
 // The binary bounding volume hierarchy as data (lecture: "bounding volume hierarchies: balanced trees with
 // tight, possibly overlapping, bounds"): 32-byte nodes in depth-first order (the first child follows its
-// parent, the second child's index is stored), each primitive id in exactly one leaf, and a cold side table per
-// node for traces, statistics and the GUI. Built by bvh_build.h, walked by bvh.h, collapsed by wide_bvh.h.
+// parent, the second child's index is stored), each primitive id in exactly one leaf, and a cold side table
+// per node for traces, statistics and the GUI. Built by bvh_build.h, walked by bvh.h, collapsed by
+// wide_bvh.h.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/split_space.h"
 
 namespace raystep {
 
@@ -47,16 +49,17 @@ struct BvhNode {
 struct BvhNodeInfo {
   int32_t parent = -1;  // -1 for the root (node 0)
   int32_t depth = 0;
-  uint32_t prims = 0;   // primitives in the node's subtree
-  float cost = 0.f;     // the builder's choice for this node: the split's SAH cost, or N * t_i for a leaf
+  uint32_t prims = 0;  // primitives in the node's subtree
+  float cost = 0.f;    // the builder's choice for this node: the split's SAH cost, or N * t_i for a leaf
 };
 
 // A built hierarchy. nodes[0] is the root (its box is the scene's bounds); node ids are positions in `nodes`
 // (depth-first preorder), the ids that trace events and the SAH inspector use. prim_index is a permutation of
 // the primitive ids: each leaf's are contiguous and in increasing id order within the leaf.
 struct BvhData {
+  SplitSpace space;  // split on x, y, z, or on x and y in the plane (a flatland scene)
   std::vector<BvhNode> nodes;
-  std::vector<BvhNodeInfo> info;     // one per node
+  std::vector<BvhNodeInfo> info;  // one per node
   std::vector<uint32_t> prim_index;
 };
 

@@ -46,15 +46,18 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   size_t memory_bytes() const override {
     return cell_start_.capacity() * sizeof(uint32_t) + prim_index_.capacity() * sizeof(uint32_t) +
            occupied_.capacity() * sizeof(uint64_t) +
-           (boundaries_[0].capacity() + boundaries_[1].capacity() + boundaries_[2].capacity()) * sizeof(float);
+           (boundaries_[0].capacity() + boundaries_[1].capacity() + boundaries_[2].capacity()) *
+               sizeof(float);
   }
 
   // The traversal kernel, instrumented through the recorder (see record/recorder.h).
   template <class Recorder>
   bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
 
-  // The lecture's resolution rule, exposed for tests and lessons.
-  static std::array<int, 3> resolution_for(const Bounds3& bounds, size_t prim_count, float density);
+  // The lecture's resolution rule, exposed for tests and lessons: in space max(nx, ny, nz) = d * cbrt(n), in
+  // the plane max(nx, ny) = d * sqrt(n) with nz = 1.
+  static std::array<int, 3> resolution_for(const Bounds3& bounds, size_t prim_count, float density,
+                                           SplitSpace space = {});
 
   // Bounded memory and build time on any scene: a build stores at most reference_budget(n) =
   // min(2^28, max(2^22, 32 n)) primitive references. It first counts, allocating nothing, each primitive's
@@ -114,7 +117,7 @@ class UniformGrid final : public RecordedWalk<UniformGrid, GridOptions> {
   std::array<int, 3> requested_{1, 1, 1};
   GridCoarsening coarsening_ = GridCoarsening::none;
   glm::vec3 cell_size_{1.f}, inv_cell_size_{1.f};
-  std::vector<float> boundaries_[3];   // per axis, the n + 1 boundary positions (boundary())
+  std::vector<float> boundaries_[3];  // per axis, the n + 1 boundary positions (boundary())
   std::vector<uint32_t> cell_start_;  // nx*ny*nz + 1 offsets into prim_index_ (compact storage)
   std::vector<uint32_t> prim_index_;
   std::vector<uint64_t> occupied_;  // one bit per cell: cell_start_[id] < cell_start_[id + 1]
@@ -133,8 +136,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
     return false;
   }
 
-  // Set up the 3D-DDA: the start cell (clamped), and per axis stepX and tMaxX (t of the next boundary). tDeltaX,
-  // a cell's width in t, is shown to the recorder only: the walk computes each boundary's t from its position.
+  // Set up the 3D-DDA: the start cell (clamped), and per axis stepX and tMaxX (t of the next boundary).
+  // tDeltaX, a cell's width in t, is shown to the recorder only: the walk computes each boundary's t from its
+  // position.
   glm::vec3 start = ray.at(t_enter);
   int cell[3], step[3], out[3];
   float t_max[3];  // plain arrays: indexed by a run-time axis without glm's switch
@@ -143,7 +147,9 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
   const float* positions[3] = {boundaries_[0].data(), boundaries_[1].data(), boundaries_[2].data()};
   const float origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
   // The t where the ray meets boundary `index` (0..n) of an axis.
-  auto boundary_t = [&](int axis, int index) { return (positions[axis][index] - origin[axis]) * inv_d[axis]; };
+  auto boundary_t = [&](int axis, int index) {
+    return (positions[axis][index] - origin[axis]) * inv_d[axis];
+  };
   for (int a = 0; a < 3; ++a) {
     cell[a] = cell_of(start[a], a);
     float d = ray.direction[a];
@@ -188,7 +194,8 @@ bool UniformGrid::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec
       for (int a = 0; a < 3; ++a)
         if (step[a] != 0) t_delta[a] = cell_size_[a] / std::fabs(ray.direction[a]);
       rec.cell(GridCellStep{cell[0], cell[1], cell[2], t_cell_enter, t_cell_exit,
-                            glm::vec3(t_max[0], t_max[1], t_max[2]), t_delta, t_max[axis] <= t_exit ? axis : -1});
+                            glm::vec3(t_max[0], t_max[1], t_max[2]), t_delta,
+                            t_max[axis] <= t_exit ? axis : -1});
     } else
       rec.cell(GridCellStep{});
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raystep/geometry/bounds.h"
+#include "raystep/geometry/split_space.h"
 
 namespace raystep {
 
@@ -47,13 +48,14 @@ struct KdNodeInfo {
   Bounds3 box;          // the node's cell
   int32_t parent = -1;  // -1 for the root (node 0)
   int32_t depth = 0;
-  float cost = 0.f;     // the cost the builder chose for this node: the split's SAH cost, or N * t_i for a leaf
+  float cost = 0.f;  // the cost the builder chose for this node: the split's SAH cost, or N * t_i for a leaf
 };
 
 // A built tree. nodes[0] is the root; node ids are positions in `nodes` (depth-first preorder: a node, its
 // whole below subtree, then its above subtree), the same ids that trace events and the SAH inspector use.
 struct KdTreeData {
-  Bounds3 bounds;                    // the root's box: the scene's bounds
+  Bounds3 bounds;    // the root's box: the scene's bounds
+  SplitSpace space;  // split on x, y, z, or on x and y in the plane (a flatland scene)
   std::vector<KdNode> nodes;
   std::vector<KdNodeInfo> info;      // one per node
   std::vector<uint32_t> prim_index;  // leaves' primitive ids, in increasing id order within a leaf

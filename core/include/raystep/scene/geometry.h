@@ -1,6 +1,7 @@
 // The scene's primitives in one id space. Primitive id = position in this list: objects in the order the
 // scene lists them, each contributing its primitives in order (for an OBJ mesh: the 0-based order of the
-// triangles in the file, a polygon v0..vn split as the fan (v0, vi, vi+1)). Every accelerator reports these ids.
+// triangles in the file, a polygon v0..vn split as the fan (v0, vi, vi+1)). Every accelerator reports these
+// ids.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include "raystep/geometry/indexed_mesh.h"
 #include "raystep/geometry/ray.h"
 #include "raystep/geometry/sphere.h"
+#include "raystep/geometry/split_space.h"
 #include "raystep/geometry/triangle.h"
 
 namespace raystep {
@@ -30,7 +32,7 @@ struct Hit {
 
 // One object of the scene (a mesh, a sphere, a box...): a contiguous range of primitive ids.
 struct Object {
-  std::string name;      // e.g. "mesh bunny.obj", "sphere", "box"
+  std::string name;  // e.g. "mesh bunny.obj", "sphere", "box"
   uint32_t first_prim = 0;
   uint32_t prim_count = 0;
   uint32_t material = 0;
@@ -54,6 +56,10 @@ class Geometry {
   const Bounds3& bounds() const { return bounds_; }
   Bounds3 prim_bounds(uint32_t id) const;
   bool all_triangles() const { return spheres_.empty(); }
+  // Where the structures over it cut: in space, or in the plane for a flatland scene's walls
+  // (geometry/split_space.h; set by add_flat_shapes).
+  SplitSpace split_space() const { return space_; }
+  void set_split_space(SplitSpace space) { space_ = space; }
 
   // Triangle vertices of a triangle primitive.
   const glm::vec3& vertex(uint32_t id, int k) const { return tri_verts_[3 * local_[id] + k]; }
@@ -102,11 +108,12 @@ class Geometry {
   std::vector<uint32_t> local_;   // index into tri_verts_/3 or spheres_
   std::vector<uint32_t> object_;  // owning object
   std::vector<glm::vec3> tri_verts_;
-  std::vector<glm::vec3> tri_normals_;     // 3 per triangle, or empty when no triangle has normals
-  std::vector<uint8_t> tri_has_normals_;   // per triangle
+  std::vector<glm::vec3> tri_normals_;    // 3 per triangle, or empty when no triangle has normals
+  std::vector<uint8_t> tri_has_normals_;  // per triangle
   std::vector<Sphere> spheres_;
   std::vector<Object> objects_;
   Bounds3 bounds_;
+  SplitSpace space_;
 };
 
 // Adds an indexed mesh's triangles (geometry/indexed_mesh.h) to g as one object; returns the object index.

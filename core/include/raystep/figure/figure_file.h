@@ -1,0 +1,16 @@
+// A figure written as SVG (hand-written: text as <text>, one <g id=...> per layer, a class on each item, so
+// that an instructor can restyle it), PDF or PNG (drawn by cairo), by the file's extension; atomically.
+#pragma once
+
+#include <string>
+
+#include "raystep/figure/figure.h"
+
+namespace raystep {
+
+// The SVG document of the figure, `width` points wide (the height follows the figure's aspect).
+std::string figure_svg(const Figure& figure, int width);
+// .svg, .pdf or .png (width in pixels for PNG, points otherwise); InputError("", 0, ...) for another.
+void write_figure(const std::string& path, const Figure& figure, int width);
+
+}  // namespace raystep

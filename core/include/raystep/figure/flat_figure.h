@@ -1,0 +1,24 @@
+// The lecture's 2D picture of one walk: a 2D scene's shapes, a structure's cells as the slides draw them
+// (accel/plane_outline.h), and a ray's walk after step N of its replay (the cells or nodes visited, the
+// current one, the stack's nodes, the ray with its current interval [t_min, t_max] and the nearest hit), with
+// a caption: the step, its event, and for a tree the stack as the slides write it.
+#pragma once
+
+#include "raystep/accel/plane_outline.h"
+#include "raystep/figure/figure.h"
+#include "raystep/scene/scene.h"
+#include "raystep/trace/trace_file.h"
+
+namespace raystep {
+
+struct FlatFigureInput {
+  const Scene* scene = nullptr;           // a 2D scene (scene->flat)
+  const PlaneOutline* outline = nullptr;  // the structure's, or null for the shapes and the ray alone
+  const Trace* trace = nullptr;           // one ray's walk through that structure, or null
+  int step = -1;                          // the event after which the walk is drawn (-1: its end)
+};
+
+// Throws InputError("", 0, ...) for a 3D scene or a step past the walk's end.
+Figure flat_figure(const FlatFigureInput& input);
+
+}  // namespace raystep

@@ -1,0 +1,247 @@
+#include "raystep/figure/flat_figure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "raystep/replay/explain.h"
+#include "raystep/replay/replayer.h"
+#include "raystep/replay/slide_stack.h"
+#include "raystep/util/error.h"
+
+namespace raystep {
+
+namespace {
+
+const glm::vec3 kInk(0.15f, 0.15f, 0.18f), kStructure(0.35f, 0.45f, 0.6f), kVisited(0.55f, 0.75f, 0.95f),
+    kCurrent(1.f, 0.82f, 0.2f), kStacked(0.95f, 0.55f, 0.1f), kRay(0.85f, 0.1f, 0.1f);
+
+FigureItem line(glm::vec2 a, glm::vec2 b, glm::vec3 colour, float width, const std::string& css) {
+  FigureItem it;
+  it.kind = FigureItem::Kind::line;
+  it.points = {a, b};
+  it.style.stroke = colour;
+  it.style.stroke_width = width;
+  it.css = css;
+  return it;
+}
+
+FigureItem polygon(const std::vector<glm::vec2>& points, glm::vec3 stroke, float width, glm::vec3 fill,
+                   float opacity, const std::string& css) {
+  FigureItem it;
+  it.kind = FigureItem::Kind::polygon;
+  it.points = points;
+  it.style.stroke = stroke;
+  it.style.stroke_width = width;
+  it.style.has_stroke = width > 0.f;
+  it.style.fill = fill;
+  it.style.fill_opacity = opacity;
+  it.css = css;
+  return it;
+}
+
+FigureItem dot(glm::vec2 p, float radius, glm::vec3 colour, const std::string& css) {
+  FigureItem it;
+  it.kind = FigureItem::Kind::circle;
+  it.points = {p};
+  it.radius = radius;
+  it.style.has_stroke = false;
+  it.style.fill = colour;
+  it.style.fill_opacity = 1.f;
+  it.css = css;
+  return it;
+}
+
+const OutlineRegion* region_of(const PlaneOutline& o, int32_t node) {
+  if (node >= 0 && size_t(node) < o.regions.size() && o.regions[size_t(node)].node == node)
+    return &o.regions[size_t(node)];
+  return nullptr;
+}
+
+// The shapes as the slides draw them: walls as lines, filled polygons and circles with their material.
+FigureLayer shapes_layer(const Scene& scene, float unit) {
+  FigureLayer layer{"shapes", {}};
+  for (const FlatShape& s : scene.flat->shapes) {
+    const glm::vec3 colour = s.material < scene.materials.size() ? scene.materials[s.material].diffuse : kInk;
+    switch (s.kind) {
+      case FlatShape::Kind::segment:
+      case FlatShape::Kind::polyline: {
+        FigureItem it;
+        it.kind = FigureItem::Kind::polyline;
+        it.points = s.points;
+        it.style.stroke = kInk;
+        it.style.stroke_width = 1.6f;
+        it.css = "shape " + std::string(flat_kind_name(s.kind));
+        layer.items.push_back(it);
+        break;
+      }
+      case FlatShape::Kind::polygon:
+        layer.items.push_back(polygon(s.points, kInk, 1.6f, colour, s.filled ? 1.f : 0.35f, "shape polygon"));
+        break;
+      case FlatShape::Kind::circle: {
+        FigureItem it = dot(s.center, s.radius, colour, "shape circle");
+        it.style.fill_opacity = 0.35f;
+        it.style.has_stroke = true;
+        it.style.stroke = kInk;
+        it.style.stroke_width = 1.6f;
+        layer.items.push_back(it);
+        break;
+      }
+    }
+  }
+  (void)unit;
+  return layer;
+}
+
+FigureLayer structure_layer(const PlaneOutline& o) {
+  FigureLayer layer{"structure", {}};
+  layer.items.push_back(polygon({{o.lo.x, o.lo.y}, {o.hi.x, o.lo.y}, {o.hi.x, o.hi.y}, {o.lo.x, o.hi.y}},
+                                kStructure, 1.4f, glm::vec3(1.f), 0.f, "root"));
+  if (o.boxes) {
+    for (const OutlineRegion& r : o.regions)
+      if (r.node > 0)
+        layer.items.push_back(polygon(r.polygon, kStructure, std::max(0.5f, 1.3f - 0.12f * float(r.depth)),
+                                      glm::vec3(1.f), 0.f, r.leaf ? "box leaf" : "box"));
+    return layer;
+  }
+  for (const OutlineLine& l : o.lines)
+    layer.items.push_back(line(l.a, l.b, kStructure,
+                               l.node < 0 ? 0.6f : std::max(0.5f, 1.4f - 0.15f * float(l.depth)),
+                               l.node < 0 ? "grid-line" : "split"));
+  return layer;
+}
+
+}  // namespace
+
+Figure flat_figure(const FlatFigureInput& in) {
+  if (!in.scene || !in.scene->flat)
+    throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
+  const Scene& scene = *in.scene;
+  const Flatland& flat = *scene.flat;
+  Figure fig;
+  glm::vec2 lo = flat.lo, hi = flat.hi;
+  if (in.outline) {
+    lo = glm::min(lo, in.outline->lo);
+    hi = glm::max(hi, in.outline->hi);
+  }
+  const TracedRay* ray = in.trace && !in.trace->rays.empty() ? &in.trace->rays[0] : nullptr;
+  if (ray || flat.has_ray) {  // the ray's origin in the picture
+    const glm::vec2 o = ray ? glm::vec2(ray->ray.origin) : flat.ray_origin;
+    lo = glm::min(lo, o);
+    hi = glm::max(hi, o);
+  }
+  const glm::vec2 margin = 0.04f * glm::vec2(std::max(hi.x - lo.x, hi.y - lo.y));
+  fig.lo = lo - margin;
+  fig.hi = hi + margin;
+  const float unit = std::max(fig.hi.x - fig.lo.x, fig.hi.y - fig.lo.y);
+
+  // The walk after the step.
+  std::optional<replay::ReplayState> state;
+  if (ray) {
+    const int n = int(ray->events.size());
+    if (in.step >= n)
+      throw InputError("", 0,
+                       "--step " + std::to_string(in.step) + ": the walk has " + std::to_string(n) +
+                           " events (steps 0.." + std::to_string(n - 1) + ")");
+    const replay::Replayer replayer(*ray);
+    state = replayer.at(in.step < 0 ? n - 1 : in.step);
+  }
+
+  FigureLayer walk{"walk", {}};
+  if (state && in.outline) {
+    const PlaneOutline& o = *in.outline;
+    const Trace& t = *in.trace;
+    auto cell_box = [&](int event) -> const Bounds3* {
+      const Event& e = ray->events[size_t(event)];
+      for (const TraceCell& c : t.cells)
+        if (c.cell[0] == e.cell[0] && c.cell[1] == e.cell[1] && c.cell[2] == e.cell[2]) return &c.box;
+      return nullptr;
+    };
+    auto box_polygon = [](const Bounds3& b) {
+      return std::vector<glm::vec2>{{b.lo.x, b.lo.y}, {b.hi.x, b.lo.y}, {b.hi.x, b.hi.y}, {b.lo.x, b.hi.y}};
+    };
+    for (int e : state->visited_cell_events)
+      if (const Bounds3* b = cell_box(e))
+        walk.items.push_back(polygon(box_polygon(*b), kVisited, 0.f, kVisited, 0.45f, "visited"));
+    if (state->cell_event >= 0 && !state->ended)
+      if (const Bounds3* b = cell_box(state->cell_event))
+        walk.items.push_back(polygon(box_polygon(*b), kInk, 1.2f, kCurrent, 0.6f, "current"));
+    // Trees: the leaves visited (inner nodes hold them all), the stack's nodes, the current node.
+    std::set<int32_t> drawn;
+    for (int32_t id : state->visited_nodes) {
+      const OutlineRegion* r = region_of(o, id);
+      if (r && r->leaf) walk.items.push_back(polygon(r->polygon, kVisited, 0.f, kVisited, 0.45f, "visited"));
+    }
+    for (const replay::StackEntry& st : state->stack)
+      if (const OutlineRegion* r = region_of(o, st.node)) {
+        FigureItem it = polygon(r->polygon, kStacked, 1.8f, kStacked, 0.12f, "stacked");
+        it.style.dashed = true;
+        walk.items.push_back(it);
+      }
+    if (state->node_event >= 0 && !state->ended)
+      if (const OutlineRegion* r = region_of(o, ray->events[size_t(state->node_event)].node))
+        walk.items.push_back(polygon(r->polygon, kInk, 1.6f, kCurrent, 0.5f, "current"));
+  }
+
+  FigureLayer ray_layer{"ray", {}};
+  if (ray || flat.has_ray) {
+    const glm::vec2 o = ray ? glm::vec2(ray->ray.origin) : flat.ray_origin;
+    glm::vec2 d = ray ? glm::vec2(ray->ray.direction) : flat.ray_direction;
+    const float len = glm::length(d);
+    if (len > 0.f) {
+      // To the frame's edge: the largest t with o + t d inside it.
+      float t_end = kInfinity;
+      for (int a = 0; a < 2; ++a)
+        if (d[a] != 0.f) t_end = std::min(t_end, ((d[a] > 0.f ? fig.hi[a] : fig.lo[a]) - o[a]) / d[a]);
+      if (!std::isfinite(t_end) || t_end < 0.f) t_end = 0.f;
+      ray_layer.items.push_back(line(o, o + t_end * d, kRay, 1.f, "ray"));
+      if (state && state->has_interval && !state->ended)
+        ray_layer.items.push_back(
+            line(o + state->t_min * d, o + std::min(state->t_max, t_end) * d, kRay, 3.5f, "interval"));
+      ray_layer.items.push_back(dot(o, 0.008f * unit, kRay, "origin"));
+      if (state && state->nearest_prim >= 0) {
+        FigureItem hit =
+            dot(o + state->nearest_t * d, 0.009f * unit, kRay, state->accepted ? "hit final" : "hit");
+        hit.style.has_stroke = true;
+        hit.style.stroke = kInk;
+        ray_layer.items.push_back(hit);
+      }
+    }
+  }
+
+  if (in.outline) fig.layers.push_back(structure_layer(*in.outline));
+  if (in.outline) {  // the leaves' names, where they are few enough to read
+    FigureLayer labels{"labels", {}};
+    size_t leaves = 0;
+    for (const OutlineRegion& r : in.outline->regions) leaves += r.leaf;
+    if (leaves <= 24 && !in.outline->boxes)
+      for (const OutlineRegion& r : in.outline->regions) {
+        if (!r.leaf || r.path.empty() || r.polygon.empty()) continue;
+        glm::vec2 c(0.f);
+        for (const glm::vec2& p : r.polygon) c += p;
+        FigureItem it;
+        it.kind = FigureItem::Kind::text;
+        it.points = {c / float(r.polygon.size())};
+        it.text = r.path;
+        it.radius = 11.f;
+        it.style.fill = kStructure;
+        it.css = "leaf-name";
+        labels.items.push_back(it);
+      }
+    if (!labels.items.empty()) fig.layers.push_back(std::move(labels));
+  }
+  fig.layers.push_back(std::move(walk));
+  fig.layers.push_back(shapes_layer(scene, unit));
+  fig.layers.push_back(std::move(ray_layer));
+  if (state) {
+    fig.caption.push_back("Step " + std::to_string(state->step) + " of " +
+                          std::to_string(ray->events.size() - 1) + ": " +
+                          replay::describe_event(*state->event));
+    const std::string slides = state->ended ? "" : replay::slide_stack_text(*in.trace, *ray, *state);
+    if (!slides.empty()) fig.caption.push_back(slides);
+  }
+  fig.caption_points = 16.f * float(fig.caption.size()) + (fig.caption.empty() ? 0.f : 8.f);
+  return fig;
+}
+
+}  // namespace raystep

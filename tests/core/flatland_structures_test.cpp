@@ -1,0 +1,254 @@
+// The real structures restricted to the plane of a flatland scene (geometry/split_space.h): the kd-tree's,
+// the BVH's and the BSP tree's SAH weigh a box by its perimeter and cut x and y only, the BSP tree by
+// vertical planes, the grid has one layer of d sqrt(n) cells across, and the lines of Crofton's theorem lie
+// in the plane. The slides' kd-tree figure walks as the slides draw it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "raystep/accel/bsp_sah_curve.h"
+#include "raystep/accel/bvh_sah_curve.h"
+#include "raystep/accel/grid.h"
+#include "raystep/accel/kdtree.h"
+#include "raystep/accel/kdtree_entry_probability.h"
+#include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/accel/plane_outline.h"
+#include "raystep/accel/random_lines.h"
+#include "raystep/accel/structure_options.h"
+#include "raystep/io/scene_loader.h"
+#include "raystep/replay/replayer.h"
+#include "raystep/replay/slide_stack.h"
+#include "raystep/scene/flatland.h"
+#include "raystep/trace/node_path.h"
+#include "raystep/trace/record_trace.h"
+
+namespace raystep {
+namespace {
+
+const std::string kFlatDir = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/flatland";
+
+// Two circles: (1, 1) radius 1 and (5, 2) radius 1. The root's box is [0, 6] x [0, 3] in the plane (z in
+// [-1, 1], which the plane ignores): perimeter 2 (6 + 3) = 18.
+Scene two_circles() {
+  return parse_scene(R"({"dimensions": 2, "objects": [
+    {"type": "circle", "center": [1, 1], "radius": 1}, {"type": "circle", "center": [5, 2], "radius": 1}]})",
+                     "two.json");
+}
+
+// The hand computation, candidate by candidate: C = t_t + t_i (P_b N_b + P_a N_a) / P.
+struct Expected {
+  int axis;
+  float position;
+  float p_below, p_above;
+  uint32_t n_below, n_above;
+};
+const Expected kRootCandidates[] = {
+    {0, 2.f, 2.f * (2 + 3), 2.f * (4 + 3), 1, 1},  // x = 2: [0, 2] x [0, 3] and [2, 6] x [0, 3]
+    {0, 4.f, 2.f * (4 + 3), 2.f * (2 + 3), 1, 1},  // x = 4
+    {1, 1.f, 2.f * (6 + 1), 2.f * (6 + 2), 1, 2},  // y = 1: the first circle reaches above it
+    {1, 2.f, 2.f * (6 + 2), 2.f * (6 + 1), 2, 1},  // y = 2
+};
+
+float perimeter_cost(const Expected& e) {
+  return 1.f + 80.f * (e.p_below / 18.f * float(e.n_below) + e.p_above / 18.f * float(e.n_above));
+}
+
+TEST(FlatlandStructures, KdSahWeighsPerimetersOnXAndYOnly) {
+  Scene s = two_circles();
+  ASSERT_TRUE(s.geometry.split_space().plane());
+  SahCurve curve = record_sah_curve(s.geometry, KdOptions{}, 0);
+  ASSERT_EQ(curve.candidates.size(), 4u);  // 2n = 4 per axis less the box's own faces; none on z
+  for (size_t i = 0; i < 4; ++i) {
+    const SahCandidate& c = curve.candidates[i];
+    const Expected& e = kRootCandidates[i];
+    EXPECT_EQ(c.axis, e.axis) << i;
+    EXPECT_EQ(c.position, e.position) << i;
+    EXPECT_EQ(c.n_below, e.n_below) << i;
+    EXPECT_EQ(c.n_above, e.n_above) << i;
+    EXPECT_FLOAT_EQ(c.area_node, 18.f);
+    EXPECT_FLOAT_EQ(c.area_below, e.p_below) << i;
+    EXPECT_FLOAT_EQ(c.area_above, e.p_above) << i;
+    EXPECT_FLOAT_EQ(c.cost, perimeter_cost(e)) << i;
+  }
+  // x = 2 and x = 4 cost the same, 1 + 80 (10 + 14) / 18 = 107.67; the first is taken.
+  EXPECT_NEAR(perimeter_cost(kRootCandidates[0]), 107.667f, 1e-3f);
+  EXPECT_FALSE(curve.leaf);
+  EXPECT_EQ(curve.axis, 0);
+  EXPECT_EQ(curve.position, 2.f);
+}
+
+TEST(FlatlandStructures, BvhSahWeighsPerimeters) {
+  Scene s = two_circles();
+  BvhOptions o;
+  o.builder = BvhBuilder::sweep;
+  BvhSahCurve curve = record_bvh_sah_curve(s.geometry, o, 0);
+  ASSERT_FALSE(curve.candidates.empty());
+  for (const BvhCandidate& c : curve.candidates) {
+    EXPECT_LT(c.axis, 2);
+    EXPECT_FLOAT_EQ(c.area_node, 18.f);
+  }
+  // The split between the circles: boxes [0, 2] x [0, 2] and [4, 6] x [1, 3], perimeters 8 and 8.
+  const BvhCandidate& chosen = curve.candidates[size_t(curve.chosen)];
+  EXPECT_FLOAT_EQ(chosen.area_left, 8.f);
+  EXPECT_FLOAT_EQ(chosen.area_right, 8.f);
+  EXPECT_FLOAT_EQ(chosen.cost, 1.f + 80.f * (8.f + 8.f) / 18.f);
+}
+
+TEST(FlatlandStructures, BspCutsByVerticalPlanesWeighedByPerimeter) {
+  Scene s = parse_scene(R"({"dimensions": 2, "objects": [
+    {"type": "segment", "points": [[0, 0], [4, 1]]}, {"type": "segment", "points": [[1, 3], [3, 4]]},
+    {"type": "polygon", "fill": true, "points": [[5, 0], [7, 0], [6, 2]]}]})",
+                        "bsp.json");
+  BspSahCurve curve = record_bsp_sah_curve(s.geometry, BspOptions{}, 0);
+  ASSERT_FALSE(curve.candidates.empty());
+  // The root's cell is the box [0, 7] x [0, 4]: perimeter 22.
+  EXPECT_NEAR(curve.info.area, 22.f, 1e-5f);
+  int own = 0;
+  for (const BspCandidate& c : curve.candidates) {
+    EXPECT_EQ(c.plane.normal.z, 0.f) << "direction " << c.direction;  // no cap's plane, no slanted k-DOP
+    own += c.direction < 0;
+    // The two parts' perimeters: the node's plus the cut's chord twice (the chord is at most the diagonal).
+    const double chord = (c.area_below + c.area_above - 22.0) / 2.0;
+    EXPECT_GT(chord, 0.0);
+    EXPECT_LE(chord, std::hypot(7.0, 4.0) + 1e-9);
+    EXPECT_NEAR(c.area_node, 22.0, 1e-5);
+  }
+  EXPECT_GT(own, 0);  // the walls' own planes are vertical: an autopartition of the segments
+  // An axis plane x = p cuts the box's chord of length 4: parts 2 (p + 4) and 2 (7 - p + 4).
+  for (const BspCandidate& c : curve.candidates)
+    if (c.direction == 0) {
+      EXPECT_NEAR(c.area_below, 2.0 * (double(c.plane.offset) + 4.0), 1e-4);
+      EXPECT_NEAR(c.area_above, 2.0 * (7.0 - double(c.plane.offset) + 4.0), 1e-4);
+    }
+}
+
+TEST(FlatlandStructures, TheGridIsOneLayerOfDSqrtNCellsAcross) {
+  Scene s = load_scene(kFlatDir + "/grid_objects.json");
+  UniformGrid grid;
+  grid.build(s.geometry);
+  const auto n = grid.resolution();
+  EXPECT_EQ(n[2], 1);
+  const float d = GridOptions{}.density;
+  EXPECT_EQ(std::max(n[0], n[1]), int(std::round(d * std::sqrt(float(s.geometry.size())))));
+  // In space the same bounds and count would take d cbrt(n) on the longest axis, z included.
+  const auto space = UniformGrid::resolution_for(s.geometry.bounds(), s.geometry.size(), d);
+  EXPECT_EQ(std::max({space[0], space[1], space[2]}),
+            int(std::round(d * std::cbrt(float(s.geometry.size())))));
+}
+
+// Crofton in the plane: lines uniform in direction and offset meet a box with probability L / (2 pi R), and a
+// child's box given its parent's with the ratio of their perimeters.
+TEST(FlatlandStructures, PlaneLinesMeetBoxesByPerimeter) {
+  Bounds3 box;
+  box.lo = glm::vec3(0.f, 0.f, -5.f);
+  box.hi = glm::vec3(4.f, 1.f, 5.f);
+  const LinesMeetingBox plane = lines_meeting_box(box, 200000, 3, SplitSpace{2});
+  EXPECT_NEAR(plane.predicted, 10.0 / (2.0 * M_PI * 0.5 * std::hypot(4.0, 1.0)), 1e-6);  // R in float
+  EXPECT_NEAR(plane.measured, plane.predicted, 0.01);
+  Pcg32 rng(7, 0);
+  for (int i = 0; i < 100; ++i) {
+    const Ray r = random_plane_line(rng, glm::vec3(1.f, 2.f, 0.f), 3.f);
+    EXPECT_EQ(r.origin.z, 0.f);
+    EXPECT_EQ(r.direction.z, 0.f);
+  }
+  Scene s = load_scene(kFlatDir + "/kd_traversal.json");
+  KdTree kd;
+  kd.build(s.geometry);
+  const std::vector<KdNodeEntry> entries = measure_entry_probability(kd, 100000, 5);
+  const KdTreeData& t = kd.data();
+  const float root = SplitSpace{2}.measure(t.bounds);
+  ASSERT_GT(entries.size(), 4u);
+  for (size_t i = 1; i < entries.size(); ++i) {
+    EXPECT_NEAR(entries[i].predicted, SplitSpace{2}.measure(t.info[i].box) / root, 1e-6) << i;
+    EXPECT_NEAR(entries[i].lines, entries[i].predicted, 0.01) << i;
+  }
+}
+
+// The slides' figure: "Stack: LLR,R  Current: LLL", then R, then RR, where the ray hits G.
+TEST(FlatlandStructures, TheKdFigureWalksAsTheSlidesDrawIt) {
+  Scene s = load_scene(kFlatDir + "/kd_traversal.json");
+  ASSERT_TRUE(s.flat && s.flat->has_ray);
+  KdTree kd;
+  kd.build(s.geometry);
+  const Ray ray = flat_ray(s.flat->ray_origin, s.flat->ray_direction);
+  Trace t = record_trace(s.geometry, kd, {RayRequest{ray, RayKind::primary, 0, false, {0, 0}}}, "kd.json",
+                         "fnv1a64:0000000000000000");
+  ASSERT_EQ(t.rays.size(), 1u);
+  const TracedRay& r = t.rays[0];
+  const replay::Replayer replayer(r);
+  std::vector<std::string> visits, slides;
+  for (int k = 0; k < replayer.size(); ++k) {
+    const Event& e = r.events[size_t(k)];
+    if (e.type != EventType::node) continue;
+    visits.push_back(trace_node_path_text(t, e.node));
+    slides.push_back(replay::slide_stack_text(t, r, replayer.at(k)));
+  }
+  const std::vector<std::string> expected_visits = {"root", "L", "LL", "LLL", "LLR", "R", "RR"};
+  EXPECT_EQ(visits, expected_visits);
+  ASSERT_EQ(slides.size(), expected_visits.size());
+  EXPECT_EQ(slides[3], "Stack: LLR,R   Current: LLL");
+  EXPECT_EQ(slides[4], "Stack: R   Current: LLR");
+  EXPECT_EQ(slides[5], "Stack: (empty)   Current: R");
+  EXPECT_EQ(slides[6], "Stack: (empty)   Current: RR");
+  const replay::ReplayState end = replayer.at(replayer.size() - 1);
+  ASSERT_GE(end.nearest_prim, 0);
+  EXPECT_EQ(s.geometry.objects()[s.geometry.object_of(uint32_t(end.nearest_prim))].name, "G");
+}
+
+// A partition's outline: its leaves' regions tile the root's (their areas add up to it), regions are by node
+// id with the slides' paths, and every split line lies in its node's region. A BVH's boxes instead overlap.
+TEST(FlatlandStructures, TheOutlinesLeavesTileTheRoot) {
+  Scene s = load_scene(kFlatDir + "/variations.json");
+  auto area = [](const std::vector<glm::vec2>& p) {
+    double a = 0.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+      const glm::vec2 &u = p[i], &v = p[(i + 1) % p.size()];
+      a += double(u.x) * double(v.y) - double(v.x) * double(u.y);
+    }
+    return a / 2.0;
+  };
+  // (Not the octree yet: it still halves z too, so its children come in pairs over the same square.)
+  for (const char* name : {"kd", "kd-median", "bsp"}) {
+    auto accel = make_accelerator(name, StructureOptions{});
+    accel->build(s.geometry);
+    const PlaneOutline o = plane_outline(*accel);
+    ASSERT_EQ(o.regions.size(), o.total_nodes) << name;
+    double leaves = 0.0;
+    int splits = 0;
+    for (size_t i = 0; i < o.regions.size(); ++i) {
+      const OutlineRegion& r = o.regions[i];
+      EXPECT_EQ(r.node, int32_t(i)) << name;
+      EXPECT_EQ(r.path.size(), size_t(r.depth)) << name;
+      // Counter-clockwise (a BSP tree may cut a sliver of no width off a wall: area 0, perimeter twice its
+      // length).
+      EXPECT_GE(area(r.polygon), -1e-9) << name << " node " << i;
+      if (r.leaf) leaves += area(r.polygon);
+      splits += !r.leaf;
+    }
+    const double root = double(o.hi.x - o.lo.x) * double(o.hi.y - o.lo.y);
+    EXPECT_NEAR(leaves, root, 1e-4 * root) << name;
+    EXPECT_EQ(o.lines.size(), size_t(splits)) << name;
+    for (const OutlineLine& l : o.lines) {
+      const std::vector<glm::vec2>& p = o.regions[size_t(l.node)].polygon;
+      for (const glm::vec2& e : {l.a, l.b}) {
+        glm::vec2 lo(1e30f), hi(-1e30f);
+        for (const glm::vec2& q : p) lo = glm::min(lo, q), hi = glm::max(hi, q);
+        EXPECT_TRUE(e.x >= lo.x - 1e-4f && e.x <= hi.x + 1e-4f && e.y >= lo.y - 1e-4f && e.y <= hi.y + 1e-4f)
+            << name << " node " << l.node;
+      }
+    }
+  }
+  auto bvh = make_accelerator("bvh", StructureOptions{});
+  bvh->build(s.geometry);
+  const PlaneOutline b = plane_outline(*bvh);
+  EXPECT_TRUE(b.boxes);
+  EXPECT_TRUE(b.lines.empty());
+  auto wide = make_accelerator("bvh8", StructureOptions{});
+  wide->build(s.geometry);
+  EXPECT_FALSE(has_plane_outline(*wide));
+}
+
+}  // namespace
+}  // namespace raystep
