@@ -113,28 +113,57 @@ FigureLayer structure_layer(const PlaneOutline& o) {
 
 }  // namespace
 
-Figure flat_figure(const FlatFigureInput& in) {
-  if (!in.scene || !in.scene->flat)
-    throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
-  const Scene& scene = *in.scene;
+Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin) {
+  if (!scene.flat) throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
   const Flatland& flat = *scene.flat;
   Figure fig;
   glm::vec2 lo = flat.lo, hi = flat.hi;
-  if (in.outline) {
-    lo = glm::min(lo, in.outline->lo);
-    hi = glm::max(hi, in.outline->hi);
+  if (outline) {
+    lo = glm::min(lo, outline->lo);
+    hi = glm::max(hi, outline->hi);
   }
-  const TracedRay* ray = in.trace && !in.trace->rays.empty() ? &in.trace->rays[0] : nullptr;
-  if (ray || flat.has_ray) {  // the ray's origin in the picture
-    const glm::vec2 o = ray ? glm::vec2(ray->ray.origin) : flat.ray_origin;
-    lo = glm::min(lo, o);
-    hi = glm::max(hi, o);
+  if (origin) {  // the ray's origin in the picture
+    lo = glm::min(lo, *origin);
+    hi = glm::max(hi, *origin);
   }
   const glm::vec2 margin = 0.04f * glm::vec2(std::max(hi.x - lo.x, hi.y - lo.y));
   fig.lo = lo - margin;
   fig.hi = hi + margin;
   const float unit = std::max(fig.hi.x - fig.lo.x, fig.hi.y - fig.lo.y);
+  FlatFigureInput in;
+  in.outline = outline;
+  if (in.outline) fig.layers.push_back(structure_layer(*in.outline));
+  if (in.outline) {  // the leaves' names, where they are few enough to read
+    FigureLayer labels{"labels", {}};
+    size_t leaves = 0;
+    for (const OutlineRegion& r : in.outline->regions) leaves += r.leaf;
+    if (leaves <= 24 && !in.outline->boxes)
+      for (const OutlineRegion& r : in.outline->regions) {
+        if (!r.leaf || r.path.empty() || r.polygon.empty()) continue;
+        glm::vec2 c(0.f);
+        for (const glm::vec2& p : r.polygon) c += p;
+        FigureItem it;
+        it.kind = FigureItem::Kind::text;
+        it.points = {c / float(r.polygon.size())};
+        it.text = r.path;
+        it.radius = 11.f;
+        it.style.fill = kStructure;
+        it.css = "leaf-name";
+        labels.items.push_back(it);
+      }
+    if (!labels.items.empty()) fig.layers.push_back(std::move(labels));
+  }
+  fig.layers.push_back(shapes_layer(scene, unit));
+  return fig;
+}
 
+FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) {
+  if (!in.scene || !in.scene->flat)
+    throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
+  const Flatland& flat = *in.scene->flat;
+  const Figure& fig = still;
+  const float unit = std::max(fig.hi.x - fig.lo.x, fig.hi.y - fig.lo.y);
+  const TracedRay* ray = in.trace && !in.trace->rays.empty() ? &in.trace->rays[0] : nullptr;
   // The walk after the step.
   std::optional<replay::ReplayState> state;
   if (ray) {
@@ -209,37 +238,30 @@ Figure flat_figure(const FlatFigureInput& in) {
     }
   }
 
-  if (in.outline) fig.layers.push_back(structure_layer(*in.outline));
-  if (in.outline) {  // the leaves' names, where they are few enough to read
-    FigureLayer labels{"labels", {}};
-    size_t leaves = 0;
-    for (const OutlineRegion& r : in.outline->regions) leaves += r.leaf;
-    if (leaves <= 24 && !in.outline->boxes)
-      for (const OutlineRegion& r : in.outline->regions) {
-        if (!r.leaf || r.path.empty() || r.polygon.empty()) continue;
-        glm::vec2 c(0.f);
-        for (const glm::vec2& p : r.polygon) c += p;
-        FigureItem it;
-        it.kind = FigureItem::Kind::text;
-        it.points = {c / float(r.polygon.size())};
-        it.text = r.path;
-        it.radius = 11.f;
-        it.style.fill = kStructure;
-        it.css = "leaf-name";
-        labels.items.push_back(it);
-      }
-    if (!labels.items.empty()) fig.layers.push_back(std::move(labels));
-  }
-  fig.layers.push_back(std::move(walk));
-  fig.layers.push_back(shapes_layer(scene, unit));
-  fig.layers.push_back(std::move(ray_layer));
+  FlatWalkLayers out;
+  out.walk = std::move(walk);
+  out.ray = std::move(ray_layer);
   if (state) {
-    fig.caption.push_back("Step " + std::to_string(state->step) + " of " +
+    out.caption.push_back("Step " + std::to_string(state->step) + " of " +
                           std::to_string(ray->events.size() - 1) + ": " +
                           replay::describe_event(*state->event));
     const std::string slides = state->ended ? "" : replay::slide_stack_text(*in.trace, *ray, *state);
-    if (!slides.empty()) fig.caption.push_back(slides);
+    if (!slides.empty()) out.caption.push_back(slides);
   }
+  return out;
+}
+
+Figure flat_figure(const FlatFigureInput& in) {
+  if (!in.scene || !in.scene->flat)
+    throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
+  const TracedRay* ray = in.trace && !in.trace->rays.empty() ? &in.trace->rays[0] : nullptr;
+  const glm::vec2 origin = ray ? glm::vec2(ray->ray.origin) : in.scene->flat->ray_origin;
+  Figure fig = flat_figure_still(*in.scene, in.outline, ray || in.scene->flat->has_ray ? &origin : nullptr);
+  FlatWalkLayers walk = flat_figure_walk(in, fig);
+  // Under the shapes, over the structure and the names; the ray on top.
+  fig.layers.insert(fig.layers.end() - 1, std::move(walk.walk));
+  fig.layers.push_back(std::move(walk.ray));
+  fig.caption = std::move(walk.caption);
   fig.caption_points = 16.f * float(fig.caption.size()) + (fig.caption.empty() ? 0.f : 8.f);
   return fig;
 }

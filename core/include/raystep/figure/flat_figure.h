@@ -21,4 +21,14 @@ struct FlatFigureInput {
 // Throws InputError("", 0, ...) for a 3D scene or a step past the walk's end.
 Figure flat_figure(const FlatFigureInput& input);
 
+// The same in two parts, for a view that redraws the walk as the ray moves: the still part (the frame, the
+// structure, the leaves' names, the shapes; the frame also holds *origin when given), made once, and the
+// walk's layers over it (the cells or nodes of the walk, the ray, the caption), made at every move.
+Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin);
+struct FlatWalkLayers {
+  FigureLayer walk, ray;
+  std::vector<std::string> caption;
+};
+FlatWalkLayers flat_figure_walk(const FlatFigureInput& input, const Figure& still);
+
 }  // namespace raystep
