@@ -91,6 +91,7 @@ int run_bsp_sah(const SahArgs& a) {
   std::printf("candidates: %zu (bsp, directions %s, %d per direction, t_i %g, t_t %g); wrote %s\n",
               curve.candidates.size(), bsp_directions_name(options.directions), options.candidates,
               options.t_i, options.t_t, a.output.c_str());
+  print_plane_note(scene.geometry);
   return 0;
 }
 

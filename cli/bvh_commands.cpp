@@ -88,6 +88,7 @@ int run_bvh_sah(const SahArgs& a) {
   }
   std::printf("candidates: %zu (%s, t_i %g, t_t %g, %d bins); wrote %s\n", curve.candidates.size(),
               a.structure.accel.c_str(), options.t_i, options.t_t, options.bins, a.output.c_str());
+  print_plane_note(scene.geometry);
   return 0;
 }
 

@@ -377,6 +377,13 @@ int run_info(const InfoArgs& a) {
   return 0;
 }
 
+void print_plane_note(const Geometry& geometry) {
+  if (geometry.split_space().plane())
+    std::printf(
+        "in the plane (a 2D scene): cuts on x and y only; the area columns hold perimeters, p = L_child / L "
+        "(Crofton in the plane)\n");
+}
+
 RayRequest trace_ray_by_hand(const TraceArgs& a, const Scene& scene) {
   RayRequest r;
   if (a.ray) {
@@ -536,6 +543,7 @@ int run_sah(const SahArgs& a) {
                 curve.position, curve.cost, curve.leaf_cost);
   std::printf("candidates: %zu (t_i %g, t_t %g, empty bonus %g); wrote %s\n", curve.candidates.size(),
               options.t_i, options.t_t, options.empty_bonus, a.output.c_str());
+  print_plane_note(scene.geometry);
   return 0;
 }
 

@@ -200,6 +200,9 @@ std::unique_ptr<Accelerator> build_structure(const StructureArgs& s);
 int run_render(const RenderArgs& args);
 int run_aa_report(const AaReportArgs& args);
 int run_trace(const TraceArgs& args);
+// `sah` on a 2D scene: one line saying that the structure cuts x and y only and that the CSV's area columns
+// hold perimeters (p = L_child / L, Crofton in the plane); nothing for a 3D scene.
+void print_plane_note(const Geometry& geometry);
 // The ray of `trace` without --pixel: --ray (in a 2D scene also ox,oy,dx,dy), else a 2D scene's own ray;
 // InputError when there is neither.
 RayRequest trace_ray_by_hand(const TraceArgs& args, const Scene& scene);

@@ -70,6 +70,26 @@ TEST_F(FigureCli, PdfPngAndEveryStructure) {
   }
 }
 
+// `raystep sah` on a 2D scene says that the area columns hold perimeters, and has no z candidate.
+TEST_F(FigureCli, SahInThePlaneSaysPerimetersAndCutsXAndYOnly) {
+  for (const char* accel : {"kd", "bvh", "bsp"}) {
+    Outcome r =
+        run("sah " + kFlat + "/kd_traversal.json --accel " + std::string(accel) + " -o " + path("s.csv"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("the area columns hold perimeters"), std::string::npos) << accel << ": " << r.out;
+    const std::string csv = slurp(path("s.csv"));
+    // kd, bvh: rows start with the axis; bsp: with the direction's number and name (2 is z).
+    const std::string z_row = std::string(accel) == "bsp" ? "\n2,z," : "\nz,";
+    EXPECT_EQ(csv.find(z_row), std::string::npos) << accel;
+    EXPECT_NE(csv.find(std::string(accel) == "bsp" ? "\n0,x," : "\nx,"), std::string::npos) << accel;
+  }
+  Outcome r =
+      run("sah " + std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json --accel kd -o " + path("c.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("perimeters"), std::string::npos);
+  EXPECT_NE(slurp(path("c.csv")).find("\nz,"), std::string::npos);  // in space z is cut too
+}
+
 TEST_F(FigureCli, BadInputIsOneLineAndExitTwo) {
   const std::string bad = write("bad.json",
                                 "{\"dimensions\": 2, \"objects\": [{\"type\": \"circle\",\n"
