@@ -15,9 +15,8 @@ namespace raystep::cli {
 
 int run_figure(const FigureArgs& a) {
   if (a.step && *a.step < 0) throw InputError("", 0, "--step must be 0 or more");
-  if (!(a.output.size() > 4) || (a.output.compare(a.output.size() - 4, 4, ".svg") != 0 &&
-                                 a.output.compare(a.output.size() - 4, 4, ".pdf") != 0 &&
-                                 a.output.compare(a.output.size() - 4, 4, ".png") != 0))
+  // Before the (possibly long) build: write_figure would refuse it only after.
+  if (!is_figure_path(a.output))
     throw InputError("", 0, "-o " + a.output + ": a figure is written as .svg, .pdf or .png");
   check_output_folder(a.output);
   std::unique_ptr<Accelerator> accel = build_structure(a.structure);

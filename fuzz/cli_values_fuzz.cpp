@@ -21,7 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       expect_contract("--size", "--size", 0, [&] { raystep::cli::parse_size(value, &w, &h); });
       break;
     case 1:
-      expect_contract("--ray", "--ray", 0, [&] { raystep::cli::parse_numbers("--ray", value, 6); });
+      // Six numbers, or in the plane of a 2D scene (bit 3 of the first byte) also four.
+      expect_contract("--ray", "--ray", 0, [&] { raystep::cli::parse_ray(value, (data[0] >> 3) & 1); });
       break;
     case 2:
       expect_contract("--pixel", "--pixel", 0, [&] { raystep::cli::parse_numbers("--pixel", value, 2); });

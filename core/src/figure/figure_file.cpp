@@ -159,6 +159,10 @@ bool ends_with(const std::string& s, const std::string& tail) {
 
 }  // namespace
 
+bool is_figure_path(const std::string& path) {
+  return ends_with(path, ".svg") || ends_with(path, ".pdf") || ends_with(path, ".png");
+}
+
 std::string figure_svg(const Figure& f, int width) {
   const Page page(f, width);
   std::ostringstream out;
@@ -222,9 +226,9 @@ void write_figure(const std::string& path, const Figure& f, int width) {
     write_file_atomically(path, [&](std::ostream& out) { out << text; });
     return;
   }
-  const bool pdf = ends_with(path, ".pdf");
-  if (!pdf && !ends_with(path, ".png"))
+  if (!is_figure_path(path))
     throw InputError("", 0, "-o " + path + ": a figure is written as .svg, .pdf or .png");
+  const bool pdf = ends_with(path, ".pdf");
   const Page page(f, width);
   write_file_atomically(path, [&](std::ostream& out) {
     cairo_surface_t* surface =

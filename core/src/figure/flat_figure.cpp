@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 
 #include "raystep/replay/explain.h"
 #include "raystep/replay/replayer.h"
@@ -59,7 +58,7 @@ const OutlineRegion* region_of(const PlaneOutline& o, int32_t node) {
 }
 
 // The shapes as the slides draw them: walls as lines, filled polygons and circles with their material.
-FigureLayer shapes_layer(const Scene& scene, float unit) {
+FigureLayer shapes_layer(const Scene& scene) {
   FigureLayer layer{"shapes", {}};
   for (const FlatShape& s : scene.flat->shapes) {
     const glm::vec3 colour = s.material < scene.materials.size() ? scene.materials[s.material].diffuse : kInk;
@@ -89,7 +88,6 @@ FigureLayer shapes_layer(const Scene& scene, float unit) {
       }
     }
   }
-  (void)unit;
   return layer;
 }
 
@@ -129,16 +127,13 @@ Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const 
   const glm::vec2 margin = 0.04f * glm::vec2(std::max(hi.x - lo.x, hi.y - lo.y));
   fig.lo = lo - margin;
   fig.hi = hi + margin;
-  const float unit = std::max(fig.hi.x - fig.lo.x, fig.hi.y - fig.lo.y);
-  FlatFigureInput in;
-  in.outline = outline;
-  if (in.outline) fig.layers.push_back(structure_layer(*in.outline));
-  if (in.outline) {  // the leaves' names, where they are few enough to read
+  if (outline) fig.layers.push_back(structure_layer(*outline));
+  if (outline) {  // the leaves' names, where they are few enough to read
     FigureLayer labels{"labels", {}};
     size_t leaves = 0;
-    for (const OutlineRegion& r : in.outline->regions) leaves += r.leaf;
-    if (leaves <= 24 && !in.outline->boxes)
-      for (const OutlineRegion& r : in.outline->regions) {
+    for (const OutlineRegion& r : outline->regions) leaves += r.leaf;
+    if (leaves <= 24 && !outline->boxes)
+      for (const OutlineRegion& r : outline->regions) {
         if (!r.leaf || r.path.empty() || r.polygon.empty()) continue;
         glm::vec2 c(0.f);
         for (const glm::vec2& p : r.polygon) c += p;
@@ -153,7 +148,7 @@ Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const 
       }
     if (!labels.items.empty()) fig.layers.push_back(std::move(labels));
   }
-  fig.layers.push_back(shapes_layer(scene, unit));
+  fig.layers.push_back(shapes_layer(scene));
   return fig;
 }
 
@@ -196,7 +191,6 @@ FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) 
       if (const Bounds3* b = cell_box(state->cell_event))
         walk.items.push_back(polygon(box_polygon(*b), kInk, 1.2f, kCurrent, 0.6f, "current"));
     // Trees: the leaves visited (inner nodes hold them all), the stack's nodes, the current node.
-    std::set<int32_t> drawn;
     for (int32_t id : state->visited_nodes) {
       const OutlineRegion* r = region_of(o, id);
       if (r && r->leaf) walk.items.push_back(polygon(r->polygon, kVisited, 0.f, kVisited, 0.45f, "visited"));

@@ -10,6 +10,8 @@ namespace raystep {
 
 // The SVG document of the figure, `width` points wide (the height follows the figure's aspect).
 std::string figure_svg(const Figure& figure, int width);
+// True for a path a figure can be written to: .svg, .pdf or .png.
+bool is_figure_path(const std::string& path);
 // .svg, .pdf or .png (width in pixels for PNG, points otherwise); InputError("", 0, ...) for another.
 void write_figure(const std::string& path, const Figure& figure, int width);
 
