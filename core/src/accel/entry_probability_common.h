@@ -67,8 +67,7 @@ std::vector<KdNodeEntry> measure(const View& tree, const Accel& accel, size_t li
   NodeVisitCounter counter;
   counter.counts = &entered;
   glm::vec3 centre = root.center();
-  const glm::vec3 e = root.extent();
-  float radius = 0.5f * (space.plane() ? std::hypot(e.x, e.y) : glm::length(e));
+  const float radius = line_radius(root, space);
   Pcg32 rng(seed, 0);
   size_t kept = 0, cast = 0;
   for (size_t attempts = 0; kept < lines && attempts < 64 * lines; ++attempts) {

@@ -22,6 +22,11 @@ Ray random_line(Pcg32& rng, const glm::vec3& centre, float radius) {
   return ray;
 }
 
+float line_radius(const Bounds3& box, SplitSpace space) {
+  const glm::vec3 e = box.extent();
+  return 0.5f * (space.plane() ? std::hypot(e.x, e.y) : glm::length(e));
+}
+
 Ray random_plane_line(Pcg32& rng, const glm::vec3& centre, float radius) {
   // A uniform direction in the plane, then an offset uniform across the disc's diameter perpendicular to it.
   const float phi = 6.2831853f * rng.uniform(), r = radius * (2.f * rng.uniform() - 1.f);
@@ -36,8 +41,7 @@ LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t see
   LinesMeetingBox out;
   if (box.empty()) return out;
   const glm::vec3 centre = box.center();
-  const glm::vec3 e = box.extent();
-  const float radius = 0.5f * (space.plane() ? std::hypot(e.x, e.y) : glm::length(e));
+  const float radius = line_radius(box, space);
   if (!(radius > 0.f)) return out;
   out.predicted = space.plane() ? double(space.measure(box)) / (2.0 * M_PI * double(radius))
                                 : double(box.surface_area()) / 4.0 / (M_PI * double(radius) * double(radius));

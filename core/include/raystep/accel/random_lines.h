@@ -23,6 +23,9 @@ namespace raystep {
 // One random line through the sphere (centre, radius), as a ray that starts outside it (2 radii back along
 // its direction from the offset point) and runs through it.
 Ray random_line(Pcg32& rng, const glm::vec3& centre, float radius);
+// The radius of the sphere around a box that the lines are drawn through (in the plane: the circle around its
+// rectangle in x and y).
+float line_radius(const Bounds3& box, SplitSpace space);
 // The same in the plane z = centre.z through the disc (centre, radius).
 Ray random_plane_line(Pcg32& rng, const glm::vec3& centre, float radius);
 // random_line in space, random_plane_line in the plane.

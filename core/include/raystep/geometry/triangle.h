@@ -95,8 +95,8 @@ template <int kx, int ky, int kz>
   // The conditions below combine their comparisons with | and &, not || and &&: each short-circuit operator
   // is a branch of its own, and on a miss which edge function decides it is a coin toss for the predictor
   // (one branch instead of up to six: 12-16% faster kd-tree and grid walks on the bunny, bench/README.md).
-  if (__builtin_expect(int(std::fabs(e0) <= delta_e) | int(std::fabs(e1) <= delta_e) | int(std::fabs(e2) <= delta_e),
-                       0)) {
+  if (__builtin_expect(
+          int(std::fabs(e0) <= delta_e) | int(std::fabs(e1) <= delta_e) | int(std::fabs(e2) <= delta_e), 0)) {
     // The ray passes within rounding of an edge's line (or through it, or a vertex): the float edge functions
     // cannot be trusted there, so the test is settled exactly (exact.h). A ray through a long thin triangle's
     // edge then finds the triangle the exact line meets, not its neighbour, which the structures may not hold
