@@ -250,6 +250,8 @@ struct FigureArgs {
   StructureArgs structure;
   std::optional<std::string> ray;  // "ox,oy,dx,dy" (or six numbers); none: the scene's own ray
   std::optional<int> step;         // the event the walk is drawn after; none: its end
+  std::optional<std::string> aa;   // the anti-aliasing figure instead (figure/flat_aa_figure.h)
+  std::optional<std::string> size;  // its pixels WxH (default: the scene's)
   int width = 640;                 // points (SVG, PDF) or pixels (PNG)
   std::string output;              // .svg, .pdf or .png
 };

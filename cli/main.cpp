@@ -322,6 +322,12 @@ int main(int argc, char** argv) {
   add_structure_options(figure_cmd, figure.structure, "kd");
   figure_cmd->add_option("--ray", figure.ray, "the ray ox,oy,dx,dy (default: the scene's own)");
   figure_cmd->add_option("--step", figure.step, "draw the walk after this event (0-based; default: its end)");
+  CLI::Option* figure_aa = figure_cmd->add_option(
+      "--aa", figure.aa,
+      "instead of the walk, the anti-aliasing: sampled, exact coverage and error per pixel (none, regular:K, "
+      "jitter:K, random:N, adaptive:T[:D], +tent)");
+  figure_cmd->add_option("--size", figure.size, "with --aa: the pixels WxH (default: the scene's; at most 4096)")
+      ->needs(figure_aa);
   figure_cmd->add_option("--width", figure.width, "the figure's width in points (PNG: pixels)")
       ->capture_default_str();
   figure_cmd->add_option("-o,--output", figure.output, "fig.svg, fig.pdf or fig.png")->required();

@@ -90,6 +90,29 @@ TEST_F(FigureCli, SahInThePlaneSaysPerimetersAndCutsXAndYOnly) {
   EXPECT_NE(slurp(path("c.csv")).find("\nz,"), std::string::npos);  // in space z is cut too
 }
 
+// `--aa`: the anti-aliasing figure, three panels (sampled with the samples drawn, exact coverage, error),
+// valid SVG; more samples, less error, as the line written says.
+TEST_F(FigureCli, AntiAliasingFigureHasThePanelsAndItsError) {
+  auto error_of = [&](const std::string& spec) {
+    Outcome r = run("figure " + kFlat + "/aliasing_polygon.json --aa " + spec + " -o " + path("aa.svg"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    const size_t at = r.out.find("error mean ");
+    EXPECT_NE(at, std::string::npos) << r.out;
+    return at == std::string::npos ? 1.0 : std::stod(r.out.substr(at + 11));
+  };
+  const double one = error_of("none"), many = error_of("jitter:4");
+  EXPECT_LT(many, 0.5 * one);
+  EXPECT_EQ(std::system(("xmllint --noout " + path("aa.svg") + " 2>" + path("xmllint.txt")).c_str()), 0)
+      << slurp(path("xmllint.txt"));
+  const std::string svg = slurp(path("aa.svg"));
+  for (const char* group : {"<g id=\"pixels\"", "<g id=\"grid\"", "<g id=\"samples\"", "<g id=\"titles\""})
+    EXPECT_EQ(count(svg, group), 1) << group;
+  EXPECT_EQ(count(svg, "class=\"sampled\""), 24 * 16);
+  EXPECT_EQ(count(svg, "class=\"exact\""), 24 * 16);
+  EXPECT_EQ(count(svg, "class=\"sample in\"") + count(svg, "class=\"sample out\""), 24 * 16 * 16);
+  EXPECT_NE(svg.find(">exact coverage (pre-filter)</text>"), std::string::npos);
+}
+
 TEST_F(FigureCli, BadInputIsOneLineAndExitTwo) {
   const std::string bad = write("bad.json",
                                 "{\"dimensions\": 2, \"objects\": [{\"type\": \"circle\",\n"
@@ -104,6 +127,9 @@ TEST_F(FigureCli, BadInputIsOneLineAndExitTwo) {
       {kFlat + "/kd_traversal.json -o " + path("x.jpg"), "a figure is written as .svg, .pdf or .png"},
       {kFlat + "/kd_traversal.json --accel bvh8 -o " + path("x.svg"), "is not drawn in 2D"},
       {kFlat + "/kd_traversal.json --ray 1,2,3 -o " + path("x.svg"), "--ray"},
+      {kFlat + "/aliasing_polygon.json --aa sideways -o " + path("x.svg"), "sideways"},
+      {kFlat + "/aliasing_polygon.json --aa none --size 100x100 -o " + path("x.svg"), "at most"},
+      {kFlat + "/aliasing_polygon.json --aa none --step 3 -o " + path("x.svg"), "--aa draws the pixels"},
   };
   for (const Case& c : cases) {
     Outcome r = run("figure " + c.args);

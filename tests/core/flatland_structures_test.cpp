@@ -4,7 +4,10 @@
 // in the plane. The slides' kd-tree figure walks as the slides draw it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -14,10 +17,13 @@
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_entry_probability.h"
 #include "raystep/accel/kdtree_sah_curve.h"
+#include "raystep/accel/octree.h"
 #include "raystep/accel/plane_outline.h"
 #include "raystep/accel/random_lines.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/figure/flat_figure.h"
 #include "raystep/io/scene_loader.h"
+#include "raystep/replay/octree_choice.h"
 #include "raystep/replay/replayer.h"
 #include "raystep/replay/slide_stack.h"
 #include "raystep/scene/flatland.h"
@@ -195,6 +201,162 @@ TEST(FlatlandStructures, TheKdFigureWalksAsTheSlidesDrawIt) {
   const replay::ReplayState end = replayer.at(replayer.size() - 1);
   ASSERT_GE(end.nearest_prim, 0);
   EXPECT_EQ(s.geometry.objects()[s.geometry.object_of(uint32_t(end.nearest_prim))].name, "G");
+
+  // The figure ticks t* on the ray at the root, where the ray meets the root's split line x = 4.2.
+  const PlaneOutline outline = plane_outline(kd);
+  const Figure still = flat_figure_still(s, &outline, nullptr);
+  const int root = replay::nth_event(r, EventType::node, 1);
+  const FlatWalkLayers w = flat_figure_walk(FlatFigureInput{&s, &outline, &t, root}, still);
+  const auto tick = std::find_if(w.marks.items.begin(), w.marks.items.end(),
+                                 [](const FigureItem& it) { return it.css == "t-star"; });
+  ASSERT_NE(tick, w.marks.items.end());
+  EXPECT_NEAR(0.5f * (tick->points[0].x + tick->points[1].x), kd.data().nodes[0].split, 1e-4f);
+}
+
+// The walk's marks in the plane: at a cell of the grid the 3D-DDA's tMax ticks lie on the ray where it crosses
+// the cell's next boundary on that axis (a grid line), and at a mailbox hit the shape skipped is marked, with
+// the mailbox's shapes dashed.
+TEST(FlatlandStructures, TheGridWalksMarksShowTMaxAndTheMailbox) {
+  Scene s = load_scene(kFlatDir + "/mailbox.json");
+  ASSERT_TRUE(s.flat && s.flat->has_ray);
+  auto grid = make_accelerator("grid", StructureOptions{});
+  grid->build(s.geometry);
+  const PlaneOutline outline = plane_outline(*grid);
+  const Ray ray = flat_ray(s.flat->ray_origin, s.flat->ray_direction);
+  const Trace t = record_trace(s.geometry, *grid, {RayRequest{ray, RayKind::primary, 0, false, {0, 0}}},
+                               "mailbox.json", "fnv1a64:0000000000000000");
+  const TracedRay& r = t.rays[0];
+  const Figure still = flat_figure_still(s, &outline, nullptr);
+  const auto* ug = dynamic_cast<const UniformGrid*>(grid.get());
+  ASSERT_NE(ug, nullptr);
+  int cells = 0, mailbox_hits = 0;
+  std::set<std::string> skipped;
+  for (int k = 0; k < int(r.events.size()); ++k) {
+    const Event& e = r.events[size_t(k)];
+    FlatFigureInput in{&s, &outline, &t, k};
+    const FlatWalkLayers w = flat_figure_walk(in, still);
+    auto count = [&](const std::string& css) {
+      return std::count_if(w.marks.items.begin(), w.marks.items.end(),
+                           [&](const FigureItem& it) { return it.css == css; });
+    };
+    if (e.type == EventType::cell) {
+      ++cells;
+      for (int a = 0; a < 2; ++a) {
+        const std::string css = a == 0 ? "tmax-x" : "tmax-y";
+        const auto tick = std::find_if(w.marks.items.begin(), w.marks.items.end(),
+                                       [&](const FigureItem& it) { return it.css == css; });
+        if (!std::isfinite(e.t_max[a])) continue;
+        const glm::vec2 p = glm::vec2(ray.origin) + e.t_max[a] * glm::vec2(ray.direction);
+        if (p.x > still.hi.x || p.y > still.hi.y) continue;  // beyond the picture: not drawn
+        ASSERT_NE(tick, w.marks.items.end()) << "event " << k << " axis " << a;
+        // The tick crosses the ray at the boundary: its points lie on either side of p, along the normal.
+        const glm::vec2 a0 = tick->points[0], a1 = tick->points[1];
+        const glm::vec2 u = glm::normalize(a1 - a0);
+        EXPECT_NEAR(u.x * (p - a0).y - u.y * (p - a0).x, 0.f, 1e-4f);  // on the tick's line
+        EXPECT_GT(glm::dot(p - a0, u), 0.f);                            // between its ends
+        EXPECT_LT(glm::dot(p - a0, u), glm::length(a1 - a0));
+        EXPECT_NEAR(glm::dot(u, glm::normalize(glm::vec2(ray.direction))), 0.f, 1e-4f);  // across the ray
+        // p is on a grid line of axis a: the cell's boundary in the walk's direction.
+        const float cell = (ug->bounds().hi[a] - ug->bounds().lo[a]) / float(ug->resolution()[a]);
+        const float lines = (p[a] - ug->bounds().lo[a]) / cell;
+        EXPECT_NEAR(lines, std::round(lines), 1e-3f) << "event " << k << " axis " << a;
+      }
+    }
+    if (e.type == EventType::mailbox_hit) {
+      ++mailbox_hits;
+      EXPECT_EQ(count("mailbox-hit"), 1) << "event " << k;
+      EXPECT_GE(count("mailboxed"), 1) << "event " << k;
+      skipped.insert(s.flat->shapes[size_t(s.flat->shape_of(uint32_t(e.prim)))].name);
+    }
+    if (e.type == EventType::prim_test) EXPECT_EQ(count("testing"), 1) << "event " << k;
+  }
+  EXPECT_GT(cells, 3);
+  EXPECT_GT(mailbox_hits, 0);
+  EXPECT_TRUE(skipped.count("long wall"));  // the wall beside the ray, skipped in cell after cell
+}
+
+// The octree of a 2D scene is a quadtree: each inner cell has four children that halve it on x and y and keep
+// its z extent (the walls' height), the trace lists the four, the replay names them by quadrant, and rays off
+// the plane (a pixel's, looking down at an angle) find what brute force finds, as rays in it do.
+TEST(FlatlandStructures, TheOctreeOfA2DSceneIsAQuadtree) {
+  Scene s = load_scene(kFlatDir + "/variations.json");
+  Octree oc;
+  oc.build(s.geometry);
+  const OctreeData& d = oc.data();
+  ASSERT_EQ(d.axes, 2);
+  size_t inner = 0;
+  for (size_t id = 0; id < d.nodes.size(); ++id) {
+    if (d.nodes[id].is_leaf()) continue;
+    ++inner;
+    const Bounds3& b = d.info[id].box;
+    for (int c = 0; c < 4; ++c) {
+      const uint32_t k = d.nodes[id].child(c);
+      ASSERT_LT(k, d.nodes.size());
+      EXPECT_EQ(d.info[k].parent, int32_t(id));
+      const Bounds3& cb = d.info[k].box;
+      for (int a = 0; a < 2; ++a) {
+        const float mid = 0.5f * (b.lo[a] + b.hi[a]);
+        EXPECT_EQ(cb.lo[a], (c >> a) & 1 ? mid : b.lo[a]);
+        EXPECT_EQ(cb.hi[a], (c >> a) & 1 ? b.hi[a] : mid);
+      }
+      EXPECT_EQ(cb.lo.z, b.lo.z);
+      EXPECT_EQ(cb.hi.z, b.hi.z);
+    }
+  }
+  ASSERT_GT(inner, 2u);
+  EXPECT_EQ(d.nodes.size(), 1 + 4 * inner);  // four children to each inner cell, nothing else
+  EXPECT_EQ(d.bounds.hi.x - d.bounds.lo.x, d.bounds.hi.y - d.bounds.lo.y);  // a square
+
+  // The walk's trace: four children per inner cell, named by quadrant.
+  ASSERT_TRUE(s.flat && s.flat->has_ray);
+  const Ray ray = flat_ray(s.flat->ray_origin, s.flat->ray_direction);
+  const Trace t = record_trace(s.geometry, oc, {RayRequest{ray, RayKind::primary, 0, false, {0, 0}}},
+                               "variations.json", "fnv1a64:0000000000000000");
+  int inner_nodes = 0;
+  for (const TraceNode& n : t.nodes)
+    if (!n.leaf) {
+      EXPECT_EQ(n.children.size(), 4u);
+      ++inner_nodes;
+    }
+  EXPECT_GT(inner_nodes, 0);
+  const replay::Replayer replayer(t.rays[0]);
+  int choices = 0;
+  for (int k = 0; k < replayer.size(); ++k) {
+    const replay::OctreeChoice c = replay::octree_choice(t, t.rays[0], replayer.at(k));
+    if (!c.valid) continue;
+    ++choices;
+    EXPECT_EQ(c.axes, 2);
+    for (const replay::OctreeChildStep& st : c.path) {
+      EXPECT_LT(st.octant, 4);
+      EXPECT_LT(st.exit_axis, 2);  // a ray in the plane leaves by x or y
+    }
+    // The order by the planes is the order the walk visits the children.
+    for (size_t i = 0; i < c.visited.size() && i < c.path.size(); ++i) EXPECT_EQ(c.visited[i], c.path[i].node);
+  }
+  EXPECT_GT(choices, 0);
+  EXPECT_EQ(replay::octant_name(2, 2), "x- y+");
+
+  // Off the plane: rays from above at random angles, and straight down, as brute force.
+  auto brute = make_accelerator("brute", StructureOptions{});
+  brute->build(s.geometry);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> ux(s.flat->lo.x, s.flat->hi.x), uy(s.flat->lo.y, s.flat->hi.y),
+      tilt(-1.f, 1.f);
+  int hits = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::vec3 target(ux(rng), uy(rng), tilt(rng) * s.flat->half_height);
+    const glm::vec3 dir = i % 5 == 0 ? glm::vec3(0.f, 0.f, -1.f) : glm::vec3(tilt(rng), tilt(rng), -1.f);
+    Ray r;
+    r.origin = target - 3.f * s.flat->half_height * dir;
+    r.direction = dir;
+    Hit a, b;
+    const bool ha = oc.intersect(r, &a), hb = brute->intersect(r, &b);
+    ASSERT_EQ(ha, hb) << "ray " << i;
+    if (!ha) continue;
+    ++hits;
+    EXPECT_EQ(a.t, b.t) << "ray " << i;
+  }
+  EXPECT_GT(hits, 200);
 }
 
 // A partition's outline: its leaves' regions tile the root's (their areas add up to it), regions are by node

@@ -42,9 +42,10 @@ namespace {
 // The root's cell: a cube centred on the scene's bounding box, its side the box's largest extent, a little
 // enlarged. A cube keeps every cell a cube (the lecture's octree; a flat scene gets no flat cells) and the
 // centre split meaningful on every axis.
-Bounds3 root_cube(const Bounds3& scene) {
+// A 2D scene's quadtree (axes 2): a square in x and y, the scene's own z extent (never cut).
+Bounds3 root_cube(const Bounds3& scene, int axes) {
   glm::vec3 c = scene.center(), e = scene.extent();
-  float side = std::max({e.x, e.y, e.z});
+  float side = axes == 2 ? std::max(e.x, e.y) : std::max({e.x, e.y, e.z});
   float magnitude = std::max({std::fabs(c.x), std::fabs(c.y), std::fabs(c.z)});
   // 2^-10 of the side, and enough ulps of the position that the cube strictly contains the box after
   // rounding; a point scene (every primitive at one spot) gets a small cube of its own.
@@ -56,13 +57,19 @@ Bounds3 root_cube(const Bounds3& scene) {
     b.lo[a] = std::min(b.lo[a], scene.lo[a]);
     b.hi[a] = std::max(b.hi[a], scene.hi[a]);
   }
+  if (axes == 2) {  // the walls' own height, a little enlarged
+    const float h = 0.5f * e.z * (1.f + 1.f / 1024.f) + std::fabs(c.z) * 1e-6f + 1e-30f;
+    b.lo.z = std::min(c.z - h, scene.lo.z);
+    b.hi.z = std::max(c.z + h, scene.hi.z);
+  }
   return b;
 }
 
-// Child i of a cell: the same halves the walk computes (mid = 0.5 (lo + hi), as a float).
-Bounds3 child_box(const Bounds3& box, int i) {
-  Bounds3 b;
-  for (int a = 0; a < 3; ++a) {
+// Child i of a cell: the same halves the walk computes (mid = 0.5 (lo + hi), as a float), on the first
+// `axes` axes; the others keep the cell's extent.
+Bounds3 child_box(const Bounds3& box, int i, int axes) {
+  Bounds3 b = box;
+  for (int a = 0; a < axes; ++a) {
     float mid = 0.5f * (box.lo[a] + box.hi[a]);
     bool upper = (i >> a) & 1;
     b.lo[a] = upper ? mid : box.lo[a];
@@ -92,8 +99,10 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
   const size_t ref_budget = octree_reference_budget(n), node_budget = octree_node_budget(n);
   const size_t leaf_size = size_t(options.leaf_size);
 
-  d.bounds = root_cube(geometry.bounds());
-  // Breadth first, so that the eight children of a node are consecutive. Each node waiting to be split holds
+  d.axes = geometry.split_space().axes == 2 ? 2 : 3;
+  const int children_per_node = 1 << d.axes;
+  d.bounds = root_cube(geometry.bounds(), d.axes);
+  // Breadth first, so that the children of a node (eight, or a quadtree's four) are consecutive. Each node waiting to be split holds
   // its primitive list; the lists together never exceed the reference budget.
   std::vector<std::vector<uint32_t>> lists(1);
   lists[0].resize(n);
@@ -117,7 +126,7 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
     }
     // A cell a float cannot halve any more counts as the depth limit too.
     bool halvable = true;
-    for (int a = 0; a < 3; ++a) {
+    for (int a = 0; a < d.axes; ++a) {
       float mid = 0.5f * (info.box.lo[a] + info.box.hi[a]);
       halvable &= info.box.lo[a] < mid && mid < info.box.hi[a];
     }
@@ -125,15 +134,15 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
       make_leaf(OctreeLeafReason::max_depth);
       continue;
     }
-    if (d.nodes.size() + 8 > node_budget) {
+    if (d.nodes.size() + size_t(children_per_node) > node_budget) {
       make_leaf(OctreeLeafReason::budget);
       continue;
     }
     size_t added = 0, unreduced = 0;
     const Bounds3 box = info.box;
-    for (int c = 0; c < 8; ++c) {
+    for (int c = 0; c < children_per_node; ++c) {
       children[c].clear();
-      Bounds3 cb = child_box(box, c);
+      Bounds3 cb = child_box(box, c, d.axes);
       for (uint32_t p : prims)
         if (overlaps(geometry, p, cb)) children[c].push_back(p);
       added += children[c].size();
@@ -157,9 +166,9 @@ OctreeData build_octree(const Geometry& geometry, const OctreeOptions& options) 
     const uint32_t first = uint32_t(d.nodes.size());
     const int32_t depth = info.depth;  // `info` dangles once the tables grow
     d.nodes[id] = OctreeNode::make_inner(first);
-    for (int c = 0; c < 8; ++c) {
+    for (int c = 0; c < children_per_node; ++c) {
       d.nodes.push_back(OctreeNode::make_leaf(0, 0));
-      d.info.push_back(OctreeNodeInfo{child_box(box, c), int32_t(id), depth + 1, uint32_t(children[c].size()),
+      d.info.push_back(OctreeNodeInfo{child_box(box, c, d.axes), int32_t(id), depth + 1, uint32_t(children[c].size()),
                                       OctreeLeafReason::few_primitives});
       lists.push_back(std::move(children[c]));
       children[c] = {};

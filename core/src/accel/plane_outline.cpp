@@ -87,7 +87,7 @@ void octree_outline(const Octree& o, size_t max_nodes, PlaneOutline* out) {
   for (size_t id = 0; id < t.nodes.size(); ++id) {
     const OctreeNodeInfo& info = t.info[id];
     if (!t.nodes[id].is_leaf())
-      for (int c = 0; c < 8; ++c) paths[t.nodes[id].child(c)] = paths[id] + char('0' + c);
+      for (int c = 0; c < 1 << t.axes; ++c) paths[t.nodes[id].child(c)] = paths[id] + char('0' + c);
     if (info.depth > limit) continue;
     out->regions.push_back(
         {int32_t(id), info.depth, t.nodes[id].is_leaf(), box_polygon(info.box), paths[id]});

@@ -54,4 +54,34 @@ LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t see
   return out;
 }
 
+LinesMeetingChildren lines_meeting_children(const Bounds3& node, const std::vector<Bounds3>& children,
+                                            size_t lines, uint64_t seed, SplitSpace space, size_t kept) {
+  LinesMeetingChildren out;
+  out.meeting_child.assign(children.size(), 0);
+  out.share.assign(children.size(), 0.0);
+  out.ratio.assign(children.size(), 0.0);
+  if (node.empty()) return out;
+  const double whole = double(space.measure(node));
+  for (size_t c = 0; c < children.size(); ++c)
+    out.ratio[c] = whole > 0.0 && !children[c].empty() ? double(space.measure(children[c])) / whole : 0.0;
+  const glm::vec3 centre = node.center();
+  const float radius = line_radius(node, space);
+  if (!(radius > 0.f)) return out;
+  Pcg32 rng(seed, 0);
+  for (size_t i = 0; i < lines; ++i) {
+    const Ray r = random_line(rng, centre, radius, space);
+    const SlabRay slab(r);
+    float t0 = 0.f, t1 = 0.f;
+    ++out.thrown;
+    if (!intersect_slabs(node, slab, &t0, &t1)) continue;
+    ++out.meeting_node;
+    for (size_t c = 0; c < children.size(); ++c)
+      out.meeting_child[c] += !children[c].empty() && intersect_slabs(children[c], slab, nullptr, nullptr);
+    if (out.kept.size() < kept) out.kept.push_back({r.at(t0), r.at(t1)});
+  }
+  for (size_t c = 0; c < children.size(); ++c)
+    out.share[c] = out.meeting_node ? double(out.meeting_child[c]) / double(out.meeting_node) : 0.0;
+  return out;
+}
+
 }  // namespace raystep

@@ -1,9 +1,12 @@
 #include "raystep/figure/flat_figure.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 
 #include "raystep/replay/explain.h"
+#include "raystep/replay/node_crossing.h"
 #include "raystep/replay/replayer.h"
 #include "raystep/replay/slide_stack.h"
 #include "raystep/util/error.h"
@@ -12,8 +15,10 @@ namespace raystep {
 
 namespace {
 
+// The debugger's meanings (viz/src/common/palette.h): current yellow, stacked pink, visited pale blue.
 const glm::vec3 kInk(0.15f, 0.15f, 0.18f), kStructure(0.35f, 0.45f, 0.6f), kVisited(0.55f, 0.75f, 0.95f),
-    kCurrent(1.f, 0.82f, 0.2f), kStacked(0.95f, 0.55f, 0.1f), kRay(0.85f, 0.1f, 0.1f);
+    kCurrent(1.f, 0.82f, 0.2f), kStacked(0.95f, 0.4f, 0.6f), kRay(0.85f, 0.1f, 0.1f),
+    kTesting(0.9f, 0.35f, 0.0f), kMailbox(0.45f, 0.2f, 0.65f), kTick(0.1f, 0.45f, 0.25f);
 
 FigureItem line(glm::vec2 a, glm::vec2 b, glm::vec3 colour, float width, const std::string& css) {
   FigureItem it;
@@ -47,6 +52,35 @@ FigureItem dot(glm::vec2 p, float radius, glm::vec3 colour, const std::string& c
   it.style.has_stroke = false;
   it.style.fill = colour;
   it.style.fill_opacity = 1.f;
+  it.css = css;
+  return it;
+}
+
+FigureItem text(glm::vec2 p, const std::string& words, float points, glm::vec3 colour, const std::string& css) {
+  FigureItem it;
+  it.kind = FigureItem::Kind::text;
+  it.points = {p};
+  it.text = words;
+  it.radius = points;
+  it.style.fill = colour;
+  it.css = css;
+  return it;
+}
+
+// A shape drawn again over itself, in a mark's colour (no fill): the one tested, those in the mailbox.
+FigureItem shape_outline(const FlatShape& s, glm::vec3 colour, float width, const std::string& css) {
+  FigureItem it;
+  if (s.kind == FlatShape::Kind::circle) {
+    it.kind = FigureItem::Kind::circle;
+    it.points = {s.center};
+    it.radius = s.radius;
+  } else {
+    it.kind = s.kind == FlatShape::Kind::polygon ? FigureItem::Kind::polygon : FigureItem::Kind::polyline;
+    it.points = s.points;
+  }
+  it.style.stroke = colour;
+  it.style.stroke_width = width;
+  it.style.fill_opacity = 0.f;
   it.css = css;
   return it;
 }
@@ -91,27 +125,31 @@ FigureLayer shapes_layer(const Scene& scene) {
   return layer;
 }
 
-FigureLayer structure_layer(const PlaneOutline& o) {
+// built_up_to >= 0: only the splits (a BVH: the boxes) of the nodes made so far, 0 .. built_up_to.
+FigureLayer structure_layer(const PlaneOutline& o, int32_t built_up_to) {
+  auto built = [built_up_to](int32_t node) { return built_up_to < 0 || node <= built_up_to; };
   FigureLayer layer{"structure", {}};
   layer.items.push_back(polygon({{o.lo.x, o.lo.y}, {o.hi.x, o.lo.y}, {o.hi.x, o.hi.y}, {o.lo.x, o.hi.y}},
                                 kStructure, 1.4f, glm::vec3(1.f), 0.f, "root"));
   if (o.boxes) {
     for (const OutlineRegion& r : o.regions)
-      if (r.node > 0)
+      if (r.node > 0 && built(r.node))
         layer.items.push_back(polygon(r.polygon, kStructure, std::max(0.5f, 1.3f - 0.12f * float(r.depth)),
                                       glm::vec3(1.f), 0.f, r.leaf ? "box leaf" : "box"));
     return layer;
   }
   for (const OutlineLine& l : o.lines)
-    layer.items.push_back(line(l.a, l.b, kStructure,
-                               l.node < 0 ? 0.6f : std::max(0.5f, 1.4f - 0.15f * float(l.depth)),
-                               l.node < 0 ? "grid-line" : "split"));
+    if (l.node < 0 || built(l.node))
+      layer.items.push_back(line(l.a, l.b, kStructure,
+                                 l.node < 0 ? 0.6f : std::max(0.5f, 1.4f - 0.15f * float(l.depth)),
+                                 l.node < 0 ? "grid-line" : "split"));
   return layer;
 }
 
 }  // namespace
 
-Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin) {
+Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin,
+                         int32_t built_up_to) {
   if (!scene.flat) throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
   const Flatland& flat = *scene.flat;
   Figure fig;
@@ -127,8 +165,8 @@ Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const 
   const glm::vec2 margin = 0.04f * glm::vec2(std::max(hi.x - lo.x, hi.y - lo.y));
   fig.lo = lo - margin;
   fig.hi = hi + margin;
-  if (outline) fig.layers.push_back(structure_layer(*outline));
-  if (outline) {  // the leaves' names, where they are few enough to read
+  if (outline) fig.layers.push_back(structure_layer(*outline, built_up_to));
+  if (outline && built_up_to < 0) {  // the leaves' names, where they are few enough to read
     FigureLayer labels{"labels", {}};
     size_t leaves = 0;
     for (const OutlineRegion& r : outline->regions) leaves += r.leaf;
@@ -195,8 +233,8 @@ FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) 
       const OutlineRegion* r = region_of(o, id);
       if (r && r->leaf) walk.items.push_back(polygon(r->polygon, kVisited, 0.f, kVisited, 0.45f, "visited"));
     }
-    for (const replay::StackEntry& st : state->stack)
-      if (const OutlineRegion* r = region_of(o, st.node)) {
+    for (const replay::StackEntry& st : state->stack)  // what waits when the walk ends is never walked
+      if (const OutlineRegion* r = state->ended ? nullptr : region_of(o, st.node)) {
         FigureItem it = polygon(r->polygon, kStacked, 1.8f, kStacked, 0.12f, "stacked");
         it.style.dashed = true;
         walk.items.push_back(it);
@@ -232,15 +270,89 @@ FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) 
     }
   }
 
+  // Over the shapes: the mailbox's shapes (tested already, dashed), the shape tested at this step, and for a
+  // grid the 3D-DDA's next boundaries along the ray: tMax x and tMax y, then tDelta further on each axis.
+  FigureLayer marks{"marks", {}};
+  if (state && ray && !state->ended) {
+    auto shape_of = [&](int32_t prim) -> const FlatShape* {
+      const int s = prim < 0 ? -1 : flat.shape_of(uint32_t(prim));
+      return s < 0 ? nullptr : &flat.shapes[size_t(s)];
+    };
+    std::vector<const FlatShape*> drawn;
+    for (const replay::MailboxEntry& m : state->mailbox)
+      if (const FlatShape* s = shape_of(m.prim); s && std::find(drawn.begin(), drawn.end(), s) == drawn.end()) {
+        FigureItem it = shape_outline(*s, kMailbox, 2.6f, "mailboxed");
+        it.style.dashed = true;
+        marks.items.push_back(it);
+        drawn.push_back(s);
+      }
+    const Event& e = *state->event;
+    if (e.type == EventType::prim_test || e.type == EventType::mailbox_hit)
+      if (const FlatShape* s = shape_of(e.prim))
+        marks.items.push_back(shape_outline(*s, e.type == EventType::mailbox_hit ? kMailbox : kTesting, 4.f,
+                                            e.type == EventType::mailbox_hit ? "mailbox-hit" : "testing"));
+    const glm::vec2 o(ray->ray.origin), d(ray->ray.direction);
+    const float len = glm::length(d);
+    // A kd-tree's or BSP tree's inner node: t*, where the ray meets its split, ticked on the ray.
+    if (len > 0.f && state->node_event >= 0 && replay::is_tree_ray(*ray)) {
+      const replay::NodeCrossing x = replay::node_crossing(*in.trace, *ray, *state);
+      if (x.valid && std::isfinite(x.t_star) && x.t_star >= 0.f) {
+        const glm::vec2 p = o + x.t_star * d, across = glm::vec2(-d.y, d.x) / len;
+        const float tick = 0.022f * unit;
+        if (p.x >= fig.lo.x && p.y >= fig.lo.y && p.x <= fig.hi.x && p.y <= fig.hi.y) {
+          marks.items.push_back(line(p - tick * across, p + tick * across, kInk, 2.2f, "t-star"));
+          marks.items.push_back(text(p + 2.2f * tick * across, "t*", 11.f, kInk, "t-star-label"));
+        }
+      }
+    }
+    if (state->cell_event >= 0 && len > 0.f) {
+      const Event& c = ray->events[size_t(state->cell_event)];
+      const glm::vec2 across = glm::vec2(-d.y, d.x) / len;
+      const float tick = 0.018f * unit;
+      for (int a = 0; a < 2; ++a) {
+        if (!std::isfinite(c.t_delta[a]) || !std::isfinite(c.t_max[a]) || c.t_delta[a] <= 0.f) continue;
+        const std::string axis = a == 0 ? "x" : "y";
+        for (int k = 0; k < 3; ++k) {
+          const float t = c.t_max[a] + float(k) * c.t_delta[a];
+          const glm::vec2 p = o + t * d;
+          if (p.x < fig.lo.x || p.y < fig.lo.y || p.x > fig.hi.x || p.y > fig.hi.y) break;
+          // x ticks on one side of the ray, y ticks on the other, so that the two never share a label.
+          const glm::vec2 side = (a == 0 ? 1.f : -1.f) * across;
+          marks.items.push_back(line(p - 0.5f * tick * side, p + tick * side, kTick, k == 0 ? 2.2f : 1.f,
+                                     k == 0 ? "tmax-" + axis : "tdelta-" + axis));
+          if (k == 0) marks.items.push_back(text(p + 2.4f * tick * side, "tMax " + axis, 10.f, kTick, "tmax-label"));
+        }
+      }
+    }
+  }
+
   FlatWalkLayers out;
   out.walk = std::move(walk);
+  out.marks = std::move(marks);
   out.ray = std::move(ray_layer);
   if (state) {
-    out.caption.push_back("Step " + std::to_string(state->step) + " of " +
-                          std::to_string(ray->events.size() - 1) + ": " +
-                          replay::describe_event(*state->event));
+    // The event's line without its index (the step says it): "node  3 depth 3  t 0.2..1.6".
+    std::string event = replay::describe_event(*state->event);
+    const size_t words = event.find_first_not_of("0123456789 ");
+    if (words != std::string::npos && words > 0 && std::isdigit(static_cast<unsigned char>(event[0])))
+      event = event.substr(words);
+    out.caption.push_back("Step " + std::to_string(state->step) + " of " + std::to_string(ray->events.size() - 1) +
+                          ": " + event);
     const std::string slides = state->ended ? "" : replay::slide_stack_text(*in.trace, *ray, *state);
     if (!slides.empty()) out.caption.push_back(slides);
+    if (state->cell_event >= 0 && !state->ended) {  // the 3D-DDA's numbers, as the ticks draw them
+      const Event& c = ray->events[size_t(state->cell_event)];
+      auto num = [](float v) {
+        if (!std::isfinite(v)) return std::string("inf");
+        char b[32];
+        std::snprintf(b, sizeof b, "%.3g", double(v));
+        return std::string(b);
+      };
+      out.caption.push_back("tMax x " + num(c.t_max.x) + ", y " + num(c.t_max.y) + "   tDelta x " +
+                            num(c.t_delta.x) + ", y " + num(c.t_delta.y) + "   next step: " +
+                            (c.next_axis < 0 ? std::string("none (the walk ends here)")
+                                             : std::string(replay::axis_name(c.next_axis))));
+    }
   }
   return out;
 }
@@ -254,6 +366,7 @@ Figure flat_figure(const FlatFigureInput& in) {
   FlatWalkLayers walk = flat_figure_walk(in, fig);
   // Under the shapes, over the structure and the names; the ray on top.
   fig.layers.insert(fig.layers.end() - 1, std::move(walk.walk));
+  if (!walk.marks.items.empty()) fig.layers.push_back(std::move(walk.marks));
   fig.layers.push_back(std::move(walk.ray));
   fig.caption = std::move(walk.caption);
   fig.caption_points = 16.f * float(fig.caption.size()) + (fig.caption.empty() ? 0.f : 8.f);

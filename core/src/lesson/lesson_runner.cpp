@@ -12,6 +12,7 @@
 #include "raystep/lesson/tree_nodes.h"
 #include "raystep/report/bvol_report.h"
 #include "raystep/scene/antialiasing_spec.h"
+#include "raystep/scene/flatland.h"
 #include "raystep/trace/pixel_rays.h"
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
@@ -150,6 +151,17 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
             record_trace(cache.scene->geometry, *cache.accel, requests, cache.scene_path, cache.scene_hash));
       }
       cache.trace_key = tkey;
+    }
+    w.trace = cache.trace;
+  } else if (cache.scene->flat && cache.scene->flat->has_ray) {
+    // A 2D scene without a pixel: its own ray in the plane, the 2D view's walk (lesson_enter.cpp does the same).
+    if (!cache.trace || cache.trace_key != "flat") {
+      const Flatland& f = *cache.scene->flat;
+      cache.trace = std::make_shared<Trace>(
+          record_trace(cache.scene->geometry, *cache.accel,
+                       {RayRequest{flat_ray(f.ray_origin, f.ray_direction), RayKind::primary, 0, false, {0, 0}}},
+                       cache.scene_path, cache.scene_hash));
+      cache.trace_key = "flat";
     }
     w.trace = cache.trace;
   }

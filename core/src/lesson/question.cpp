@@ -166,7 +166,10 @@ bool walks_octree(const QuestionContext& c) {
 
 using replay::octant_name;
 
-// Which of its parent's eight children a cell is (-1: not found in the trace).
+// 3: an octree cell's; 2: a quadtree's (a 2D scene's: four children, cut on x and y).
+int axes_of(const TraceNode& parent) { return parent.children.size() == 4 ? 2 : 3; }
+
+// Which of its parent's eight (a quadtree's four) children a cell is (-1: not found in the trace).
 int octant_of(const Trace& trace, int32_t id, const TraceNode** parent) {
   const TraceNode* n = find_node(trace, id);
   *parent = n && n->parent >= 0 ? find_node(trace, n->parent) : nullptr;
@@ -180,7 +183,7 @@ std::string cell_name(const Trace& trace, int32_t id) {
   const TraceNode* parent = nullptr;
   const int octant = octant_of(trace, id, &parent);
   if (octant < 0) return "cell " + std::to_string(id);
-  return "cell " + std::to_string(id) + " (" + octant_name(octant) + " of cell " +
+  return "cell " + std::to_string(id) + " (" + octant_name(octant, axes_of(*parent)) + " of cell " +
          std::to_string(parent->id) + ")";
 }
 
@@ -238,7 +241,7 @@ void set_octree_cell(Answer& a, const Trace& trace, int32_t id) {
   a.first_child = id;
   a.octant = octant_of(trace, id, &parent);
   a.stops = false;
-  a.text = a.octant >= 0 ? octant_name(a.octant) + " (node " + std::to_string(id) + ", a child of cell " +
+  a.text = a.octant >= 0 ? octant_name(a.octant, axes_of(*parent)) + " (node " + std::to_string(id) + ", a child of cell " +
                                std::to_string(parent->id) + ")"
                          : "node " + std::to_string(id);
 }
@@ -353,8 +356,9 @@ Answer octree_answer(QuestionKind kind, const QuestionContext& c) {
   const Event& to = ev[size_t(next)];
   if (grazed) {
     w += "The walk goes on with the next cell in entry order, " + cell_name(*c.trace, a.node) + ".";
-  } else if (octant >= 0 && pops == 0 && parent->children[size_t(octant ^ (1 << exit))] == a.node) {
-    w += "Across it lies its sibling " + octant_name(a.octant) + ", node " + std::to_string(a.node) +
+  } else if (octant >= 0 && exit < axes_of(*parent) && pops == 0 &&
+             parent->children[size_t(octant ^ (1 << exit))] == a.node) {
+    w += "Across it lies its sibling " + octant_name(a.octant, axes_of(*parent)) + ", node " + std::to_string(a.node) +
          ": Revelles' table sends the walk from one child to the next by the plane it leaves by.";
   } else if (octant >= 0 && bool((octant >> exit) & 1) == forward && pops > 0) {
     w += "That face is also the face of cell " + std::to_string(parent->id) +

@@ -59,12 +59,14 @@ uint32_t lesson_node_by_path(const Accelerator& accel, const std::string& path) 
   if (auto* oct = dynamic_cast<const Octree*>(&accel)) {
     const std::vector<OctreeNode>& nodes = oct->data().nodes;
     if (nodes.empty()) fail("the octree is empty");
+    const bool quad = oct->data().axes == 2;
     uint32_t id = 0;
     for (size_t i = 0; i < path.size(); ++i) {
-      if (path[i] < '0' || path[i] > '7')
-        fail(
-            "use one digit 0..7 per level for an octree (the child's octant: 1 upper x, 2 upper y, 4 upper "
-            "z)");
+      if (path[i] < '0' || path[i] > (quad ? '3' : '7'))
+        fail(quad ? "use one digit 0..3 per level for a 2D scene's quadtree (the child's quadrant: 1 upper x, "
+                    "2 upper y)"
+                  : "use one digit 0..7 per level for an octree (the child's octant: 1 upper x, 2 upper y, 4 "
+                    "upper z)");
       if (nodes[id].is_leaf())
         fail("cell " + std::to_string(id) + " (after '" + path.substr(0, i) + "') is a leaf");
       id = nodes[id].child(path[i] - '0');

@@ -80,7 +80,7 @@ std::string octree_order_text(const OctreeChoice& c) {
     t = "The ray starts inside the cell";
   }
   std::vector<std::string> crossed;
-  for (int b = 0; b < 3; ++b)
+  for (int b = 0; b < c.axes; ++b)
     if (b != c.entry_axis && c.moving[b])
       crossed.push_back(
           std::string(axis_name(b)) + " centre plane at t = " + num(c.t_mid[b]) +
@@ -90,7 +90,7 @@ std::string octree_order_text(const OctreeChoice& c) {
     for (size_t k = 0; k < crossed.size(); ++k) t += (k ? ", " : "") + crossed[k];
   }
   if (c.path.empty()) return t + ".";
-  t += ".\nFirst child: " + std::to_string(c.path[0].node) + " [" + octant_name(c.path[0].octant) + "].";
+  t += ".\nFirst child: " + std::to_string(c.path[0].node) + " [" + octant_name(c.path[0].octant, c.axes) + "].";
   t += " Next by the exit plane (the smallest exit t):";
   for (size_t k = 0; k < c.path.size(); ++k) {
     const OctreeChildStep& st = c.path[k];
@@ -135,9 +135,16 @@ std::string explain_octree_rule(const Trace* trace, const TracedRay& ray, const 
   switch (e.type) {
     case EventType::ray_begin: {
       int first = find_event(ray, 0, EventType::node, true);
-      if (first < 0) return "The ray misses the octree's root cube (slab test): no cell to visit.";
+      // A 2D scene's quadtree: its root is a square (a box of the walls' height over it).
+      bool quad = false;
+      if (trace)
+        for (const TraceNode& n : trace->nodes) quad = quad || (!n.leaf && n.children.size() == 4);
+      if (first < 0)
+        return std::string("The ray misses the ") + (quad ? "quadtree's root square" : "octree's root cube") +
+               " (slab test): no cell to visit.";
       const Event& root = ev[size_t(first)];
-      return "Slab test: the ray meets the root cube over [t_enter, t_exit] = [" + num(root.t_min_node) +
+      return std::string("Slab test: the ray meets the root ") + (quad ? "square" : "cube") +
+             " over [t_enter, t_exit] = [" + num(root.t_min_node) +
              ", " + num(root.t_max_node) +
              "]. The walk is parametric and top-down (Revelles et al.): from each cell to its children in "
              "the "
@@ -145,7 +152,11 @@ std::string explain_octree_rule(const Trace* trace, const TracedRay& ray, const 
     }
     case EventType::node: {
       if (after && after->type == EventType::leaf) return cell + " is a leaf.";
-      std::string text = cell + ": an inner cell, split at its centre into eight octants.";
+      const TraceNode* n = trace ? find_node(*trace, e.node) : nullptr;
+      std::string text = cell + (n && n->children.size() == 4
+                                     ? ": an inner cell, split at its centre into four quadrants (a quadtree: "
+                                       "the plane's cells are cut on x and y only)."
+                                     : ": an inner cell, split at its centre into eight octants.");
       if (OctreeChoice c = trace ? octree_choice(*trace, ray, s) : OctreeChoice{}; c.valid)
         text += "\n" + octree_order_text(c);
       return text;
@@ -157,7 +168,7 @@ std::string explain_octree_rule(const Trace* trace, const TracedRay& ray, const 
           "previous one's ends); its frame goes on the stack.";
       if (OctreeChoice c = trace ? octree_choice(*trace, ray, s) : OctreeChoice{}; c.valid && !c.path.empty())
         text +=
-            " First child: " + std::to_string(c.path[0].node) + " [" + octant_name(c.path[0].octant) + "].";
+            " First child: " + std::to_string(c.path[0].node) + " [" + octant_name(c.path[0].octant, c.axes) + "].";
       return text;
     }
     case EventType::pop:

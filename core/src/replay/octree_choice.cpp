@@ -20,9 +20,9 @@ bool is_octree_ray(const Trace* trace, const TracedRay& ray) {
   return false;
 }
 
-std::string octant_name(int octant) {
+std::string octant_name(int octant, int axes) {
   std::string s;
-  for (int a = 0; a < 3; ++a) s += std::string(a ? " " : "") + axis_name(a) + ((octant >> a) & 1 ? "+" : "-");
+  for (int a = 0; a < axes; ++a) s += std::string(a ? " " : "") + axis_name(a) + ((octant >> a) & 1 ? "+" : "-");
   return s;
 }
 
@@ -32,7 +32,10 @@ OctreeChoice octree_choice(const Trace& trace, const TracedRay& ray, const Repla
   if (s.node_event < 0 || ev[size_t(s.node_event)].type != EventType::node) return c;
   const Event& e = ev[size_t(s.node_event)];
   const TraceNode* n = find_node(trace, e.node);
-  if (!n || n->leaf || n->children.size() != 8) return c;
+  if (!n || n->leaf || (n->children.size() != 8 && n->children.size() != 4)) return c;
+  // A quadtree (a 2D scene's): its cells are cut on x and y only; on z every child spans the cell.
+  const int axes = c.axes = n->children.size() == 4 ? 2 : 3;
+  const int children = 1 << axes;
   c.node_event = s.node_event;
   c.node = e.node;
   c.depth = e.depth;
@@ -56,18 +59,19 @@ OctreeChoice octree_choice(const Trace& trace, const TracedRay& ray, const Repla
       c.t1[a] = kInfinity;
       c.t_mid[a] = (o[a] >= mid) != neg ? -kInfinity : kInfinity;
     }
+    if (a >= axes) c.t_mid[a] = c.t1[a];  // not cut: no centre plane, the cell's own exit
   }
   const float t_in = std::max({c.t0[0], c.t0[1], c.t0[2]});
   c.entry_axis = c.t0[0] >= c.t0[1] && c.t0[0] >= c.t0[2] ? 0 : (c.t0[1] >= c.t0[2] ? 1 : 2);
   int mask = 0;
-  for (int a = 0; a < 3; ++a) mask |= int(std::signbit(d[a])) << a;
+  for (int a = 0; a < axes; ++a) mask |= int(std::signbit(d[a])) << a;
   // Revelles' walk in the reflected frame (reflected child r is real child r ^ mask).
   static const int kNext[8][3] = {{1, 2, 4}, {8, 3, 5}, {3, 8, 6}, {8, 8, 7},
                                   {5, 6, 8}, {8, 7, 8}, {7, 8, 8}, {8, 8, 8}};
   int r = 0;
-  for (int b = 0; b < 3; ++b)
+  for (int b = 0; b < axes; ++b)
     if (b != c.entry_axis && c.t_mid[b] < t_in) r |= 1 << b;
-  while (r < 8 && c.path.size() < 8) {
+  while (r < children && c.path.size() < size_t(children)) {
     OctreeChildStep st;
     st.octant = r ^ mask;
     st.node = n->children[size_t(st.octant)];
@@ -75,8 +79,8 @@ OctreeChoice octree_choice(const Trace& trace, const TracedRay& ray, const Repla
     for (int a = 0; a < 3; ++a) ct1[a] = (r >> a) & 1 ? c.t1[a] : c.t_mid[a];
     st.exit_axis = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
     st.t_exit = ct1[st.exit_axis];
-    r = kNext[r][st.exit_axis];
-    st.leaves_parent = r == 8;
+    r = st.exit_axis < axes ? kNext[r][st.exit_axis] : children;  // an uncut axis's face is the parent's
+    st.leaves_parent = r >= children;
     c.path.push_back(st);
   }
   // The children the walk visits: the node events one level down between this cell's push and its pop.

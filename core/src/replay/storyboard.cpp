@@ -108,7 +108,7 @@ void choice_json(const Trace& trace, const TracedRay& ray, const ReplayState& s,
     ordered path = ordered::array();
     for (const OctreeChildStep& st : c.path)
       path.push_back(ordered{{"octant", st.octant},
-                             {"name", octant_name(st.octant)},
+                             {"name", octant_name(st.octant, c.axes)},
                              {"node", id_or_null(st.node)},
                              {"exit_axis", axis_name(st.exit_axis)},
                              {"t_exit", number(st.t_exit)},

@@ -11,8 +11,9 @@ Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const st
   const OctreeData& data = tree.data();
   Trace t = detail::begin_trace(geometry, tree.name(), scene_path, scene_hash);
   t.structure.bounds = data.bounds;
-  const OctreeStats st = octree_stats(data);
+  const OctreeStats& st = tree.stats();
   detail::add_param(&t.structure, "leaf_size", tree.options().leaf_size);
+  detail::add_param(&t.structure, "axes", data.axes);  // 2: a 2D scene's quadtree
   detail::add_param(&t.structure, "max_depth", octree_max_depth(tree.options(), geometry.size()));
   detail::add_param(&t.structure, "nodes", double(st.nodes));
   detail::add_param(&t.structure, "leaves", double(st.leaves));
@@ -31,7 +32,7 @@ Trace record_octree_trace(const Geometry& geometry, const Octree& tree, const st
                                       n.first, n.prim_count());
     tn.axis = -1;
     if (!tn.leaf)
-      for (int c = 0; c < 8; ++c) tn.children.push_back(int32_t(n.child(c)));
+      for (int c = 0; c < 1 << data.axes; ++c) tn.children.push_back(int32_t(n.child(c)));  // 8, or 4
     t.nodes.push_back(std::move(tn));
   }
   return t;

@@ -81,6 +81,7 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
   // Version 3's bounding volume hierarchies: "bvh", "bvh-sweep", "bvh-median", "bvh4", "bvh8"; and the
   // octree (version 3 too), whose inner nodes list their eight children the same way.
   const bool octree = version >= 3 && t.structure.kind == "octree";
+  size_t octree_children = 0;  // 8, or a 2D scene's quadtree's 4: the same for every inner cell
   const bool lists_children = (version >= 3 && t.structure.kind.rfind("bvh", 0) == 0) || octree;
   // Version 4's general BSP tree: every inner node has a plane.
   const bool bsp = version >= 4 && t.structure.kind == "bsp";
@@ -198,8 +199,12 @@ void read_walk(const Reader& rd, const Value& doc, const Path& root, const Path*
           n.children.push_back(c);
         }
         n.axis = axis_index(rd, rd.member(jn, np, "axis"), np.key("axis"));
-        if (octree && (ids.size() != 8 || n.axis != -1))
-          rd.fail(cp, "an inner octree node has 8 children and axis null");
+        if (octree && ((ids.size() != 8 && ids.size() != 4) || n.axis != -1))
+          rd.fail(cp, "an inner octree node has 8 children (a quadtree's 4) and axis null");
+        if (octree && octree_children && ids.size() != octree_children)
+          rd.fail(cp, "an inner octree node has " + std::to_string(octree_children) +
+                          " children, as the trace's other inner cells");
+        if (octree) octree_children = ids.size();
       } else if (bsp || (version >= 4 && jn.contains("normal"))) {
         // Version 4: a BSP node's plane, a finite unit normal (to float rounding) and a finite offset.
         n.has_plane = true;

@@ -16,6 +16,7 @@
 #include <QScreen>
 #include <QScrollArea>
 #include <QSplitter>
+#include <QStackedWidget>
 #include <QStatusBar>
 #include <QStyle>
 #include <QThread>
@@ -29,6 +30,7 @@
 #include "lesson/classroom_layout.h"
 #include "compare/compare_window.h"
 #include "views/event_list.h"
+#include "flatland/flat_view.h"
 #include "reports/grid_sweep_view.h"
 #include "app/heartbeat.h"
 #include "views/image_view.h"
@@ -71,6 +73,10 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   structure_ = new StructurePanel;
   imageView_ = new ImageView(session_);
   sceneView_ = new SceneView(session_);
+  flatView_ = new FlatView(session_);
+  centreStack_ = new QStackedWidget;
+  centreStack_->addWidget(sceneView_);
+  centreStack_->addWidget(flatView_);
   timeline_ = new Timeline(session_, this);
   statePanel_ = new StatePanel(session_);
   eventList_ = new EventList(session_);
@@ -91,7 +97,7 @@ MainWindow::MainWindow() : session_(new Session(this)) {
   right->setSizes({440, 110, 180});
   auto* columns = columns_ = new QSplitter(Qt::Horizontal);
   columns->addWidget(left);
-  columns->addWidget(sceneView_);
+  columns->addWidget(centreStack_);
   columns->addWidget(right);
   columns->setStretchFactor(0, 0);
   columns->setStretchFactor(1, 1);
@@ -202,11 +208,38 @@ MainWindow::MainWindow() : session_(new Session(this)) {
       hideKdPanel();
     showSahCurve();
   });
+  // A 2D scene: the 2D view in the middle, and its ray's walk traced as soon as the structure is built (the
+  // scene's own ray, or the one dragged there before the rebuild).
+  connect(session_, &Session::sceneChanged, this, [this] {
+    const bool flat = session_->scene() && session_->scene()->scene.flat;
+    sceneView_->setDormant(flat);
+    centreStack_->setCurrentWidget(flat ? static_cast<QWidget*>(flatView_) : sceneView_);
+  });
+  connect(session_, &Session::structureChanged, this, [this] {
+    const SceneData* scene = session_->scene();
+    if (!scene || !scene->scene.flat || !session_->structure()) return;
+    const TracedRay* r = session_->ray();
+    const bool inPlane = r && r->ray.direction.z == 0.f;
+    if (scene->scene.flat->has_ray || inPlane)
+      traceFlatRay(flatView_->rayOrigin(), flatView_->rayDirection(), false);
+  });
+  connect(flatView_, &FlatView::nodePicked, this, [this](int node) {  // a right click in the 2D view
+    showKdPanel();
+    session_->setSelectedNode(node);
+  });
+  connect(flatView_, &FlatView::rayMoved, this, [this](QPointF o, QPointF d) {
+    traceFlatRay(glm::vec2(float(o.x()), float(o.y())), glm::vec2(float(d.x()), float(d.y())), true);
+  });
   connect(session_, &Session::stepChanged, this, [this] {
     if (session_->eventCount())
       statusBar()->showMessage(tr("step %1 of %2").arg(session_->step()).arg(session_->eventCount() - 1) +
                                took(tr(" drawn"), sceneView_->lastUpdateMs()));
   });
+}
+
+QImage MainWindow::grabMiddleView() const {
+  if (session_->scene() && session_->scene()->scene.flat) return flatView_->grab().toImage();
+  return sceneView_->grabView();
 }
 
 // The presenter first, while the timeline and the shortcuts it gives back their keys to still exist.
@@ -235,13 +268,20 @@ void MainWindow::buildMenus() {
         QFileDialog::getSaveFileName(this, tr("Export trace"), "trace.json", tr("Traces (*.json)"));
     if (!path.isEmpty()) exportTrace(path);
   });
+  file->addAction(tr("Export &figure of the 2D view (SVG, PDF, PNG)..."), this, [this] {
+    if (!session_->scene() || !session_->scene()->scene.flat)
+      return showError(tr("A figure draws a 2D scene (\"dimensions\": 2): open one of scenes/flatland."));
+    QString path = QFileDialog::getSaveFileName(this, tr("Export figure"), "figure.svg",
+                                                tr("Figures (*.svg *.pdf *.png)"));
+    if (!path.isEmpty()) exportFigure(path);
+  });
   file->addAction(tr("Screenshot of the &window..."), this, [this] {
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep.png", tr("PNG (*.png)"));
     if (!path.isEmpty() && !grab().save(path, "PNG")) showError(tr("Cannot write %1").arg(path));
   });
   file->addAction(tr("Screenshot of the &3D view..."), this, [this] {
     QString path = QFileDialog::getSaveFileName(this, tr("Screenshot"), "raystep-3d.png", tr("PNG (*.png)"));
-    if (!path.isEmpty() && !sceneView_->grabView().save(path, "PNG"))
+    if (!path.isEmpty() && !grabMiddleView().save(path, "PNG"))
       showError(tr("Cannot write %1").arg(path));
   });
   file->addAction(tr("Export &SAH curve (CSV)..."), this, [this] {
@@ -358,7 +398,7 @@ Presenter* MainWindow::openLesson(const Lesson& lesson) {
     ClassroomParts parts;
     parts.picture = leftSplit_;
     parts.structure = structure_;
-    parts.view3d = sceneView_;
+    parts.view3d = centreStack_;  // the 3D view, or the 2D view of a 2D scene
     parts.state = rightSplit_;
     parts.columns = columns_;
     parts.treeDock = kdDock_;
@@ -433,6 +473,7 @@ void MainWindow::setPresenterScale(double scale) {
   f.setPointSizeF(baseFontPt_ * scale);
   QApplication::setFont(f);
   sceneView_->setScale(scale);
+  flatView_->setScale(scale);
   sahChart_->setScale(scale);
   eventList_->setScale(scale);
   statePanel_->setScale(scale);

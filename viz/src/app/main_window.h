@@ -11,12 +11,16 @@
 #include <vector>
 
 #include <QFuture>
+#include <QImage>
 #include <QMainWindow>
 
 class QDockWidget;
 class QSplitter;
+class QStackedWidget;
 
 #include <string>
+
+#include <glm/vec2.hpp>
 
 #include "raystep/accel/structure_options.h"
 
@@ -47,6 +51,7 @@ class BvolReportView;
 class PixelInspector;
 class CompareWindow;
 class ClassroomLayout;
+class FlatView;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -84,6 +89,12 @@ class MainWindow : public QMainWindow {
   void renderPicture();
   void computeHeat();
   void tracePixel(int x, int y);
+  // A 2D scene: the walk of the ray in the plane from `origin` along `direction` through the structure
+  // (the 2D view's ray: dragged, given by --flat-ray, or the scene's own), traced at once. keepStep: the
+  // step shown stays where it still exists (a drag), else the walk starts at its first event.
+  void traceFlatRay(glm::vec2 origin, glm::vec2 direction, bool keepStep);
+  // A 2D scene: the 2D view's figure at the current step as `raystep figure` writes it (.svg, .pdf, .png).
+  void exportFigure(const QString& path);
   void exportTrace(const QString& path);
   // The SAH inspector: the dock with the tree and the chart; the selected node's curve as CSV (core's
   // columns).
@@ -142,6 +153,9 @@ class MainWindow : public QMainWindow {
 
   Session* session() const { return session_; }
   SceneView* sceneView() const { return sceneView_; }
+  FlatView* flatView() const { return flatView_; }
+  // The middle view's pixels: the 3D view's, or a 2D scene's 2D view's (screenshots, handouts).
+  QImage grabMiddleView() const;
   ImageView* imageView() const { return imageView_; }
   Timeline* timeline() const { return timeline_; }
   StatePanel* statePanel() const { return statePanel_; }
@@ -172,6 +186,8 @@ class MainWindow : public QMainWindow {
   StructurePanel* structure_;
   ImageView* imageView_;
   SceneView* sceneView_;
+  FlatView* flatView_;
+  QStackedWidget* centreStack_;  // the 3D view, or the 2D view for a 2D scene
   Timeline* timeline_;
   StatePanel* statePanel_;
   EventList* eventList_;

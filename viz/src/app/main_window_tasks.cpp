@@ -3,6 +3,8 @@
 // pixel, the pixel inspector, exporting a trace and the side-by-side view.
 #include "app/main_window.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -38,6 +40,10 @@
 #include "views/kd_tree_model.h"
 #include "lesson/lesson_pane.h"
 #include "inspect/pixel_inspector.h"
+#include "flatland/flat_view.h"
+#include "raystep/figure/figure_file.h"
+#include "raystep/scene/flatland.h"
+#include "raystep/trace/record_trace.h"
 #include "lesson/presenter.h"
 #include "raystep/accel/bsp_sah_curve.h"
 #include "raystep/accel/bvh_sah_curve.h"
@@ -238,6 +244,7 @@ void MainWindow::renderPicture() {
   std::string aa = imageView_->antiAliasing().toStdString();
   int w = session_->imageWidth(), h = session_->imageHeight();
   QString key = pictureKeyNow();
+  flatView_->setAntiAliasing(imageView_->antiAliasing());  // the 2D view's pixels sample as the picture
   imageView_->setStatus(tr("Rendering %1x%2 (%3)...").arg(w).arg(h).arg(QString::fromStdString(aa)));
   runTask("render", tr("Rendering..."), [this, grid, aa, w, h, key] {
     double ms = 0;
@@ -326,6 +333,43 @@ void MainWindow::tracePixel(int x, int y) {
   pixelInspector_->canvas()->setBackdrop(
       pixelDock_->isVisible() ? pixelBackdrop(*grid, w, h, x, y, 64, PixelCanvas::viewReach(aa)) : QImage());
   session_->setTrace(trace, tr("pixel (%1, %2)").arg(x).arg(y), centre);
+}
+
+void MainWindow::traceFlatRay(glm::vec2 origin, glm::vec2 direction, bool keepStep) {
+  const StructureData* s = session_->structure();
+  const SceneData* scene = session_->scene();
+  if (!s || !s->accel || !scene || !scene->scene.flat || s->scene.get() != scene) return;
+  if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(direction.x) ||
+      !std::isfinite(direction.y) || (direction.x == 0.f && direction.y == 0.f))
+    throw InputError("", 0, "a ray in the plane needs a finite origin and a direction other than (0, 0)");
+  const int step = keepStep && session_->trace() ? session_->step() : 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto trace = std::make_shared<const Trace>(
+      record_trace(scene->scene.geometry, *s->accel,
+                   {RayRequest{flat_ray(origin, direction), RayKind::primary, 0, false, {0, 0}}}, scene->path,
+                   scene->hash));
+  session_->setTrace(trace,
+                     tr("ray in the plane from (%1, %2) along (%3, %4)")
+                         .arg(double(origin.x), 0, 'g', 4)
+                         .arg(double(origin.y), 0, 'g', 4)
+                         .arg(double(direction.x), 0, 'g', 3)
+                         .arg(double(direction.y), 0, 'g', 3),
+                     nullptr, step);
+  if (std::getenv("RAYSTEP_GUI_PROFILE"))  // the trace and every view's update but the 2D view's painting
+    std::fprintf(stderr, "ray in the plane traced and shown in %.2f ms\n",
+                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+}
+
+void MainWindow::exportFigure(const QString& path) {
+  try {
+    if (!session_->scene() || !session_->scene()->scene.flat)
+      throw InputError("", 0, "a figure draws a 2D scene (\"dimensions\": 2); this scene is 3D");
+    write_figure(path.toStdString(), flatView_->figure(), 640);  // `raystep figure`'s default width
+    statusBar()->showMessage(tr("wrote %1").arg(path));
+  } catch (const std::exception& e) {
+    if (scripted_) throw;
+    showError(QString::fromStdString(e.what()));
+  }
 }
 
 void MainWindow::drawPixelBackdrop() {

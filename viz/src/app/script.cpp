@@ -1,5 +1,6 @@
 #include "app/script.h"
 
+#include <array>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -25,6 +26,7 @@
 
 #include "compare/compare_window.h"
 #include "views/event_list.h"
+#include "flatland/flat_view.h"
 #include "lesson/handout.h"
 #include "views/image_view.h"
 #include "views/kd_tree_model.h"
@@ -108,6 +110,7 @@ QJsonObject dumpState(MainWindow& w) {
   o["panels"] = w.statePanel()->dumpState();
   o["structure_info"] = w.structurePanel()->info();
   o["view"] = w.sceneView()->dumpState();
+  o["flat"] = w.flatView()->dumpState();
   o["sah"] = w.sahChart()->dumpState();
   o["selected_node"] = s->selectedNode();
   if (std::unique_ptr<TreeShape> shape = s->structure() ? treeShapeOf(*s->structure()) : nullptr) {
@@ -314,6 +317,24 @@ void defineOptions(QCommandLineParser& p) {
   opt("slider", "Side by side: move the timeline's slider to position N (0 .. 1000), as a user drags it.",
       "N");
   defineReportOptions(p);
+  opt("flat-ray",
+      "A 2D scene: trace the ray in the plane from OX,OY along DX,DY (the 2D view's ray; the step is kept).",
+      "OX,OY,DX,DY");
+  opt("drag-flat",
+      "A 2D scene: drag the mouse in the 2D view from FROMX,FROMY to TOX,TOY (scene units), as a user drags "
+      "the ray: from the ray's origin it moves the origin, from anywhere else it aims the ray.",
+      "FROMX,FROMY,TOX,TOY");
+  opt("export-figure", "A 2D scene: write the 2D view's figure at the step (.svg, .pdf or .png).", "FILE");
+  opt("right-click-flat",
+      "A 2D scene: right-click the 2D view at X,Y (scene units): selects the leaf there (again: its parent), "
+      "for the SAH inspector.",
+      "X,Y");
+  opt("flat-aa",
+      "A 2D scene: the 2D view shows the picture's pixels over the scene (sampled with --aa, the exact "
+      "coverage, the error per pixel) instead of the walk.");
+  opt("crofton-lines",
+      "A 2D scene: throw Crofton's random lines at the selected node (the share meeting each child against "
+      "its perimeter ratio).");
   opt("quit", "Quit when done (scripted mode).");
 }
 
@@ -415,9 +436,10 @@ void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
     if (!s->trace()) fail("--export-trace: no trace (give --pixel)");
     window.exportTrace(p.value("export-trace"));
   }
+  if (p.isSet("export-figure")) window.exportFigure(p.value("export-figure"));
   if (p.isSet("screenshot") && !window.grab().save(p.value("screenshot"), "PNG"))
     fail("cannot write " + p.value("screenshot").toStdString());
-  if (p.isSet("screenshot-3d") && !window.sceneView()->grabView().save(p.value("screenshot-3d"), "PNG"))
+  if (p.isSet("screenshot-3d") && !window.grabMiddleView().save(p.value("screenshot-3d"), "PNG"))
     fail("cannot write " + p.value("screenshot-3d").toStdString());
   if (p.isSet("screenshot-sah") && !window.sahChart()->saveChart(p.value("screenshot-sah")))
     fail("cannot write " + p.value("screenshot-sah").toStdString());
@@ -431,8 +453,78 @@ void writeOutputs(MainWindow& window, const QCommandLineParser& p) {
 }
 
 // The scripted-only actions after the state: steps, keys, a click in the 3D view, an edit, a bad file.
+// "A,B,C,D": four finite numbers.
+std::array<float, 4> parseFour(const QString& option, const QString& spec, const char* expected) {
+  const QStringList parts = spec.split(',');
+  std::array<float, 4> v{};
+  bool ok = parts.size() == 4;
+  for (int i = 0; ok && i < 4; ++i) {
+    const double x = parts[i].trimmed().toDouble(&ok);
+    ok = ok && std::isfinite(x) && std::fabs(x) < 1e30;
+    v[size_t(i)] = float(x);
+  }
+  if (!ok) fail("--" + option.toStdString() + " '" + spec.toStdString() + "': expected " + expected);
+  return v;
+}
+
+// A 2D scene: the ray in the plane given, or dragged in the 2D view with the mouse as a user would.
+void moveFlatRay(MainWindow& window, const QCommandLineParser& p) {
+  const SceneData* scene = window.session()->scene();
+  for (const char* name : {"flat-ray", "drag-flat", "right-click-flat", "crofton-lines", "flat-aa"})
+    if (p.isSet(name) && (!scene || !scene->scene.flat))
+      fail(std::string("--") + name + ": a 2D scene's ray (\"dimensions\": 2); this scene is 3D");
+  if (p.isSet("flat-ray")) {
+    const auto v = parseFour("flat-ray", p.value("flat-ray"), "OX,OY,DX,DY (a direction other than 0,0)");
+    if (v[2] == 0.f && v[3] == 0.f) fail("--flat-ray: the direction is (0, 0)");
+    window.traceFlatRay({v[0], v[1]}, {v[2], v[3]}, true);
+  }
+  if (p.isSet("crofton-lines")) window.flatView()->setCroftonLines(true);
+  if (p.isSet("flat-aa")) window.flatView()->setAntiAliasingView(true);
+  if (p.isSet("right-click-flat")) {  // a right click in the 2D view at a point of the plane
+    const QStringList xy = p.value("right-click-flat").split(',');
+    bool okx = false, oky = false;
+    const double x = xy.size() == 2 ? xy[0].toDouble(&okx) : 0, y = xy.size() == 2 ? xy[1].toDouble(&oky) : 0;
+    if (!okx || !oky || !std::isfinite(x) || !std::isfinite(y))
+      fail("--right-click-flat '" + p.value("right-click-flat").toStdString() + "': expected X,Y in the scene's units");
+    QWidget* view = window.flatView();
+    const QPointF at = window.flatView()->toWidget({float(x), float(y)});
+    QMouseEvent press(QEvent::MouseButtonPress, at, view->mapToGlobal(at.toPoint()), Qt::RightButton,
+                      Qt::RightButton, Qt::NoModifier);
+    QApplication::sendEvent(view, &press);
+    QMouseEvent release(QEvent::MouseButtonRelease, at, view->mapToGlobal(at.toPoint()), Qt::RightButton,
+                        Qt::NoButton, Qt::NoModifier);
+    QApplication::sendEvent(view, &release);
+    QApplication::processEvents();
+  }
+  if (p.isSet("drag-flat")) {  // press, move with the button held, release, in the 2D view
+    const auto v = parseFour("drag-flat", p.value("drag-flat"), "FROMX,FROMY,TOX,TOY in the scene's units");
+    QWidget* view = window.flatView();
+    const QPointF a = window.flatView()->toWidget({v[0], v[1]}), b = window.flatView()->toWidget({v[2], v[3]});
+    auto send = [view](QEvent::Type type, const QPointF& at, Qt::MouseButton button, Qt::MouseButtons held) {
+      QMouseEvent e(type, at, view->mapToGlobal(at.toPoint()), button, held, Qt::NoModifier);
+      QApplication::sendEvent(view, &e);
+      QApplication::processEvents();
+    };
+    // Each move: the walk traced again and the view painted (send's processEvents paints the update, once).
+    double total = 0, worst = 0;
+    const int moves = 10;
+    send(QEvent::MouseButtonPress, a, Qt::LeftButton, Qt::LeftButton);
+    for (int k = 1; k <= moves; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      send(QEvent::MouseMove, a + (b - a) * k / double(moves), Qt::NoButton, Qt::LeftButton);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      total += ms;
+      worst = std::max(worst, ms);
+    }
+    send(QEvent::MouseButtonRelease, b, Qt::LeftButton, Qt::NoButton);
+    std::fprintf(stderr, "timing: drag %d moves, mean %.1f ms, max %.1f ms per move (traced and painted)\n", moves,
+                 total / moves, worst);
+  }
+}
+
 void runActions(MainWindow& window, const QCommandLineParser& p) {
   Session* s = window.session();
+  moveFlatRay(window, p);
   // One key press at a time, as a user would.
   for (auto [name, delta] : {std::pair{"forward", 1}, std::pair{"back", -1}}) {
     if (!p.isSet(name)) continue;
@@ -596,7 +688,7 @@ int runLesson(MainWindow& window, const QCommandLineParser& p, bool quit, bool a
       finish(window);
       QString base = QString("%1/step-%2").arg(dir).arg(n);
       writeJson(base + ".json", dumpState(window));
-      if (!window.sceneView()->grabView().save(base + ".png", "PNG"))
+      if (!window.grabMiddleView().save(base + ".png", "PNG"))
         fail("cannot write " + base.toStdString() + ".png");
     }
   } else if (p.isSet("lesson-step")) {
@@ -720,7 +812,7 @@ int runCommandLine(MainWindow& window, const QStringList& arguments) {
       "node-path",     "pick-3d",        "export-sah",      "screenshot-sah", "edit-ti",      "lesson-step",
       "lesson-walk",   "export-handout", "open-lesson-bad", "predict",        "predict-next", "inspect",
       "sample",        "square",         "sample-overlay",  "click-sample",   "compare-pick", "click-pixel",
-      "sah-orientation"};
+      "sah-orientation", "flat-ray",     "drag-flat",       "export-figure",  "right-click-flat", "crofton-lines", "flat-aa"};
   bool anyScript = quit;
   for (const QString& s : reportScriptOptions()) anyScript = anyScript || p.isSet(s);
   for (const QString& s : scripted) anyScript = anyScript || p.isSet(s);

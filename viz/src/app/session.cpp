@@ -1,5 +1,7 @@
 #include "app/session.h"
 
+#include <algorithm>
+
 #include <chrono>
 
 #include "views/kd_tree_model.h"
@@ -230,7 +232,7 @@ void Session::setImageSize(int width, int height) {
 }
 
 void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source,
-                       std::shared_ptr<const TracePixel> pixel) {
+                       std::shared_ptr<const TracePixel> pixel, int step) {
   trace_ = std::move(trace);
   traceSource_ = source;
   // The trace's own pixel section shares the trace's lifetime.
@@ -240,6 +242,10 @@ void Session::setTrace(std::shared_ptr<const Trace> trace, const QString& source
   ray_ = 0;
   step_ = 0;
   replayRay();
+  if (step > 0 && replayer_) {
+    step_ = std::clamp(step, 0, eventCount() - 1);
+    state_ = replayer_->at(step_);
+  }
   Q_EMIT traceChanged();
   Q_EMIT stepChanged();
 }

@@ -101,9 +101,10 @@ class Session : public QObject {
   void setStructure(std::shared_ptr<const StructureData> structure);  // clears the trace (of the old one)
   void setPicture(const QImage& image);
   void setHeat(std::shared_ptr<const HeatMap> heat);  // null: no overlay
-  // pixel: the traced pixel's samples (null: the trace's own pixel section, if any).
+  // pixel: the traced pixel's samples (null: the trace's own pixel section, if any). step: the first ray's
+  // event shown (clamped to its events; a dragged ray keeps its step).
   void setTrace(std::shared_ptr<const Trace> trace, const QString& source,
-                std::shared_ptr<const TracePixel> pixel = nullptr);
+                std::shared_ptr<const TracePixel> pixel = nullptr, int step = 0);
   void setImageSize(int width, int height);
 
   const SceneData* scene() const { return scene_.get(); }

@@ -105,13 +105,16 @@ QImage figureOf(MainWindow& w, const LessonState& state, bool* withState) {
     }
     if (!ray) return w.imageView()->canvas()->grab().toImage();
     *withState = true;
-    return besideEachOther({w.sceneView()->grabView(), statePanelImage(w)});
+    return besideEachOther({w.grabMiddleView(), statePanelImage(w)});
   }
   switch (figure) {
-    case LessonFigure::view3d:
-      if (named || !ray) return w.sceneView()->grabView();
+    case LessonFigure::view3d: {
+      // A 2D scene's middle view is the 2D view: its picture of the walk.
+      const QImage view = w.grabMiddleView();  // a 2D scene's: the 2D view
+      if (named || !ray) return view;
       *withState = true;
-      return besideEachOther({w.sceneView()->grabView(), statePanelImage(w)});
+      return besideEachOther({view, statePanelImage(w)});
+    }
     case LessonFigure::chart:
       return w.sahChart()->grabChart();
     case LessonFigure::tree: {

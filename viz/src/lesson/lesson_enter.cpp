@@ -17,6 +17,7 @@
 #include "raystep/util/error.h"
 #include "raystep/replay/replay_state.h"
 #include "views/scene_view.h"
+#include "flatland/flat_view.h"
 #include "app/session.h"
 #include "views/tree_view.h"
 
@@ -114,6 +115,11 @@ void enterState(MainWindow& w, const LessonState& st) {
       fail("--pixel " + text + ": outside the " + std::to_string(s->imageWidth()) + "x" +
            std::to_string(s->imageHeight()) + " image");
     w.tracePixel((*st.pixel)[0], (*st.pixel)[1]);
+  } else if (s->scene() && s->scene()->scene.flat && s->scene()->scene.flat->has_ray) {
+    // A 2D scene: its own ray's walk in the plane, the 2D view's (a step is the same state however the class
+    // dragged the ray before).
+    const Flatland& flat = *s->scene()->scene.flat;
+    w.traceFlatRay(flat.ray_origin, flat.ray_direction, false);
   } else if (s->scene() && s->trace()) {
     s->setTrace(nullptr, QString());
   }
@@ -235,6 +241,7 @@ void enterState(MainWindow& w, const LessonState& st) {
   view->setUpdatesEnabled(true);
   if (view->translucent() != st.translucent) view->setTranslucent(st.translucent);
   if (view->buildPlanes() != st.build_planes) view->setBuildPlanes(st.build_planes);
+  w.flatView()->setBuildSoFar(st.build_planes);  // a 2D scene's build so far
   if (view->followCell()) view->setFollowCell(false);
   view->restoreHomeCamera();
   if (st.follow) view->setFollowCell(true);

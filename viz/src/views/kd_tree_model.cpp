@@ -100,7 +100,8 @@ class BvhShape final : public TreeShape {
   const BvhData& b_;
 };
 
-// The octree: eight children in one block, child i the octant (bit 0 upper in x, 1 y, 2 z); no SAH.
+// The octree: eight children in one block, child i the octant (bit 0 upper in x, 1 y, 2 z); a 2D scene's
+// quadtree four (the quadrant: bit 0 x, 1 y); no SAH.
 class OctreeShape final : public TreeShape {
  public:
   explicit OctreeShape(const OctreeData& o) : o_(o) {}
@@ -110,20 +111,21 @@ class OctreeShape final : public TreeShape {
   int32_t depth(uint32_t n) const override { return o_.info[n].depth; }
   bool leaf(uint32_t n) const override { return o_.nodes[n].is_leaf(); }
   uint32_t child(uint32_t n, int row) const override { return o_.nodes[n].child(row); }
-  int children(uint32_t n) const override { return leaf(n) ? 0 : 8; }
+  int children(uint32_t n) const override { return leaf(n) ? 0 : 1 << o_.axes; }
   int row(uint32_t n) const override {
     int32_t p = parent(n);
     return p < 0 ? 0 : int(n - o_.nodes[uint32_t(p)].first);
   }
   QString side(uint32_t n) const override {
-    return parent(n) < 0 ? QObject::tr("root") : QString::fromStdString(replay::octant_name(row(n)));
+    return parent(n) < 0 ? QObject::tr("root") : QString::fromStdString(replay::octant_name(row(n), o_.axes));
   }
   QString what(uint32_t id) const override {
     const OctreeNode& n = o_.nodes[id];
     if (n.is_leaf())
       return n.prim_count() == 0 ? QObject::tr("leaf, empty")
                                  : QObject::tr("leaf, %n primitive(s)", "", int(n.prim_count()));
-    return QObject::tr("8 octants, %1 prims").arg(o_.info[id].prims);
+    return (o_.axes == 2 ? QObject::tr("4 quadrants, %1 prims") : QObject::tr("8 octants, %1 prims"))
+        .arg(o_.info[id].prims);
   }
   QString whatHeader() const override { return QObject::tr("cell"); }
   float cost(uint32_t n) const override { return float(o_.info[n].prims); }  // no SAH: the primitive count

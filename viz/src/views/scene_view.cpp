@@ -592,7 +592,20 @@ void SceneView::restoreHomeCamera() {
 bool SceneView::translucent() const { return d_->translucent; }
 bool SceneView::followCell() const { return d_->follow; }
 
+void SceneView::setDormant(bool dormant) {
+  if (d_->dormant == dormant) return;
+  d_->dormant = dormant;
+  if (!dormant && d_->stale) {
+    d_->stale = false;
+    updateStep();
+  }
+}
+
 void SceneView::renderNow() {
+  if (d_->dormant) {
+    d_->stale = true;
+    return;
+  }
   d_->base->ResetCameraClippingRange();
   static const bool noBackdrop = std::getenv("RAYSTEP_GUI_NO_BACKDROP") != nullptr;  // for the tests' comparison
   d_->backdrop->prepare(!noBackdrop && d_->widget->isValid() && d_->widget->isVisible());

@@ -43,6 +43,9 @@ class SceneView : public QWidget {
   bool translucent() const;
   bool followCell() const;
   void renderNow();
+  // Dormant: hidden behind the 2D view of a 2D scene, the view neither updates nor renders at a step (a
+  // dragged ray's walk would wait for software OpenGL); woken, it catches up with the session's state.
+  void setDormant(bool dormant);
   // The 3D view's own pixels (for "export 3D view").
   QImage grabView();
   // The camera and what was drawn, with window-pixel projections of the current cell and the ray.

@@ -156,7 +156,9 @@ struct SceneView::Impl {
   void saveHome() {
     base->ComputeVisiblePropBounds(homeBounds);
     haveHome = vtkMath::AreBoundsInitialized(homeBounds);
-  }  double lastMs = 0.0;
+  }
+  double lastMs = 0.0;
+  bool dormant = false, stale = false;  // setDormant: skipped updates since
   // Drawn this step, for the dump.
   glm::vec3 rayFrom{0.f}, rayTo{0.f};
   bool rayDrawn = false;

@@ -148,6 +148,10 @@ void SceneView::updateBvhChildren() {
 void SceneView::updateStep() {
   auto t0 = std::chrono::steady_clock::now();
   Impl& d = *d_;
+  if (d.dormant) {
+    d.stale = true;
+    return;
+  }
   const TracedRay* ray = session_->ray();
   const replay::ReplayState& s = session_->state();
   // A tree node's outline: a BSP node's convex cell, any other node's box; inset (a node on the stack) by a

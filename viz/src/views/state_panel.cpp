@@ -299,7 +299,8 @@ void StatePanel::refreshTree(const TracedRay& r, const replay::ReplayState& s) {
                    : tn->has_plane
                        ? tr("inner, plane n = (%1, %2, %3), d = %4")
                              .arg(num(tn->normal.x), num(tn->normal.y), num(tn->normal.z), num(tn->offset))
-                   : octree ? tr("inner cell, 8 children")
+                   : octree ? (tn->children.size() == 4 ? tr("inner cell, 4 children: a quadtree's quadrants")
+                                                        : tr("inner cell, 8 children"))
                             : tr("inner, split %1 = %2").arg(replay::axis_name(tn->axis)).arg(num(tn->split));
     const std::string path = session_->trace() ? trace_node_path_text(*session_->trace(), n.node) : "";
     node_->setText(tr("<b>%1</b> (%2), depth %3%7, [t_min, t_max] = [%4, %5]%6")
@@ -453,7 +454,7 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const replay::ReplayS
                   : QString();
   // The centre planes' t: with the entry t, Revelles' first child (the far half where one comes before it).
   QStringList mids;
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < c.axes; ++a)  // a quadtree has none on z
     if (c.moving[a]) mids << tr("%1 at %2").arg(replay::axis_name(a)).arg(num(c.t_mid[a]));
   if (!mids.isEmpty())
     t += (t.isEmpty() ? QString() : QString("<br>")) + tr("centre planes: ") + mids.join(", ");
@@ -467,7 +468,7 @@ void StatePanel::refreshOctreeChildren(const TracedRay& r, const replay::ReplayS
     const bool seen = std::find(c.visited.begin(), c.visited.begin() + c.visited_so_far, st.node) !=
                       c.visited.begin() + c.visited_so_far;
     QString item =
-        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(replay::octant_name(st.octant)));
+        QString("%1. %2 [%3]").arg(k + 1).arg(st.node).arg(QString::fromStdString(replay::octant_name(st.octant, c.axes)));
     t += "<br>" + (seen ? "<b>" + item + "</b>" : item) +
          (st.leaves_parent
               ? tr(", leaves the cell by %1 at t = %2").arg(replay::axis_name(st.exit_axis)).arg(num(st.t_exit))

@@ -78,9 +78,9 @@ int leafAtPick(const StructureData& s, const glm::vec3& p, int prim) {
       if (node.is_leaf()) return false;
       // Child i: bit a set for the upper half on axis a; near the centre plane, both halves.
       const Bounds3& b = t.info[n].box;
-      for (int i = 0; i < 8; ++i) {
+      for (int i = 0; i < 1 << t.axes; ++i) {  // eight, or a quadtree's four (z not cut)
         bool ok = true;
-        for (int a = 0; a < 3 && ok; ++a) {
+        for (int a = 0; a < t.axes && ok; ++a) {
           const float d = p[a] - 0.5f * (b.lo[a] + b.hi[a]);
           ok = (i >> a & 1) ? d > -tol : d < tol;
         }

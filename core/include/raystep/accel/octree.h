@@ -4,7 +4,9 @@
 // planes' t; the first child follows from the entry plane, the next from the exit plane (a table), so the
 // children are met in the order the ray crosses them. A negative direction is reflected (the paper's trick),
 // here on the child indices, so that no coordinate is rounded. An explicit stack of nodes, mailboxes as in
-// the grid, and "traverse until tmin(cell) > tmax(ray)".
+// the grid, and "traverse until tmin(cell) > tmax(ray)". In the plane of a 2D scene the same walk is the
+// quadtree's: cells cut on x and y only, four children each (OctreeData::axes), the kernel instantiated for
+// two axes once per ray.
 #pragma once
 
 #include <algorithm>
@@ -31,9 +33,12 @@ class Octree final : public RecordedWalk<Octree, OctreeOptions> {
 
   // The traversal kernel, instrumented through the recorder (see record/recorder.h).
   template <class Recorder>
-  bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
+  bool traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+    return tree_.axes == 2 ? walk<2>(ray, hit, any_hit, rec) : walk<3>(ray, hit, any_hit, rec);
+  }
 
   const OctreeData& data() const { return tree_; }
+  const OctreeStats& stats() const { return stats_; }  // counted once, at the build (a trace names them)
 
   // The paper's exit table: from child c (reflected indices, bit a = upper half on axis a) leaving by the
   // plane normal to axis a, the next child is c with bit a set; 8 when that bit is set already: the ray
@@ -41,21 +46,29 @@ class Octree final : public RecordedWalk<Octree, OctreeOptions> {
   static constexpr uint8_t kNextChild[8][3] = {{1, 2, 4}, {8, 3, 5}, {3, 8, 6}, {8, 8, 7},
                                                {5, 6, 8}, {8, 7, 8}, {7, 8, 8}, {8, 8, 8}};
   // The paper's first child: entering by the plane normal to axis `entry` at t_in, the child is upper on each
-  // other axis whose centre plane the ray crossed before t_in.
+  // other axis (of the kAxes cut) whose centre plane the ray crossed before t_in.
+  template <int kAxes = 3>
   static int first_child(const float mid_t[3], float t_in, int entry) {
     int c = 0;
-    for (int b = 0; b < 3; ++b)
+    for (int b = 0; b < kAxes; ++b)
       if (b != entry && mid_t[b] < t_in) c |= 1 << b;
     return c;
   }
 
  private:
+  // The walk of a tree whose cells are cut on the first kAxes axes (3: the octree; 2: the quadtree of a 2D
+  // scene, whose cells keep the root's z extent: no centre plane on z, so its exit is the cell's own).
+  template <int kAxes, class Recorder>
+  bool walk(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const;
+
   OctreeData tree_;
+  OctreeStats stats_;
   Mailboxes mailboxes_;
 };
 
-template <class Recorder>
-bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+template <int kAxes, class Recorder>
+bool Octree::walk(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) const {
+  constexpr int kChildren = 1 << kAxes;
   *hit = Hit{};
   rec.ray_begin(ray);
   SlabRay slab(ray);
@@ -77,7 +90,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   int mask = 0;
   bool moving[3];
   for (int a = 0; a < 3; ++a) {
-    mask |= int(std::signbit(ray.direction[a])) << a;
+    if (a < kAxes) mask |= int(std::signbit(ray.direction[a])) << a;
     moving[a] = std::isfinite(slab.inv_dir[a]);
   }
   auto plane_t = [&](float x, int a) { return (x - ray.origin[a]) * slab.inv_dir[a]; };
@@ -101,7 +114,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
   int real_child = 0;
   float t0[3], t1[3];
   for (int a = 0; a < 3; ++a) {
-    bool neg = (mask >> a) & 1;
+    bool neg = std::signbit(ray.direction[a]);
     t0[a] = moving[a] ? plane_t(neg ? tree_.bounds.hi[a] : tree_.bounds.lo[a], a) : -kInfinity;
     t1[a] = moving[a] ? plane_t(neg ? tree_.bounds.lo[a] : tree_.bounds.hi[a], a) : kInfinity;
   }
@@ -120,7 +133,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
     rec.node(TreeStep{int32_t(node_id), depth, t_min, t_max});
 
     if (!node.is_leaf()) {
-      // The eight children are one 64-byte block: start loading it now, while their order is worked out.
+      // The children are one block (eight: 64 bytes): start loading it now, while their order is worked out.
       __builtin_prefetch(&nodes[node.first]);
       Frame& f = stack[stack_size++];
       f.node = node_id;
@@ -134,6 +147,11 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       for (int a = 0; a < 3; ++a) {
         f.t0[a] = t0[a];
         f.t1[a] = t1[a];
+        if (a >= kAxes) {  // not cut: every child spans the cell, and leaves it by the cell's own face
+          f.mid[a] = f.box.hi[a];
+          f.mid_t[a] = t1[a];
+          continue;
+        }
         float mid = f.mid[a] = 0.5f * (f.box.lo[a] + f.box.hi[a]);  // the build's centre (octree_build.cpp)
         bool upper_side = ray.origin[a] >= mid;  // a ray in the centre plane goes to the upper half
         f.mid_t[a] =
@@ -142,21 +160,21 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
       // The children in the order the ray crosses them: the first by the entry plane, each next by the plane
       // it leaves by (ties to the lowest axis).
       int entry = t0[0] >= t0[1] && t0[0] >= t0[2] ? 0 : (t0[1] >= t0[2] ? 1 : 2);
-      float c_in[8];
-      bool on_path[8] = {};
+      float c_in[kChildren];
+      bool on_path[kChildren] = {};
       // A near tie (a centre plane crossed within select_margin of the entry, or two exit planes within it of
       // each other: the ray passes close to an edge or corner of the children) may hide a grazed child.
       bool tie = false;
-      for (int b = 0; b < 3; ++b) tie |= b != entry && !(std::fabs(f.mid_t[b] - t_in) > select_margin);
+      for (int b = 0; b < kAxes; ++b) tie |= b != entry && !(std::fabs(f.mid_t[b] - t_in) > select_margin);
       f.count = 0;
-      for (int c = first_child(f.mid_t, t_in, entry); c < 8;) {
+      for (int c = first_child<kAxes>(f.mid_t, t_in, entry); c < kChildren;) {
         float ct1[3];
         for (int a = 0; a < 3; ++a) ct1[a] = (c >> a) & 1 ? f.t1[a] : f.mid_t[a];
         int exit = ct1[0] <= ct1[1] && ct1[0] <= ct1[2] ? 0 : (ct1[1] <= ct1[2] ? 1 : 2);
         for (int a = 0; a < 3; ++a) tie |= a != exit && !(ct1[a] - ct1[exit] > select_margin);
         on_path[c] = true;
         f.order[f.count++] = uint8_t(c);
-        c = kNextChild[c][exit];
+        c = exit < kAxes ? kNextChild[c][exit] : kChildren;  // an uncut axis's face is the parent's
       }
       // Then a child off the path whose interval is empty only by a rounding margin is grazed: walk it too,
       // in entry order (a rounded t must never skip a cell the exact ray passes through).
@@ -165,7 +183,7 @@ bool Octree::traverse(const Ray& ray, Hit* hit, bool any_hit, Recorder& rec) con
         c_in[i] = std::max(
             {(c & 1) ? f.mid_t[0] : f.t0[0], (c & 2) ? f.mid_t[1] : f.t0[1], (c & 4) ? f.mid_t[2] : f.t0[2]});
       }
-      for (int c = 0; tie && c < 8; ++c) {
+      for (int c = 0; tie && c < kChildren; ++c) {
         if (on_path[c]) continue;
         float ct0[3], ct1[3];
         for (int a = 0; a < 3; ++a) {

@@ -15,7 +15,8 @@ namespace raystep {
 // The traversal's stack holds one frame per level: no tree is deeper.
 constexpr int kOctreeMaxDepth = 20;
 
-// One node, 8 bytes. Inner: the index of its first child (children first .. first + 7). Leaf: where its
+// One node, 8 bytes. Inner: the index of its first child (children first .. first + 7; a quadtree's
+// first .. first + 3). Leaf: where its
 // primitive ids start in OctreeData::prim_index, and how many there are.
 struct OctreeNode {
   uint32_t first;  // inner: first child; leaf: offset into prim_index
@@ -50,7 +51,10 @@ struct OctreeNodeInfo {
 // A built octree. nodes[0] is the root; node ids are positions in `nodes` (breadth first), the same ids that
 // trace events use.
 struct OctreeData {
-  Bounds3 bounds;  // the root's cell: a cube around the scene's bounds
+  // 3: the octree; 2: a 2D scene's quadtree (geometry/split_space.h): cells cut on x and y only, four
+  // children a node (child index bit 0: upper x, bit 1: upper y), every cell the root's z extent.
+  int axes = 3;
+  Bounds3 bounds;  // the root's cell: a cube around the scene's bounds (a quadtree's: a square in x, y)
   std::vector<OctreeNode> nodes;
   std::vector<OctreeNodeInfo> info;  // one per node
   std::vector<uint32_t> prim_index;  // leaves' primitive ids, in increasing id order within a leaf

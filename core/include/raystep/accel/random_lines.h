@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -41,5 +42,19 @@ struct LinesMeetingBox {
   double predicted = 0.0;
 };
 LinesMeetingBox lines_meeting_box(const Bounds3& box, size_t lines, uint64_t seed, SplitSpace space = {});
+
+// Crofton's theorem at a node: random lines through the node's bounding sphere (circle), the ones that meet
+// the node kept, and of those the share that meets each child, against the ratio of measures the SAH uses
+// (S_child / S, in the plane L_child / L). `kept` of the lines meeting the node are returned as their part
+// inside it (from where they enter to where they leave), for a picture.
+struct LinesMeetingChildren {
+  size_t thrown = 0, meeting_node = 0;
+  std::vector<size_t> meeting_child;  // per child
+  std::vector<double> share;          // meeting_child / meeting_node
+  std::vector<double> ratio;          // measure(child) / measure(node)
+  std::vector<std::pair<glm::vec3, glm::vec3>> kept;
+};
+LinesMeetingChildren lines_meeting_children(const Bounds3& node, const std::vector<Bounds3>& children,
+                                            size_t lines, uint64_t seed, SplitSpace space, size_t kept = 0);
 
 }  // namespace raystep

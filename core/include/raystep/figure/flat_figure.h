@@ -23,10 +23,14 @@ Figure flat_figure(const FlatFigureInput& input);
 
 // The same in two parts, for a view that redraws the walk as the ray moves: the still part (the frame, the
 // structure, the leaves' names, the shapes; the frame also holds *origin when given), made once, and the
-// walk's layers over it (the cells or nodes of the walk, the ray, the caption), made at every move.
-Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin);
+// walk's layers over it (the cells or nodes of the walk under the shapes; over them the marks: the mailbox's
+// shapes, the shape tested, a grid's tMax ticks; the ray; the caption), made at every move.
+// built_up_to >= 0: the build so far, only the splits (a BVH: the boxes) of nodes 0 .. built_up_to (the
+// builders make nodes in id order) and no leaf names; -1: the whole structure.
+Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const glm::vec2* origin,
+                         int32_t built_up_to = -1);
 struct FlatWalkLayers {
-  FigureLayer walk, ray;
+  FigureLayer walk, marks, ray;
   std::vector<std::string> caption;
 };
 FlatWalkLayers flat_figure_walk(const FlatFigureInput& input, const Figure& still);

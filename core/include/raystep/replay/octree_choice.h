@@ -16,7 +16,7 @@ namespace raystep::replay {
 // crossed before it or not). Each next child is the neighbour across the plane the ray leaves the child by
 // (the smallest of its three exit t's); a cell face instead of a centre plane: the ray leaves the parent.
 struct OctreeChildStep {
-  int octant = 0;     // 0..7: bit 0 upper half in x, bit 1 y, bit 2 z (the trace's children order)
+  int octant = 0;     // 0..7: bit 0 upper half in x, bit 1 y, bit 2 z (the trace's children order); 0..3 in a quadtree
   int32_t node = -1;  // its id (from the trace's children list; -1 unknown)
   int exit_axis = 0;  // the plane it is left by
   float t_exit = 0.f;
@@ -24,6 +24,7 @@ struct OctreeChildStep {
 };
 struct OctreeChoice {
   bool valid = false;  // false: the current node is not an inner octree cell, or the trace has not its cell
+  int axes = 3;        // 2: a 2D scene's quadtree (four children, cut on x and y)
   int node_event = -1;
   int32_t node = -1;
   int depth = 0;
@@ -39,7 +40,7 @@ struct OctreeChoice {
 bool is_octree_ray(const Trace* trace, const TracedRay& ray);
 // The current octree cell's child order (the node event of s.node_event, or the push right after it).
 OctreeChoice octree_choice(const Trace& trace, const TracedRay& ray, const ReplayState& s);
-// "x+ y- z+": an octant's halves (+ upper, - lower).
-std::string octant_name(int octant);
+// "x+ y- z+": an octant's halves (+ upper, - lower); a quadtree's quadrant (axes 2): "x+ y-".
+std::string octant_name(int octant, int axes = 3);
 
 }  // namespace raystep::replay
