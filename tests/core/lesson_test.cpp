@@ -71,16 +71,19 @@ TEST(Lesson, EveryKeyCarriesOver) {
                                     "aa: adaptive:0.1:2\nsize: 64x48\n"
                                     "heat: tests\npixel: 10,20\nsecondary: on\nray: 1\nstep-to: leaf:2\n"
                                     "panel: sah\nnode-path: LR\ninspect: on\nsquare: 2\nfollow: on\n"
-                                    "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n") +
+                                    "translucent: on\nzoom: 8\nsample-overlay: on\nshow: chart\n"
+                                    "crofton-lines: on\nflat-aa: on\n") +
                             "\n## Two\n\nNothing changes.\n",
                         kLesson);
   ASSERT_EQ(l.steps.size(), 2u);
-  EXPECT_EQ(l.steps[0].changes.size(), 34u);
+  EXPECT_EQ(l.steps[0].changes.size(), 36u);
   // Every documented key was exercised (ask aside, which is not a setting).
-  EXPECT_EQ(lesson_setting_keys().size(), 39u);  // + step, node, sample (below) and report (not carried over)
+  EXPECT_EQ(lesson_setting_keys().size(), 41u);  // + step, node, sample (below) and report (not carried over)
   const LessonState& s = l.steps[1].state;
   EXPECT_EQ(s.scene, kCornell);
   EXPECT_EQ(s.accel, "kd-median");
+  EXPECT_TRUE(s.crofton_lines);  // the 2D view's (a 2D scene's)
+  EXPECT_TRUE(s.flat_aa);
   ASSERT_TRUE(s.structure.grid.resolution);
   EXPECT_EQ(*s.structure.grid.resolution, (std::array<int, 3>{4, 5, 6}));
   EXPECT_FLOAT_EQ(s.structure.grid.density, 2.5f);

@@ -272,6 +272,13 @@ TEST(Question, OctreeAndBspFormsAndRefusals) {
   EXPECT_THROW(prediction_matches(a, "below"), InputError);
   a.kind = QuestionKind::first_child;
   EXPECT_THROW(prediction_matches(a, "stop"), InputError);
+  // A 2D scene's quadtree names its cells by quadrant: x and y only.
+  a.axes = 2;
+  a.octant = 1;  // x+ y-
+  EXPECT_TRUE(prediction_matches(a, "x+ y-"));
+  EXPECT_FALSE(prediction_matches(a, "x-y+"));
+  EXPECT_THROW(prediction_matches(a, "x+y-z+"), InputError);
+  a.axes = 3;
 
   // next-pop and dda-axis do not apply to an octree's walk; they say what to ask instead.
   Geometry g = test::make_soup(6, 100, 0);

@@ -222,7 +222,7 @@ TEST(FlatView, BadFlatOptionsExit2) {
   };
   const std::string cornell = kSourceDir + "/scenes/cornell.json";
   for (const Case& c : std::vector<Case>{
-           {"'" + cornell + "' --flat-ray 0,0,1,0", "--flat-ray: a 2D scene's ray"},
+           {"'" + cornell + "' --flat-ray 0,0,1,0", "--flat-ray: for a 2D scene"},
            {"'" + cornell + "' --export-figure /tmp/raystep-never.svg", "a figure draws a 2D scene"},
            {"'" + kFlat + "/mailbox.json' --flat-ray 1,1,0,0", "the direction is (0, 0)"},
            {"'" + kFlat + "/mailbox.json' --flat-ray 1,1,x,0", "expected OX,OY,DX,DY"},

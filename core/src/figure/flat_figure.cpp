@@ -173,6 +173,13 @@ Figure flat_figure_still(const Scene& scene, const PlaneOutline* outline, const 
     if (leaves <= 24 && !outline->boxes)
       for (const OutlineRegion& r : outline->regions) {
         if (!r.leaf || r.path.empty() || r.polygon.empty()) continue;
+        // Only where the name fits: a deep leaf's cell is too small for its long path (they would overlap).
+        glm::vec2 rlo = r.polygon[0], rhi = r.polygon[0];
+        for (const glm::vec2& p : r.polygon) rlo = glm::min(rlo, p), rhi = glm::max(rhi, p);
+        const float span = std::max(fig.hi.x - fig.lo.x, fig.hi.y - fig.lo.y);
+        if (std::min(rhi.x - rlo.x, rhi.y - rlo.y) < 0.05f * span ||
+            rhi.x - rlo.x < 0.018f * span * float(r.path.size()))
+          continue;
         glm::vec2 c(0.f);
         for (const glm::vec2& p : r.polygon) c += p;
         FigureItem it;

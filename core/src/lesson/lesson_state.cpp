@@ -373,6 +373,10 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                                      const std::string&) { s.translucent = parse_on_off(k, v); }},
                   {"build-planes", [](LessonState& s, const std::string& k, const std::string& v,
                                       const std::string&) { s.build_planes = parse_on_off(k, v); }},
+                  {"crofton-lines", [](LessonState& s, const std::string& k, const std::string& v,
+                                       const std::string&) { s.crofton_lines = parse_on_off(k, v); }},
+                  {"flat-aa", [](LessonState& s, const std::string& k, const std::string& v,
+                                 const std::string&) { s.flat_aa = parse_on_off(k, v); }},
                   {"zoom",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
                      double z;
@@ -486,6 +490,8 @@ std::vector<std::string> LessonState::scripted_args() const {
   if (follow) a.push_back("--follow");
   if (translucent) a.push_back("--translucent");
   if (build_planes) a.push_back("--build-planes");
+  if (crofton_lines) a.push_back("--crofton-lines");
+  if (flat_aa) a.push_back("--flat-aa");
   if (zoom) opt("zoom", double_text(*zoom));
   if (sample_overlay) a.push_back("--sample-overlay");
   if (!report.empty()) opt("report", report);

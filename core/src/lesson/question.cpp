@@ -240,6 +240,7 @@ void set_octree_cell(Answer& a, const Trace& trace, int32_t id) {
   a.node = id;
   a.first_child = id;
   a.octant = octant_of(trace, id, &parent);
+  a.axes = parent ? axes_of(*parent) : 3;
   a.stops = false;
   a.text = a.octant >= 0 ? octant_name(a.octant, axes_of(*parent)) + " (node " + std::to_string(id) + ", a child of cell " +
                                std::to_string(parent->id) + ")"
@@ -767,14 +768,15 @@ bool prediction_matches(const Answer& answer, const std::string& prediction) {
   if (answer.walk == "octree" &&
       (answer.kind == QuestionKind::next_cell || answer.kind == QuestionKind::first_child)) {
     // A cell: its node id or its octant within its parent ("x+y-z+"); next-cell also "stop".
-    const std::string forms = answer.kind == QuestionKind::next_cell
-                                  ? "a node id, an octant such as x+y-z+, or stop"
-                                  : "a node id or an octant such as x+y-z+";
+    const bool quad = answer.axes == 2;  // a 2D scene's quadtree: quadrants, x and y only
+    const std::string cell = quad ? "a quadrant such as x+y-" : "an octant such as x+y-z+";
+    const std::string forms = answer.kind == QuestionKind::next_cell ? "a node id, " + cell + ", or stop"
+                                                                     : "a node id or " + cell;
     if (p == "stop" && answer.kind == QuestionKind::next_cell) return answer.stops;
     if (parse_whole(p, &v)) return !answer.stops && v == answer.node;
-    if (p.size() == 6 && p[0] == 'x' && p[2] == 'y' && p[4] == 'z') {
+    if (quad ? p.size() == 4 && p[0] == 'x' && p[2] == 'y' : p.size() == 6 && p[0] == 'x' && p[2] == 'y' && p[4] == 'z') {
       int octant = 0;
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < answer.axes; ++k) {
         const char sign = p[size_t(2 * k + 1)];
         if (sign != '+' && sign != '-') return bad(forms);
         octant |= int(sign == '+') << k;

@@ -365,8 +365,8 @@ LessonState stateFromOptions(const QCommandLineParser& p) {
   }
   if (p.isSet("step") && p.isSet("step-to")) fail("give --step or --step-to, not both");
   if (p.isSet("node") && p.isSet("node-path")) fail("give --node or --node-path, not both");
-  static const QStringList flags = {"secondary", "follow", "translucent", "build-planes", "inspect",
-                                    "sample-overlay"};
+  static const QStringList flags = {"secondary", "follow",         "translucent", "build-planes",
+                                    "inspect",   "sample-overlay", "crofton-lines", "flat-aa"};
   for (const std::string& key : lesson_setting_keys()) {
     const QString name = QString::fromStdString(key);
     // --report: the report options' own (report_script.cpp), run and waited for after the state is entered.
@@ -472,14 +472,12 @@ void moveFlatRay(MainWindow& window, const QCommandLineParser& p) {
   const SceneData* scene = window.session()->scene();
   for (const char* name : {"flat-ray", "drag-flat", "right-click-flat", "crofton-lines", "flat-aa"})
     if (p.isSet(name) && (!scene || !scene->scene.flat))
-      fail(std::string("--") + name + ": a 2D scene's ray (\"dimensions\": 2); this scene is 3D");
+      fail(std::string("--") + name + ": for a 2D scene (\"dimensions\": 2); this scene is 3D");
   if (p.isSet("flat-ray")) {
     const auto v = parseFour("flat-ray", p.value("flat-ray"), "OX,OY,DX,DY (a direction other than 0,0)");
     if (v[2] == 0.f && v[3] == 0.f) fail("--flat-ray: the direction is (0, 0)");
     window.traceFlatRay({v[0], v[1]}, {v[2], v[3]}, true);
   }
-  if (p.isSet("crofton-lines")) window.flatView()->setCroftonLines(true);
-  if (p.isSet("flat-aa")) window.flatView()->setAntiAliasingView(true);
   if (p.isSet("right-click-flat")) {  // a right click in the 2D view at a point of the plane
     const QStringList xy = p.value("right-click-flat").split(',');
     bool okx = false, oky = false;

@@ -241,7 +241,9 @@ void enterState(MainWindow& w, const LessonState& st) {
   view->setUpdatesEnabled(true);
   if (view->translucent() != st.translucent) view->setTranslucent(st.translucent);
   if (view->buildPlanes() != st.build_planes) view->setBuildPlanes(st.build_planes);
-  w.flatView()->setBuildSoFar(st.build_planes);  // a 2D scene's build so far
+  w.flatView()->setBuildSoFar(st.build_planes);  // a 2D scene's build so far, Crofton's lines, the pixels
+  w.flatView()->setCroftonLines(st.crofton_lines);
+  w.flatView()->setAntiAliasingView(st.flat_aa);
   if (view->followCell()) view->setFollowCell(false);
   view->restoreHomeCamera();
   if (st.follow) view->setFollowCell(true);

@@ -15,9 +15,9 @@ namespace {
 
 QString placeholderOf(QuestionKind kind, const std::string& walk) {
   if (walk == "octree" && kind == QuestionKind::next_cell)
-    return QObject::tr("octant (e.g. x+ y- z+), node id or stop");
+    return QObject::tr("octant (e.g. x+ y- z+; in 2D a quadrant: x+ y-), node id or stop");
   if (walk == "octree" && kind == QuestionKind::first_child)
-    return QObject::tr("octant (e.g. x+ y- z+) or node id");
+    return QObject::tr("octant (e.g. x+ y- z+; in 2D a quadrant: x+ y-) or node id");
   switch (kind) {
     case QuestionKind::next_cell:
       return QObject::tr("i,j,k or stop (or click a cell in the 3D view)");

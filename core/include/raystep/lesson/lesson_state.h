@@ -45,6 +45,9 @@ struct LessonState {
   bool follow = false, translucent = false;
   // The kd-tree's build so far in the 3D view: the split planes of the nodes made before the selected one.
   bool build_planes = false;
+  // A 2D scene's 2D view: Crofton's random lines at the selected node; the pixels' anti-aliasing instead of
+  // the walk (viz/src/flatland/flat_view.h).
+  bool crofton_lines = false, flat_aa = false;
   std::optional<double> zoom;   // none: the window's default; 0: fit
   std::string show = "window";  // the step's figure: window | 3d | tree | chart | picture | report (lesson_figure.h)
   // The report windows the step opens and runs on the scene: "aa", "grid-sweep", "bvol" (the kinds of

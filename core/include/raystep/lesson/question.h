@@ -71,6 +71,7 @@ struct Answer {
   // its place in its parent (bit 0: upper x, bit 1: upper y, bit 2: upper z; -1: unknown).
   std::string walk;  // "octree", "bsp" where the answer is in that structure's terms; else ""
   int octant = -1;
+  int axes = 3;  // octree: 2 for a 2D scene's quadtree, whose cells are named by quadrant ("x+y-")
   std::string text;  // the answer in a sentence: "cell (3, 4, 2): the ray steps along y."
   std::string why;   // the reason with its numbers (tMax per axis, t* against [t_min, t_max], costs, contrast)
 };
