@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -42,6 +43,15 @@ inline GuiRun gui(const std::string& args, const std::string& tag) {
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.err = slurp(errFile);
   return r;
+}
+
+// raystep-gui's stderr without Qt's note and the timings: what it says about an error, one line each.
+inline std::vector<std::string> errorLines(const std::string& err) {
+  std::istringstream lines(err);
+  std::vector<std::string> out;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("QStandardPaths", 0) != 0 && line.rfind("timing: ", 0) != 0) out.push_back(line);
+  return out;
 }
 
 inline json readJson(const std::string& path) {

@@ -31,17 +31,6 @@ FigureItem square(glm::vec2 lo, glm::vec2 hi, glm::vec3 fill, float opacity, con
   return it;
 }
 
-FigureItem text(glm::vec2 p, const std::string& words, float points, const std::string& css) {
-  FigureItem it;
-  it.kind = FigureItem::Kind::text;
-  it.points = {p};
-  it.text = words;
-  it.radius = points;
-  it.style.fill = kInk;
-  it.css = css;
-  return it;
-}
-
 }  // namespace
 
 FlatAa flat_aa_figure(const FlatAaInput& in) {
@@ -153,8 +142,8 @@ FlatAa flat_aa_figure(const FlatAaInput& in) {
       shapes.items.push_back(it);
     }
     static const char* kTitles[3] = {"sampled", "exact coverage (pre-filter)", "error: sampled - exact"};
-    titles.items.push_back(text(glm::vec2(lo.x + 0.5f * (hi.x - lo.x), hi.y + 1.2f * pixel) + shift, kTitles[k],
-                                12.f, "title"));
+    titles.items.push_back(figure_text(glm::vec2(lo.x + 0.5f * (hi.x - lo.x), hi.y + 1.2f * pixel) + shift,
+                                       kTitles[k], 12.f, kInk, "title"));
   }
   fig.layers = {std::move(values), std::move(grid), std::move(shapes), std::move(dots), std::move(titles)};
   char line[256];

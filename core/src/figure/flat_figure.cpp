@@ -56,17 +56,6 @@ FigureItem dot(glm::vec2 p, float radius, glm::vec3 colour, const std::string& c
   return it;
 }
 
-FigureItem text(glm::vec2 p, const std::string& words, float points, glm::vec3 colour, const std::string& css) {
-  FigureItem it;
-  it.kind = FigureItem::Kind::text;
-  it.points = {p};
-  it.text = words;
-  it.radius = points;
-  it.style.fill = colour;
-  it.css = css;
-  return it;
-}
-
 // A shape drawn again over itself, in a mark's colour (no fill): the one tested, those in the mailbox.
 FigureItem shape_outline(const FlatShape& s, glm::vec3 colour, float width, const std::string& css) {
   FigureItem it;
@@ -308,7 +297,7 @@ FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) 
         const float tick = 0.022f * unit;
         if (p.x >= fig.lo.x && p.y >= fig.lo.y && p.x <= fig.hi.x && p.y <= fig.hi.y) {
           marks.items.push_back(line(p - tick * across, p + tick * across, kInk, 2.2f, "t-star"));
-          marks.items.push_back(text(p + 2.2f * tick * across, "t*", 11.f, kInk, "t-star-label"));
+          marks.items.push_back(figure_text(p + 2.2f * tick * across, "t*", 11.f, kInk, "t-star-label"));
         }
       }
     }
@@ -327,7 +316,7 @@ FlatWalkLayers flat_figure_walk(const FlatFigureInput& in, const Figure& still) 
           const glm::vec2 side = (a == 0 ? 1.f : -1.f) * across;
           marks.items.push_back(line(p - 0.5f * tick * side, p + tick * side, kTick, k == 0 ? 2.2f : 1.f,
                                      k == 0 ? "tmax-" + axis : "tdelta-" + axis));
-          if (k == 0) marks.items.push_back(text(p + 2.4f * tick * side, "tMax " + axis, 10.f, kTick, "tmax-label"));
+          if (k == 0) marks.items.push_back(figure_text(p + 2.4f * tick * side, "tMax " + axis, 10.f, kTick, "tmax-label"));
         }
       }
     }

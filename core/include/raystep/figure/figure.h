@@ -30,6 +30,19 @@ struct FigureItem {
   FigureStyle style;
 };
 
+// A text item centred on p, `points` tall.
+inline FigureItem figure_text(glm::vec2 p, const std::string& words, float points, glm::vec3 colour,
+                              const std::string& css) {
+  FigureItem it;
+  it.kind = FigureItem::Kind::text;
+  it.points = {p};
+  it.text = words;
+  it.radius = points;
+  it.style.fill = colour;
+  it.css = css;
+  return it;
+}
+
 struct FigureLayer {
   std::string name;  // the SVG group's id: "cells", "shapes", "ray", ...
   std::vector<FigureItem> items;
