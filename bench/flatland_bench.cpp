@@ -57,6 +57,8 @@ BENCHMARK_CAPTURE(drag_the_ray, kd_median, "kd-median")->Unit(benchmark::kMillis
 BENCHMARK_CAPTURE(drag_the_ray, octree, "octree")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(drag_the_ray, bsp, "bsp")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(drag_the_ray, bvh, "bvh")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(drag_the_ray, bvh4, "bvh4")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(drag_the_ray, bvh8, "bvh8")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace raystep

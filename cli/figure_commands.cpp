@@ -3,7 +3,6 @@
 #include <memory>
 
 #include "commands.h"
-#include "value_parsers.h"
 #include "raystep/accel/plane_outline.h"
 #include "raystep/figure/figure_file.h"
 #include "raystep/figure/flat_aa_figure.h"
@@ -13,6 +12,7 @@
 #include "raystep/trace/record_trace.h"
 #include "raystep/util/error.h"
 #include "raystep/util/memory_limit.h"
+#include "value_parsers.h"
 
 namespace raystep::cli {
 
@@ -24,16 +24,17 @@ int run_figure(const FigureArgs& a) {
   check_output_folder(a.output);
   std::unique_ptr<Accelerator> accel = build_structure(a.structure);
   if (!has_plane_outline(*accel))
-    throw InputError(
-        "", 0,
-        "figure: --accel " + a.structure.accel +
-            " is not drawn in 2D (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep or bvh-median)");
+    throw InputError("", 0,
+                     "figure: --accel " + a.structure.accel +
+                         " is not drawn in 2D (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, "
+                         "bvh-median, bvh4 or bvh8)");
   const Scene scene = load_scene(a.scene);
   if (!scene.flat)
     throw InputError(a.scene, 0,
                      "a 3D scene: a figure draws a 2D scene (\"dimensions\": 2, docs/scene-format.md)");
   if (a.aa) {  // the anti-aliasing figure: the pixels over the polygon, sampled, exact and the error
-    if (a.ray || a.step) throw InputError("", 0, "--aa draws the pixels, not a walk: give no --ray or --step");
+    if (a.ray || a.step)
+      throw InputError("", 0, "--aa draws the pixels, not a walk: give no --ray or --step");
     FlatAaInput in;
     in.scene = &scene;
     in.aa = parse_antialiasing(*a.aa);

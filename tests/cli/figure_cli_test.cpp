@@ -125,7 +125,7 @@ TEST_F(FigureCli, BadInputIsOneLineAndExitTwo) {
       {kFlat + "/kd_traversal.json --step 20 -o " + path("x.svg"), "--step 20: the walk has 20 events"},
       {bad + " -o " + path("x.svg"), "bad.json:2"},
       {kFlat + "/kd_traversal.json -o " + path("x.jpg"), "a figure is written as .svg, .pdf or .png"},
-      {kFlat + "/kd_traversal.json --accel bvh8 -o " + path("x.svg"), "is not drawn in 2D"},
+      {kFlat + "/kd_traversal.json --accel brute -o " + path("x.svg"), "is not drawn in 2D"},
       {kFlat + "/kd_traversal.json --ray 1,2,3 -o " + path("x.svg"), "--ray"},
       {kFlat + "/aliasing_polygon.json --aa sideways -o " + path("x.svg"), "sideways"},
       {kFlat + "/aliasing_polygon.json --aa none --size 100x100 -o " + path("x.svg"), "at most"},

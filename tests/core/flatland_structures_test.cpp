@@ -21,8 +21,10 @@
 #include "raystep/accel/plane_outline.h"
 #include "raystep/accel/random_lines.h"
 #include "raystep/accel/structure_options.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/figure/flat_figure.h"
 #include "raystep/io/scene_loader.h"
+#include "raystep/replay/bvh_choice.h"
 #include "raystep/replay/octree_choice.h"
 #include "raystep/replay/replayer.h"
 #include "raystep/replay/slide_stack.h"
@@ -213,9 +215,9 @@ TEST(FlatlandStructures, TheKdFigureWalksAsTheSlidesDrawIt) {
   EXPECT_NEAR(0.5f * (tick->points[0].x + tick->points[1].x), kd.data().nodes[0].split, 1e-4f);
 }
 
-// The walk's marks in the plane: at a cell of the grid the 3D-DDA's tMax ticks lie on the ray where it crosses
-// the cell's next boundary on that axis (a grid line), and at a mailbox hit the shape skipped is marked, with
-// the mailbox's shapes dashed.
+// The walk's marks in the plane: at a cell of the grid the 3D-DDA's tMax ticks lie on the ray where it
+// crosses the cell's next boundary on that axis (a grid line), and at a mailbox hit the shape skipped is
+// marked, with the mailbox's shapes dashed.
 TEST(FlatlandStructures, TheGridWalksMarksShowTMaxAndTheMailbox) {
   Scene s = load_scene(kFlatDir + "/mailbox.json");
   ASSERT_TRUE(s.flat && s.flat->has_ray);
@@ -253,7 +255,7 @@ TEST(FlatlandStructures, TheGridWalksMarksShowTMaxAndTheMailbox) {
         const glm::vec2 a0 = tick->points[0], a1 = tick->points[1];
         const glm::vec2 u = glm::normalize(a1 - a0);
         EXPECT_NEAR(u.x * (p - a0).y - u.y * (p - a0).x, 0.f, 1e-4f);  // on the tick's line
-        EXPECT_GT(glm::dot(p - a0, u), 0.f);                            // between its ends
+        EXPECT_GT(glm::dot(p - a0, u), 0.f);                           // between its ends
         EXPECT_LT(glm::dot(p - a0, u), glm::length(a1 - a0));
         EXPECT_NEAR(glm::dot(u, glm::normalize(glm::vec2(ray.direction))), 0.f, 1e-4f);  // across the ray
         // p is on a grid line of axis a: the cell's boundary in the walk's direction.
@@ -331,7 +333,8 @@ TEST(FlatlandStructures, TheOctreeOfA2DSceneIsAQuadtree) {
       EXPECT_LT(st.exit_axis, 2);  // a ray in the plane leaves by x or y
     }
     // The order by the planes is the order the walk visits the children.
-    for (size_t i = 0; i < c.visited.size() && i < c.path.size(); ++i) EXPECT_EQ(c.visited[i], c.path[i].node);
+    for (size_t i = 0; i < c.visited.size() && i < c.path.size(); ++i)
+      EXPECT_EQ(c.visited[i], c.path[i].node);
   }
   EXPECT_GT(choices, 0);
   EXPECT_EQ(replay::octant_name(2, 2), "x- y+");
@@ -407,9 +410,100 @@ TEST(FlatlandStructures, TheOutlinesLeavesTileTheRoot) {
   const PlaneOutline b = plane_outline(*bvh);
   EXPECT_TRUE(b.boxes);
   EXPECT_TRUE(b.lines.empty());
-  auto wide = make_accelerator("bvh8", StructureOptions{});
-  wide->build(s.geometry);
-  EXPECT_FALSE(has_plane_outline(*wide));
+  auto brute = make_accelerator("brute", StructureOptions{});
+  brute->build(s.geometry);
+  EXPECT_FALSE(has_plane_outline(*brute));
+}
+
+// A wide BVH in the plane: its regions are the boxes of every child slot, numbered as its traces number them
+// (WideBvh::describe), each inside its parent's, and a recorded walk lights the very box of each node it
+// visits, with the boxes it pushed dashed on the stack.
+TEST(FlatlandStructures, TheWideBvhsOutlineIsTheBoxesItsWalkVisits) {
+  Scene s = load_scene(kFlatDir + "/sah_build.json");
+  ASSERT_TRUE(s.flat && s.flat->has_ray);
+  for (const char* name : {"bvh4", "bvh8"}) {
+    auto accel = make_accelerator(name, StructureOptions{});
+    accel->build(s.geometry);
+    const WideBvhView view = dynamic_cast<const WideBvh&>(*accel).describe();
+    ASSERT_TRUE(has_plane_outline(*accel)) << name;
+    const PlaneOutline o = plane_outline(*accel);
+    EXPECT_TRUE(o.boxes) << name;
+    EXPECT_TRUE(o.lines.empty()) << name;
+    ASSERT_EQ(o.regions.size(), view.nodes.size()) << name;
+    ASSERT_GT(view.nodes.size(), 1u) << name;
+    auto box_of = [](const OutlineRegion& r) {
+      glm::vec2 lo(1e30f), hi(-1e30f);
+      for (const glm::vec2& p : r.polygon) lo = glm::min(lo, p), hi = glm::max(hi, p);
+      return std::pair<glm::vec2, glm::vec2>(lo, hi);
+    };
+    for (size_t id = 0; id < view.nodes.size(); ++id) {
+      const OutlineRegion& r = o.regions[id];
+      EXPECT_EQ(r.node, int32_t(id)) << name;
+      EXPECT_EQ(r.leaf, view.nodes[id].leaf) << name << " node " << id;
+      EXPECT_EQ(r.depth, view.nodes[id].depth) << name << " node " << id;
+      const auto [lo, hi] = box_of(r);
+      EXPECT_EQ(lo, glm::vec2(view.nodes[id].box.lo)) << name << " node " << id;
+      EXPECT_EQ(hi, glm::vec2(view.nodes[id].box.hi)) << name << " node " << id;
+      if (view.nodes[id].parent < 0) continue;
+      const auto [plo, phi] = box_of(o.regions[size_t(view.nodes[id].parent)]);
+      EXPECT_TRUE(lo.x >= plo.x && lo.y >= plo.y && hi.x <= phi.x && hi.y <= phi.y) << name << " node " << id;
+    }
+
+    const Ray ray = flat_ray(s.flat->ray_origin, s.flat->ray_direction);
+    const Trace t = record_trace(s.geometry, *accel, {RayRequest{ray, RayKind::primary, 0, false, {0, 0}}},
+                                 "sah_build.json", "fnv1a64:0000000000000000");
+    ASSERT_EQ(t.rays.size(), 1u);
+    const TracedRay& r = t.rays[0];
+    const replay::Replayer replayer(r);
+    const Figure still = flat_figure_still(s, &o, nullptr);
+    int walked = 0, stacked = 0;
+    for (int k = 0; k < replayer.size(); ++k) {
+      const replay::ReplayState at = replayer.at(k);
+      if (at.node_event < 0 || at.ended) continue;
+      const int32_t node = r.events[size_t(at.node_event)].node;
+      ASSERT_GE(node, 0);
+      ASSERT_LT(size_t(node), o.regions.size()) << name;
+      ++walked;
+      const FlatWalkLayers w = flat_figure_walk(FlatFigureInput{&s, &o, &t, k}, still);
+      const auto current = std::find_if(w.walk.items.begin(), w.walk.items.end(),
+                                        [](const FigureItem& it) { return it.css == "current"; });
+      ASSERT_NE(current, w.walk.items.end()) << name << " step " << k;
+      EXPECT_EQ(current->points, o.regions[size_t(node)].polygon) << name << " step " << k;
+      stacked += int(at.stack.size());
+      // The caption writes the stack as the slides do, by the ids the tree view gives the nodes.
+      std::string stack;
+      for (size_t i = at.stack.size(); i-- > 0;)
+        stack += (stack.empty() ? "" : ",") + std::to_string(at.stack[i].node);
+      const std::string slides = "Stack: " + (stack.empty() ? std::string("(empty)") : stack) +
+                                 "   Current: " + (node == 0 ? std::string("root") : std::to_string(node));
+      EXPECT_NE(std::find(w.caption.begin(), w.caption.end(), slides), w.caption.end())
+          << name << " step " << k << ": " << slides;
+      EXPECT_EQ(size_t(std::count_if(w.walk.items.begin(), w.walk.items.end(),
+                                     [](const FigureItem& it) { return it.css == "stacked"; })),
+                at.stack.size())
+          << name << " step " << k;
+    }
+    EXPECT_GT(walked, 1) << name;
+    // At each inner node the choice names the child entered first, a hit one, also when it is a leaf (a wide
+    // BVH enters a leaf child with its leaf event): "no child hit" only when none was.
+    int entered_leaf = 0;
+    for (int k = 0; k < replayer.size(); ++k) {
+      if (r.events[size_t(k)].type != EventType::node) continue;
+      const replay::BvhChoice c = replay::bvh_choice(r, replayer.at(replayer.size() - 1 > k ? k + 1 : k));
+      if (!c.valid) continue;
+      std::vector<int32_t> hit;
+      for (const replay::BoxTestMark& m : c.tests)
+        if (m.hit) hit.push_back(m.child);
+      if (hit.empty()) {
+        EXPECT_EQ(c.first, -1) << name << " step " << k;
+      } else {
+        EXPECT_NE(std::find(hit.begin(), hit.end(), c.first), hit.end()) << name << " step " << k;
+        entered_leaf += c.first >= 0 && o.regions[size_t(c.first)].leaf;
+      }
+    }
+    EXPECT_GT(entered_leaf, 0) << name;
+    EXPECT_GT(stacked, 0) << name;  // the walk keeps the farther boxes for later
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // kernels; the counted walk; the recorded walk against the kernel; describe()'s ids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 
@@ -445,6 +446,12 @@ TEST(WideBvh, DescribeGivesEverySlotAnId) {
       }
     }
     for (size_t p = 0; p < g.size(); ++p) EXPECT_EQ(seen[p], 1) << p;  // each primitive in exactly one leaf
+    // The one-node lookup traces use: the same counts, and no node past them.
+    EXPECT_EQ(wide.node_count(), view.nodes.size());
+    EXPECT_EQ(wide.leaf_count(), size_t(std::count_if(view.nodes.begin(), view.nodes.end(),
+                                                      [](const auto& n) { return n.leaf; })));
+    EXPECT_THROW(wide.describe_node(-1), InputError);
+    EXPECT_THROW(wide.describe_node(int32_t(view.nodes.size())), InputError);
   }
 }
 

@@ -4,74 +4,17 @@
 // the 3D view says it drew and the screenshot's pixels where it drew them.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string>
-
-#include <nlohmann/json.hpp>
+#include <vector>
 
 #include "raystep/io/image_io.h"
+#include "viz_test_util.h"
 
+namespace raystep::viztest {
 namespace {
 
-using nlohmann::json;
-
-const std::string kExe = RAYSTEP_GUI_EXE;
-const std::string kOut = RAYSTEP_VIZ_ARTIFACTS;
 const std::string kTrace = std::string(RAYSTEP_SOURCE_DIR) + "/tests/viz/data/bvh_overlap_trace.json";
 const std::string kCornell = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
-
-struct GuiRun {
-  int code = -1;
-  std::string err;
-};
-
-GuiRun gui(const std::string& args, const std::string& tag) {
-  std::string errFile = kOut + "/" + tag + ".stderr";
-  std::string cmd = "'" + kExe + "' " + args + " 2> '" + errFile + "'";
-  GuiRun r;
-  int status = std::system(cmd.c_str());
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errFile);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-json readJson(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << path;
-  return json::parse(in);
-}
-
-int countColor(const raystep::Rgb8Image& img, const json& rgb, double x0, double y0, double x1, double y1,
-               int tol) {
-  int n = 0;
-  for (int y = std::max(0, int(y0)); y <= std::min(img.height - 1, int(y1)); ++y)
-    for (int x = std::max(0, int(x0)); x <= std::min(img.width - 1, int(x1)); ++x) {
-      const uint8_t* px = img.at(x, y);
-      bool near = true;
-      for (int k = 0; k < 3; ++k) near &= std::abs(int(px[k]) - rgb[size_t(k)].get<int>()) <= tol;
-      n += near;
-    }
-  return n;
-}
-
-// The window-pixel rectangle of a box's projected corners.
-void bounds(const json& corners, double* x0, double* y0, double* x1, double* y1) {
-  *x0 = *y0 = 1e9;
-  *x1 = *y1 = -1e9;
-  for (const json& c : corners) {
-    *x0 = std::min(*x0, c[0].get<double>());
-    *x1 = std::max(*x1, c[0].get<double>());
-    *y0 = std::min(*y0, c[1].get<double>());
-    *y1 = std::max(*y1, c[1].get<double>());
-  }
-}
 
 bool has(const json& j, const std::string& text) {
   return j.get<std::string>().find(text) != std::string::npos;
@@ -109,11 +52,10 @@ TEST(Bvh, ChildrenBoxesOverlapInTheViewAndThePanel) {
   // Each child's outline colour where its box projects.
   const char* colours[2] = {"bvh_child_first", "bvh_child_other"};
   for (size_t k = 0; k < 2; ++k) {
-    double x0, y0, x1, y1;
-    bounds(drawn[k]["projected_corners"], &x0, &y0, &x1, &y1);
-    int n = countColor(s.img, view["colors"][colours[k]], x0 - 2, y0 - 2, x1 + 2, y1 + 2, 12);
-    EXPECT_GT(n, 20) << colours[k] << " inside its projected box " << x0 << "," << y0 << " .. " << x1 << ","
-                     << y1;
+    const ScreenBox b = boxOf(drawn[k]["projected_corners"]);
+    int n = countColor(s.img, view["colors"][colours[k]], b.x0 - 2, b.y0 - 2, b.x1 + 2, b.y1 + 2, 12);
+    EXPECT_GT(n, 20) << colours[k] << " inside its projected box " << b.x0 << "," << b.y0 << " .. " << b.x1
+                     << "," << b.y1;
   }
   const json& vp = view["viewport"];
   EXPECT_GT(
@@ -167,11 +109,14 @@ TEST(Bvh, CornellBvhFromTheCommandLine) {
       snap("'" + kCornell + "' --accel bvh --pixel 100,220 --step-to box_test:3", "bvh_cornell_children");
   const json& view = c.state["view"];
   ASSERT_EQ(view["bvh"]["children_drawn"].size(), 2u) << view.dump(1);
-  double x0, y0, x1, y1;
-  bounds(view["current_node"]["projected_corners"], &x0, &y0, &x1, &y1);
-  EXPECT_GT(countColor(c.img, view["colors"]["current_cell"], x0 - 2, y0 - 2, x1 + 2, y1 + 2, 12), 20);
-  bounds(view["bvh"]["children_drawn"][1]["projected_corners"], &x0, &y0, &x1, &y1);
-  EXPECT_GT(countColor(c.img, view["colors"]["bvh_child_other"], x0 - 2, y0 - 2, x1 + 2, y1 + 2, 12), 20);
+  const ScreenBox cur = boxOf(view["current_node"]["projected_corners"]);
+  EXPECT_GT(
+      countColor(c.img, view["colors"]["current_cell"], cur.x0 - 2, cur.y0 - 2, cur.x1 + 2, cur.y1 + 2, 12),
+      20);
+  const ScreenBox other = boxOf(view["bvh"]["children_drawn"][1]["projected_corners"]);
+  EXPECT_GT(countColor(c.img, view["colors"]["bvh_child_other"], other.x0 - 2, other.y0 - 2, other.x1 + 2,
+                       other.y1 + 2, 12),
+            20);
 }
 
 // The SAH inspector on a BVH node: the binned curve (bins - 1 candidates per axis), the chosen bin, the CSV
@@ -225,17 +170,13 @@ TEST(Bvh, BadOptionsExit2WithOneLine) {
                            "--accel bvh --node 100000", "--accel bvh --node-path LLLLLLLLLLLLLLLLLLLL"}) {
     GuiRun r = gui("'" + kCornell + "' " + args + " --quit", "bvh_bad_option");
     EXPECT_EQ(r.code, 2) << args;
-    std::istringstream lines(r.err);
-    std::string line, errors;
-    int n = 0;
-    while (std::getline(lines, line))
-      if (line.rfind("QStandardPaths", 0) != 0 && line.rfind("timing: ", 0) != 0) {  // Qt's note, the timings
-        ++n;
-        errors += line + "\n";
-      }
-    EXPECT_EQ(n, 1) << args << ": " << errors;
+    const std::vector<std::string> lines = errorLines(r.err);
+    std::string errors;
+    for (const std::string& line : lines) errors += line + "\n";
+    EXPECT_EQ(lines.size(), 1u) << args << ": " << errors;
     EXPECT_EQ(errors.rfind("error: ", 0), 0u) << args << ": " << errors;
   }
 }
 
 }  // namespace
+}  // namespace raystep::viztest

@@ -8,6 +8,7 @@
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -120,6 +121,23 @@ void bvh_outline(const Bvh& bvh, size_t max_nodes, PlaneOutline* out) {
   }
 }
 
+// A wide BVH as traces see it (WideBvh::describe): every child slot a node, ids in depth-first preorder. Its
+// nodes take no path (a trace names none), so its regions have none either.
+void wide_bvh_outline(const WideBvh& bvh, size_t max_nodes, PlaneOutline* out) {
+  const WideBvhView view = bvh.describe();
+  out->total_nodes = view.nodes.size();
+  if (view.nodes.empty()) return;
+  set_root(out, view.nodes[0].box);
+  out->boxes = true;
+  std::vector<int32_t> depths;
+  for (const WideBvhView::Node& n : view.nodes) depths.push_back(n.depth);
+  const int limit = depth_limit(depths, max_nodes);
+  for (size_t id = 0; id < view.nodes.size(); ++id) {
+    const WideBvhView::Node& n = view.nodes[id];
+    if (n.depth <= limit) out->regions.push_back({int32_t(id), n.depth, n.leaf, box_polygon(n.box), ""});
+  }
+}
+
 // A convex polygon cut by the line n . p = d: the part with n . p <= d (below) or >= d, and the chord.
 std::vector<glm::dvec2> clip(const std::vector<glm::dvec2>& poly, const glm::dvec2& n, double d, bool below) {
   std::vector<glm::dvec2> out;
@@ -185,8 +203,8 @@ Row row(void (*fill)(const T&, size_t, PlaneOutline*)) {
 }
 const std::vector<Row>& rows() {
   static const std::vector<Row> table = {row<UniformGrid>(grid_outline), row<KdTree>(kd_outline),
-                                         row<Octree>(octree_outline), row<Bvh>(bvh_outline),
-                                         row<BspTree>(bsp_outline)};
+                                         row<Octree>(octree_outline),    row<Bvh>(bvh_outline),
+                                         row<WideBvh>(wide_bvh_outline), row<BspTree>(bsp_outline)};
   return table;
 }
 
@@ -206,9 +224,10 @@ PlaneOutline plane_outline(const Accelerator& accel, size_t max_nodes) {
       r.fill(accel, max_nodes, &out);
       return out;
     }
-  throw InputError("", 0,
-                   "a 2D outline of " + accel.name() +
-                       " is not drawn (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep or bvh-median)");
+  throw InputError(
+      "", 0,
+      "a 2D outline of " + accel.name() +
+          " is not drawn (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
 }
 
 }  // namespace raystep

@@ -104,6 +104,8 @@ class Collapser {
       const BvhNode& k = bin_.nodes[kids[i]];
       int32_t child_id = m_.id_count++;
       m_.slot_id[size_t(index) * W + i] = child_id;
+      m_.id_slot.resize(size_t(m_.id_count), -1);
+      m_.id_slot[size_t(child_id)] = int32_t(index) * W + i;
       if (!k.box.empty())
         for (int a = 0; a < 3; ++a) {
           wn.box[2 * a][i] = k.box.lo[a];
@@ -122,6 +124,7 @@ class Collapser {
         std::sort(m_.prims.begin() + first, m_.prims.end());  // a leaf's primitives in id order
         wn.child[i] = kWideLeaf | first;
         wn.count[i] = uint32_t(m_.prims.size()) - first;
+        ++m_.leaf_count;
         m_.max_depth = std::max(m_.max_depth, depth + 1);
       } else {
         wn.child[i] = emit(kids[i], child_id, depth + 1);
@@ -210,7 +213,8 @@ size_t WideBvh::memory_bytes() const {
   const Impl& m = *impl_;
   return m.nodes4.capacity() * sizeof(WideNode<4>) + m.nodes8.capacity() * sizeof(WideNode<8>) +
          m.prims.capacity() * sizeof(uint32_t) + m.packets.capacity() * sizeof(TriPacket) +
-         (m.node_id.capacity() + m.node_depth.capacity() + m.slot_id.capacity()) * sizeof(int32_t);
+         (m.node_id.capacity() + m.node_depth.capacity() + m.slot_id.capacity() + m.id_slot.capacity()) *
+             sizeof(int32_t);
 }
 
 WideSimd WideBvh::best_simd() {
@@ -254,38 +258,54 @@ bool WideBvh::occluded_counted(const Ray& ray, CountingRecorder& counters) const
   return traverse(ray, &hit, true, counters);
 }
 
-WideBvhView WideBvh::describe() const {
+WideBvhView::Node WideBvh::describe_node(int32_t id) const {
   const Impl& m = *impl_;
-  WideBvhView view;
-  if (m.empty) return view;
-  view.nodes.resize(size_t(m.id_count));
-  view.nodes[0].box = m.root_box;
+  if (id < 0 || id >= m.id_count) throw InputError("", 0, "bvh: no node " + std::to_string(id));
   const int W = width_;
-  size_t count = W == 4 ? m.nodes4.size() : m.nodes8.size();
-  for (size_t n = 0; n < count; ++n) {
-    int32_t id = m.node_id[n];
-    WideBvhView::Node& parent = view.nodes[size_t(id)];
-    parent.depth = m.node_depth[n];
-    for (int i = 0; i < W; ++i) {
-      int32_t cid = m.slot_id[n * size_t(W) + size_t(i)];
-      if (cid < 0) continue;
-      parent.children.push_back(cid);
-      WideBvhView::Node& c = view.nodes[size_t(cid)];
-      c.parent = id;
-      c.depth = m.node_depth[n] + 1;
-      uint32_t ref = W == 4 ? m.nodes4[n].child[i] : m.nodes8[n].child[i];
-      uint32_t cnt = W == 4 ? m.nodes4[n].count[i] : m.nodes8[n].count[i];
-      for (int a = 0; a < 3; ++a) {
-        c.box.lo[a] = W == 4 ? m.nodes4[n].box[2 * a][i] : m.nodes8[n].box[2 * a][i];
-        c.box.hi[a] = W == 4 ? m.nodes4[n].box[2 * a + 1][i] : m.nodes8[n].box[2 * a + 1][i];
-      }
-      if (ref & kWideLeaf) {
-        c.leaf = true;
-        uint32_t first = ref & ~kWideLeaf;
-        c.prims.assign(m.prims.begin() + first, m.prims.begin() + first + cnt);
-      }
+  auto box_of = [&](size_t n, int lane) {
+    Bounds3 b;
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = W == 4 ? m.nodes4[n].box[2 * a][lane] : m.nodes8[n].box[2 * a][lane];
+      b.hi[a] = W == 4 ? m.nodes4[n].box[2 * a + 1][lane] : m.nodes8[n].box[2 * a + 1][lane];
     }
+    return b;
+  };
+  WideBvhView::Node node;
+  uint32_t ref = 0;  // the wide node below it (inner) or its primitives (leaf)
+  uint32_t count = 0;
+  if (id == 0) {
+    node.box = m.root_box;
+  } else {
+    const size_t slot = size_t(m.id_slot[size_t(id)]), n = slot / size_t(W);
+    const int lane = int(slot % size_t(W));
+    node.box = box_of(n, lane);
+    node.parent = m.node_id[n];
+    node.depth = m.node_depth[n] + 1;
+    ref = W == 4 ? m.nodes4[n].child[lane] : m.nodes8[n].child[lane];
+    count = W == 4 ? m.nodes4[n].count[lane] : m.nodes8[n].count[lane];
   }
+  if (ref & kWideLeaf) {
+    node.leaf = true;
+    const uint32_t first = ref & ~kWideLeaf;
+    node.prims.assign(m.prims.begin() + first, m.prims.begin() + first + count);
+  } else {
+    for (int i = 0; i < W; ++i)
+      if (int32_t c = m.slot_id[size_t(ref) * size_t(W) + size_t(i)]; c >= 0) node.children.push_back(c);
+  }
+  return node;
+}
+
+size_t WideBvh::node_count() const {
+  return size_t(impl_->id_count);
+}
+size_t WideBvh::leaf_count() const {
+  return size_t(impl_->leaf_count);
+}
+
+WideBvhView WideBvh::describe() const {
+  WideBvhView view;
+  view.nodes.reserve(node_count());
+  for (size_t id = 0; id < node_count(); ++id) view.nodes.push_back(describe_node(int32_t(id)));
   return view;
 }
 

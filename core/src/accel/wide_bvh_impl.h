@@ -47,7 +47,9 @@ struct WideBvh::Impl {
   int max_depth = 0;
   // Cold, for traces: the id (describe()) of each wide node and of each child slot (node * width + lane).
   std::vector<int32_t> node_id, node_depth, slot_id;
-  int32_t id_count = 0;
+  // And back: the child slot of each id (node * width + lane; the root, which is no slot: -1).
+  std::vector<int32_t> id_slot;
+  int32_t id_count = 0, leaf_count = 0;
 
   template <int W>
   const WideNode<W>* nodes() const {

@@ -46,7 +46,8 @@ BvhChoice bvh_choice(const TracedRay& ray, const ReplayState& s) {
     }
   }
   if (c.tests.empty()) return c;
-  if (i < ev.size() && ev[i].type == EventType::node) c.first = ev[i].node;
+  // (A wide BVH enters a leaf child with its leaf event: its leaves have no node event.)
+  if (i < ev.size() && (ev[i].type == EventType::node || ev[i].type == EventType::leaf)) c.first = ev[i].node;
   c.decided = s.step >= last_test;
   c.valid = true;
   return c;

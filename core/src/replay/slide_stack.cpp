@@ -6,7 +6,12 @@ namespace raystep::replay {
 
 std::string slide_stack_text(const Trace& trace, const TracedRay& ray, const ReplayState& state) {
   if (state.node_event < 0 || trace.structure.kind == "octree") return "";
+  const bool wide = trace.structure.kind == "bvh4" || trace.structure.kind == "bvh8";
   auto name = [&](int32_t id, std::string* out) {
+    if (wide) {  // no paths: the ids its tree view writes in the nodes
+      *out = id == 0 ? "root" : std::to_string(id);
+      return true;
+    }
     std::string path;
     if (!trace_node_path(trace, id, &path)) return false;
     *out = path.empty() ? "root" : path;

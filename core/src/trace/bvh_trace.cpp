@@ -58,15 +58,12 @@ Trace record_bvh_trace(const Geometry& geometry, const Bvh& bvh, const std::vect
 
 Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const std::vector<RayRequest>& rays,
                             const std::string& scene_path, const std::string& scene_hash) {
-  const WideBvhView view = bvh.describe();
   Trace t = detail::begin_trace(geometry, bvh.name(), scene_path, scene_hash);
-  if (!view.nodes.empty()) t.structure.bounds = view.nodes[0].box;
-  size_t leaves = 0;
-  for (const WideBvhView::Node& n : view.nodes) leaves += n.leaf;
+  if (bvh.node_count() > 0) t.structure.bounds = bvh.describe_node(0).box;
   bvh_params(bvh.options(), &t.structure);
   detail::add_param(&t.structure, "width", double(bvh.width()));
-  detail::add_param(&t.structure, "nodes", double(view.nodes.size()));
-  detail::add_param(&t.structure, "leaves", double(leaves));
+  detail::add_param(&t.structure, "nodes", double(bvh.node_count()));
+  detail::add_param(&t.structure, "leaves", double(bvh.leaf_count()));
   detail::sort_params(&t.structure);
 
   detail::record_rays(
@@ -76,10 +73,11 @@ Trace record_wide_bvh_trace(const Geometry& geometry, const WideBvh& bvh, const 
         bvh.record(req.ray, &hit, req.kind == RayKind::shadow, rec);
       },
       &t);
+  // Only the nodes the walks name and their parents, looked up one by one: a few rays through a big tree.
   const std::set<int32_t> ids = detail::with_parent_chains(
-      detail::named_nodes(t), [&](int32_t id) { return view.nodes[size_t(id)].parent; });
+      detail::named_nodes(t), [&](int32_t id) { return bvh.describe_node(id).parent; });
   for (int32_t id : ids) {
-    const WideBvhView::Node& n = view.nodes[size_t(id)];
+    const WideBvhView::Node n = bvh.describe_node(id);
     TraceNode tn;
     tn.id = id;
     tn.parent = n.parent;

@@ -7,8 +7,8 @@
 #include <QFontMetrics>
 #include <QPainter>
 
-#include "views/kd_tree_model.h"
 #include "common/palette.h"
+#include "views/kd_tree_model.h"
 
 namespace raystep::viz {
 namespace {
@@ -75,10 +75,12 @@ QImage drawTreeDiagram(const TreeShape& tree, const TreeMarks& marks, int whole)
   QFont legendFont;
   legendFont.setPixelSize(14);
   const QFontMetrics lm(legendFont);
-  const QString title = n <= whole ? QObject::tr("%1: %2 nodes").arg(tree.name()).arg(n)
-                                   : QObject::tr("%1: %2 nodes; the branches off the marked nodes folded").arg(tree.name()).arg(n);
-  const QString legendText[] = {QObject::tr("current node"), QObject::tr("on the stack"), QObject::tr("visited"),
-                                QObject::tr("selected")};
+  const QString title =
+      n <= whole
+          ? QObject::tr("%1: %2 nodes").arg(tree.name()).arg(n)
+          : QObject::tr("%1: %2 nodes; the branches off the marked nodes folded").arg(tree.name()).arg(n);
+  const QString legendText[] = {QObject::tr("current node"), QObject::tr("on the stack"),
+                                QObject::tr("visited"), QObject::tr("selected")};
   int legendWidth = kMargin + lm.horizontalAdvance(title) + kMargin;
   for (const QString& t : legendText) legendWidth += 22 + lm.horizontalAdvance(t) + 18;
   const int width = std::max(2 * kMargin + slots * kSlot, legendWidth);
@@ -119,20 +121,30 @@ QImage drawTreeDiagram(const TreeShape& tree, const TreeMarks& marks, int whole)
     p.drawLine(a, b);
     p.setFont(small);
     p.setPen(QColor(60, 60, 60));
-    const QPointF mid = (a + b) / 2;
-    const bool left = b.x() < a.x();
+    const QFontMetrics sm(small);
     const QString side = tree.side(uint32_t(e.node));
-    const int w = QFontMetrics(small).horizontalAdvance(side);
-    p.drawText(QPointF(left ? mid.x() - w - 4 : mid.x() + 4, mid.y()), side);
+    if (tree.children(uint32_t(placed[size_t(e.parent)].node)) <= 2 &&
+        sm.horizontalAdvance(side) <= kSlot / 2 - 8) {  // L / R beside the edge's middle
+      const QPointF mid = (a + b) / 2;
+      const bool left = b.x() < a.x();
+      const int w = sm.horizontalAdvance(side);
+      p.drawText(QPointF(left ? mid.x() - w - 4 : mid.x() + 4, mid.y()), side);
+    } else {  // many edges meet at the parent, or a long label: over its own child, within the child's slot
+      const QString text = sm.elidedText(side, Qt::ElideRight, kSlot - 6);
+      const QRectF r(b.x() - kSlot / 2.0 + 3, b.y() - sm.height() - 3, kSlot - 6, sm.height());
+      const int w = sm.horizontalAdvance(text);
+      p.fillRect(QRectF(b.x() - w / 2.0 - 2, r.top(), w + 4, r.height()), Qt::white);
+      p.drawText(r, Qt::AlignHCenter | Qt::AlignVCenter, text);
+    }
   }
 
   // The nodes: a box with the id; leaves square-cornered, inner nodes rounded; a stub below an inner node
   // whose children are not drawn.
   auto in = [](const std::vector<int>& v, int id) { return std::find(v.begin(), v.end(), id) != v.end(); };
   for (const Placed& e : placed) {
-    const QColor fill = e.node == marks.current   ? palette::currentCell
-                        : in(marks.stack, e.node) ? palette::stackNode
-                        : e.node == marks.selected ? palette::selectedNode
+    const QColor fill = e.node == marks.current     ? palette::currentCell
+                        : in(marks.stack, e.node)   ? palette::stackNode
+                        : e.node == marks.selected  ? palette::selectedNode
                         : in(marks.visited, e.node) ? palette::visitedCell
                                                     : QColor(245, 245, 245);
     const QPointF c = centre(e);

@@ -26,7 +26,8 @@ struct OutlineRegion {
   bool leaf = false;
   std::vector<glm::vec2> polygon;  // counter-clockwise; a box's four corners
   std::string path;  // from the root in the slides' notation (L below / first, R above / second;
-                     // an octree a digit per level): "" the root
+                     // an octree a digit per level): "" the root, and every node of a wide BVH
+                     // (its traces name no path)
 };
 struct PlaneOutline {
   std::string kind;            // the structure's name
@@ -39,7 +40,8 @@ struct PlaneOutline {
   size_t total_nodes = 0;  // nodes the structure has; regions holds at most max_nodes of them (depth first)
 };
 
-// True for the structures plane_outline draws: grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, bvh-median.
+// True for the structures plane_outline draws: grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, bvh-median,
+// bvh4 and bvh8 (a wide BVH's nodes numbered as its traces number them, WideBvh::describe).
 bool has_plane_outline(const Accelerator& accel);
 // The built structure's outline, nodes of depth 0..d for the largest d with at most max_nodes of them (a
 // grid's lines: every boundary). Throws InputError("", 0, ...) for a structure without one.

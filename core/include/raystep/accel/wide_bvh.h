@@ -64,6 +64,11 @@ class WideBvh final : public Accelerator {
   // The recorded walk for traces (node ids as in describe()).
   bool record(const Ray& ray, Hit* hit, bool any_hit, EventRecorder& rec) const;
   WideBvhView describe() const;
+  // One node of describe() (throws InputError for an id it has not), in time independent of the tree's
+  // size: what a trace of a few rays needs of a big tree.
+  WideBvhView::Node describe_node(int32_t id) const;
+  size_t node_count() const;  // describe().nodes.size()
+  size_t leaf_count() const;
 
   int width() const { return width_; }
   const BvhOptions& options() const { return options_; }
