@@ -257,6 +257,18 @@ struct FigureArgs {
 };
 int run_figure(const FigureArgs& args);
 
+// html_commands.cpp: `raystep export-html`, a trace or a 2D scene's ray as a page that plays the walk in a
+// browser.
+struct ExportHtmlArgs {
+  std::string input;                  // a trace .json, or a 2D scene .json
+  StructureArgs structure;            // a 2D scene's structure
+  std::optional<std::string> ray;     // a 2D scene: "ox,oy,dx,dy"; none: the scene's own ray
+  std::optional<std::string> title;   // the page's heading
+  int width = 560;                    // the picture's width in points (CSS pixels)
+  std::string output;                 // page.html
+};
+int run_export_html(const ExportHtmlArgs& args);
+
 // bvol_commands.cpp: `raystep bvol-report`, the kinds of bounding volumes on each scene's camera rays.
 struct BvolReportArgs {
   std::vector<std::string> scenes;  // empty: scenes/*.json in the current folder

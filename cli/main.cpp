@@ -314,6 +314,17 @@ int main(int argc, char** argv) {
   replay_cmd->add_option("-o,--output", replay.output,
                          "write to this file (atomically) instead of standard output");
 
+  ExportHtmlArgs html;
+  CLI::App* html_cmd = app.add_subcommand(
+      "export-html", "A trace, or a 2D scene's ray, as one page that steps through the walk in a browser (offline)");
+  html_cmd->add_option("input", html.input, "a trace .json (raystep trace), or a 2D scene .json")->required();
+  add_structure_options(html_cmd, html.structure, "kd");
+  html_cmd->add_option("--ray", html.ray, "a 2D scene: the ray ox,oy,dx,dy (default: the scene's own)");
+  html_cmd->add_option("--title", html.title, "the page's heading");
+  html_cmd->add_option("--width", html.width, "a 2D scene: the picture's width in CSS pixels")
+      ->check(CLI::Range(120, 4000));
+  html_cmd->add_option("-o,--output", html.output, "page.html (written atomically)")->required();
+
   FigureArgs figure;
   CLI::App* figure_cmd = app.add_subcommand(
       "figure",
@@ -448,6 +459,7 @@ int main(int argc, char** argv) {
     if (*trace_info_cmd) return run_trace_info(trace_info);
     if (*replay_cmd) return run_replay(replay);
     if (*figure_cmd) return run_figure(figure);
+    if (*html_cmd) return run_export_html(html);
     if (*sah_cmd) return run_sah(sah);
     if (*kd_stats_cmd) return run_kdtree_stats(kd_stats);
     if (*bvh_stats_cmd) return run_bvh_stats(bvh_stats);

@@ -22,7 +22,15 @@ PACKAGES=(
   libcairo2-dev libxml2-utils
   # the step-debugger (Qt5 + VTK 9.1) and GUI tests under a virtual X server
   libvtk9-qt-dev libgl1-mesa-dri xvfb xauth x11-apps imagemagick
+  # the browser player (raystep export-html): its page data is gzip-compressed, and its tests drive
+  # Debian's Chromium with Playwright (web/package.json; Node.js and npm below)
+  zlib1g-dev chromium
+  # a lesson's Markdown in its browser page (CommonMark's reference library)
+  libcmark-dev
 )
+# Node.js and npm from Debian, unless the machine has them already (another Node.js, which brings its npm).
+command -v node > /dev/null || PACKAGES+=(nodejs)
+command -v npm > /dev/null || PACKAGES+=(npm)
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -30,12 +38,15 @@ for p in "${PACKAGES[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages are installed"
-  exit 0
+else
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "setup: installing ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "setup: installing ${missing[*]}"
-$SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# The browser tests' npm packages, exactly as web/package-lock.json pins them (Playwright uses Debian's
+# Chromium: its own browser download is never run).
+(cd "$(dirname "$0")/../web" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 echo "setup: done"

@@ -371,6 +371,12 @@ TEST(Lesson, HandoutHasAFigurePerStepAndFoldedAnswers) {
     EXPECT_EQ(e.path().filename().string().find(".handout.tmp-"), std::string::npos) << e.path();
   std::string html = slurp(dir + "/index.html");
   EXPECT_NE(html.find("<h1>Test lesson: the grid walk"), std::string::npos);
+  // The interactive page beside it (the browser player's, tests/web), linked from the printable one.
+  EXPECT_NE(html.find("<a href=\"interactive.html\">"), std::string::npos);
+  const std::string interactive = slurp(dir + "/interactive.html");
+  EXPECT_EQ(interactive.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(interactive.find("<title>Test lesson: the grid walk"), std::string::npos);
+  EXPECT_NE(interactive.find("id=\"raystep-data\""), std::string::npos);
   size_t asks = 0;
   for (size_t i = 0; i < parsed.steps.size(); ++i) {
     const std::string png = "step-" + std::to_string(i + 1) + ".png";

@@ -10,6 +10,7 @@
 
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "raystep/util/xml_escape.h"
 
 namespace raystep {
 
@@ -42,29 +43,6 @@ std::string num(float v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2f", double(v));
   return buf;
-}
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 std::string svg_style(const FigureStyle& s, bool fillable) {
@@ -163,17 +141,17 @@ bool is_figure_path(const std::string& path) {
   return ends_with(path, ".svg") || ends_with(path, ".pdf") || ends_with(path, ".png");
 }
 
-std::string figure_svg(const Figure& f, int width) {
+std::string figure_svg(const Figure& f, int width, bool standalone) {
   const Page page(f, width);
   std::ostringstream out;
-  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(page.width) << "\" height=\""
-      << num(page.height) << "\" viewBox=\"0 0 " << num(page.width) << " " << num(page.height) << "\">\n"
-      << "<rect id=\"background\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+  if (standalone) out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << num(page.width) << "\" height=\""
+      << num(page.height) << "\" viewBox=\"0 0 " << num(page.width) << " " << num(page.height) << "\">\n";
+  if (standalone) out << "<rect id=\"background\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
   for (const FigureLayer& layer : f.layers) {
-    out << "<g id=\"" << escape(layer.name) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+    out << "<g id=\"" << xml_escape(layer.name) << "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
     for (const FigureItem& it : layer.items) {
-      const std::string cls = it.css.empty() ? "" : " class=\"" + escape(it.css) + "\"";
+      const std::string cls = it.css.empty() ? "" : " class=\"" + xml_escape(it.css) + "\"";
       switch (it.kind) {
         case FigureItem::Kind::line: {
           const glm::vec2 a = page(it.points[0]), b = page(it.points[1]);
@@ -200,7 +178,7 @@ std::string figure_svg(const Figure& f, int width) {
           out << "  <text" << cls << " x=\"" << num(p.x) << "\" y=\"" << num(p.y + 0.35f * it.radius)
               << "\" font-size=\"" << num(it.radius)
               << "\" font-family=\"sans-serif\" text-anchor=\"middle\" fill=\"" << rgb(it.style.fill)
-              << "\" stroke=\"none\">" << escape(it.text) << "</text>\n";
+              << "\" stroke=\"none\">" << xml_escape(it.text) << "</text>\n";
           break;
         }
       }
@@ -212,7 +190,7 @@ std::string figure_svg(const Figure& f, int width) {
         << "\" fill=\"#1a1a1f\">\n";
     for (size_t i = 0; i < f.caption.size(); ++i)
       out << "  <text x=\"6\" y=\"" << num(page.picture_height + 18.f + 16.f * float(i)) << "\">"
-          << escape(f.caption[i]) << "</text>\n";
+          << xml_escape(f.caption[i]) << "</text>\n";
     out << "</g>\n";
   }
   out << "</svg>\n";

@@ -1,7 +1,7 @@
 #include "raystep/replay/storyboard.h"
-#include "raystep/replay/slide_stack.h"
 
 #include <cmath>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +10,7 @@
 #include "raystep/replay/node_crossing.h"
 #include "raystep/replay/octree_choice.h"
 #include "raystep/replay/replayer.h"
+#include "raystep/replay/slide_stack.h"
 #include "raystep/trace/node_path.h"
 #include "raystep/util/error.h"
 
@@ -291,6 +292,48 @@ void write_storyboard(std::ostream& out, const MultiTrace& trace, const std::str
   out << "\n ]\n}\n";
 }
 
+std::string state_text(const Trace& trace, const TracedRay& ray, const ReplayState& s) {
+  std::ostringstream out;
+  out << describe_event(*s.event) << "\n";
+  if (s.cell_event >= 0) {
+    const Event& c = ray.events[size_t(s.cell_event)];
+    out << "  cell (" << c.cell[0] << "," << c.cell[1] << "," << c.cell[2] << ")\n";
+    // The 3D-DDA's next boundary on each axis and the step between boundaries (the next axis is the line's).
+    out << "  tMax (" << c.t_max.x << ", " << c.t_max.y << ", " << c.t_max.z << "), tDelta (" << c.t_delta.x
+        << ", " << c.t_delta.y << ", " << c.t_delta.z << ")\n";
+  }
+  if (s.node_event >= 0) {
+    const Event& nd = ray.events[size_t(s.node_event)];
+    const std::string path = trace_node_path_text(trace, nd.node);
+    out << "  node " << nd.node << (path.empty() ? "" : " (" + path + ")") << ", depth " << nd.depth
+        << "\n";
+  }
+  if (!s.stack.empty()) {
+    out << "  stack (top last):";
+    for (const StackEntry& st : s.stack) out << " " << st.node;
+    out << "\n";
+  }
+  const std::string slides = slide_stack_text(trace, ray, s);
+  if (!slides.empty()) out << "  as the slides write it: " << slides << "\n";
+  if (s.nearest_prim >= 0)
+    out << "  nearest: prim " << s.nearest_prim << " at t = " << s.nearest_t
+        << (s.accepted   ? " (accepted)"
+            : s.deferred ? " (deferred)"
+                         : " (candidate)")
+        << "\n";
+  const RayCounters& c = s.counters;
+  out << "  counters: cells " << c.cells << ", nodes " << c.nodes << ", box tests " << c.box_tests
+      << ", prim tests " << c.prim_tests << ", hits " << c.prim_hits << ", mailbox hits "
+      << c.mailbox_hits << ", pushes " << c.pushes << ", pops " << c.pops << "\n";
+  const std::string why = explain_rule(&trace, ray, s);
+  if (!why.empty()) {
+    std::string indented = "  why: ";
+    for (char ch : why) indented += ch == '\n' ? std::string("\n       ") : std::string(1, ch);
+    out << indented << "\n";
+  }
+  return out.str();
+}
+
 void write_storyboard_text(std::ostream& out, const MultiTrace& trace, const StoryboardRequest& request) {
   for_each_ray(trace, request, [&](size_t w, const Trace& t, size_t i) {
     const TracedRay& ray = t.rays[i];
@@ -300,43 +343,7 @@ void write_storyboard_text(std::ostream& out, const MultiTrace& trace, const Sto
     const int n = replayer.size();
     const int from = request.step < 0 ? 0 : std::min(request.step, n - 1),
               to = request.step < 0 ? n - 1 : from;
-    for (int k = from; k <= to && n > 0; ++k) {
-      const ReplayState s = replayer.at(k);
-      out << "\n" << describe_event(*s.event) << "\n";
-      if (s.cell_event >= 0) {
-        const Event& c = ray.events[size_t(s.cell_event)];
-        out << "  cell (" << c.cell[0] << "," << c.cell[1] << "," << c.cell[2] << ")\n";
-      }
-      if (s.node_event >= 0) {
-        const Event& nd = ray.events[size_t(s.node_event)];
-        const std::string path = trace_node_path_text(t, nd.node);
-        out << "  node " << nd.node << (path.empty() ? "" : " (" + path + ")") << ", depth " << nd.depth
-            << "\n";
-      }
-      if (!s.stack.empty()) {
-        out << "  stack (top last):";
-        for (const StackEntry& st : s.stack) out << " " << st.node;
-        out << "\n";
-      }
-      const std::string slides = slide_stack_text(t, ray, s);
-      if (!slides.empty()) out << "  as the slides write it: " << slides << "\n";
-      if (s.nearest_prim >= 0)
-        out << "  nearest: prim " << s.nearest_prim << " at t = " << s.nearest_t
-            << (s.accepted   ? " (accepted)"
-                : s.deferred ? " (deferred)"
-                             : " (candidate)")
-            << "\n";
-      const RayCounters& c = s.counters;
-      out << "  counters: cells " << c.cells << ", nodes " << c.nodes << ", box tests " << c.box_tests
-          << ", prim tests " << c.prim_tests << ", hits " << c.prim_hits << ", mailbox hits "
-          << c.mailbox_hits << ", pushes " << c.pushes << ", pops " << c.pops << "\n";
-      const std::string why = explain_rule(&t, ray, s);
-      if (!why.empty()) {
-        std::string indented = "  why: ";
-        for (char ch : why) indented += ch == '\n' ? std::string("\n       ") : std::string(1, ch);
-        out << indented << "\n";
-      }
-    }
+    for (int k = from; k <= to && n > 0; ++k) out << "\n" << state_text(t, ray, replayer.at(k));
     out << "\n";
   });
 }

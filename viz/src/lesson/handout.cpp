@@ -21,6 +21,7 @@
 #include "raystep/replay/replay_state.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
+#include "raystep/web/lesson_page.h"
 #include "reports/aa_report_view.h"
 #include "reports/bvol_report_view.h"
 #include "reports/grid_sweep_view.h"
@@ -170,6 +171,9 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
           "details { margin-top: 0.5em; } summary { cursor: pointer; font-weight: bold; }\n"
           "code, pre { background: #f4f4f4; }\n</style>\n</head>\n<body>\n";
   html += "<h1>" + esc(lesson.title) + "</h1>\n";
+  html += "<p class=\"interactive\">To step through the walks yourself, in any browser and offline: "
+          "<a href=\"interactive.html\">the interactive version</a> (the same steps and questions; the "
+          "pictures below are for print).</p>\n";
   if (!lesson.intro.empty())
     html += "<div class=\"intro\">" + markdownToHtmlBody(QString::fromStdString(lesson.intro)) + "</div>\n";
 
@@ -207,6 +211,13 @@ void exportHandout(MainWindow& w, Presenter& presenter, const QString& dir) {
     html += "</section>\n";
   }
   html += "</body>\n</html>\n";
+  // The browser player's page of the lesson (web/lesson_page.h): its walks, states and questions, offline.
+  const std::string interactive = web::lesson_page(lesson);
+  QFile player(tmp.path() + "/interactive.html");
+  if (!player.open(QIODevice::WriteOnly | QIODevice::Truncate) ||
+      player.write(interactive.data(), qint64(interactive.size())) < 0 || !player.flush())
+    fail("cannot write " + player.fileName().toStdString());
+  player.close();
   QFile index(tmp.path() + "/index.html");
   if (!index.open(QIODevice::WriteOnly | QIODevice::Truncate) || index.write(html.toUtf8()) < 0 ||
       !index.flush())

@@ -8,8 +8,9 @@
 
 namespace raystep {
 
-// The SVG document of the figure, `width` points wide (the height follows the figure's aspect).
-std::string figure_svg(const Figure& figure, int width);
+// The SVG document of the figure, `width` points wide (the height follows the figure's aspect). Not
+// standalone: the <svg> element alone, transparent, for a page that stacks several (the browser player).
+std::string figure_svg(const Figure& figure, int width, bool standalone = true);
 // True for a path a figure can be written to: .svg, .pdf or .png.
 bool is_figure_path(const std::string& path);
 // .svg, .pdf or .png (width in pixels for PNG, points otherwise); InputError("", 0, ...) for another.

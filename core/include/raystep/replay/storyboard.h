@@ -34,8 +34,10 @@ std::string state_json(const Trace& trace, const TracedRay& ray, const ReplaySta
 void write_storyboard(std::ostream& out, const MultiTrace& trace, const std::string& source,
                       const StoryboardRequest& request);
 
-// The same states for a reader: per state a few lines (event, where the walk is, stack, nearest hit,
-// counters, the Why text).
+// One state for a reader: its event's line, then where the walk is, the stack, the nearest hit, the counters
+// and the Why text, a line each ("\n"-terminated).
+std::string state_text(const Trace& trace, const TracedRay& ray, const ReplayState& s);
+// Every state of the request for a reader: per ray a header line, then each state_text after an empty line.
 void write_storyboard_text(std::ostream& out, const MultiTrace& trace, const StoryboardRequest& request);
 
 }  // namespace raystep::replay

@@ -1,0 +1,10 @@
+// The browser player's files (web/player), compiled into the library by web/embed_assets.cmake.
+#pragma once
+
+namespace raystep::web::assets {
+
+extern const char player_html[];
+extern const char player_css[];
+extern const char player_js[];
+
+}  // namespace raystep::web::assets
