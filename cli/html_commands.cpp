@@ -95,6 +95,19 @@ int run_export_html(const ExportHtmlArgs& a) {
   if (looks_like_trace(a.input)) {
     if (a.ray) throw InputError("", 0, "export-html: --ray draws a 2D scene's ray; a trace has its rays");
     trace = read_any_trace_json(a.input);
+    // The trace's scene under its walk in the page's 3D view, where it can be found (as named, or beside the
+    // trace); without it the boxes and the ray alone.
+    for (const std::string& candidate :
+         {trace.scene_path, (std::filesystem::path(a.input).parent_path() / trace.scene_path).string()}) {
+      if (trace.scene_path.empty() || !std::filesystem::is_regular_file(candidate)) continue;
+      try {
+        scene = load_scene(candidate);
+        if (!scene.flat) in.scene3d = &scene;
+      } catch (const InputError&) {
+        // a scene changed since the trace: the walk without it
+      }
+      break;
+    }
     std::string kinds;
     for (const Trace& t : trace.walks) kinds += (kinds.empty() ? "" : ", ") + t.structure.kind;
     std::string title = kinds + (trace.walks.size() > 1 ? " walks" : " walk");

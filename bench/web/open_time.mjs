@@ -23,9 +23,10 @@ for (let i = 0; i < runs; ++i) {
   await page.goto('file://' + path.resolve(page_file));
   await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
   open.push(Date.now() - t0);
+  const before = await page.evaluate(() => window.raystep.step);
   const t1 = Date.now();
   await page.keyboard.press('ArrowRight');
-  await page.waitForFunction(() => window.raystep.step === 1);
+  await page.waitForFunction((b) => window.raystep.step === b + 1, before);
   step.push(Date.now() - t1);
   await page.close();
 }

@@ -93,7 +93,20 @@ TEST_F(HtmlCli, ATracesPageHoldsTheReplaysStatesAndAsksTheNetworkForNothing) {
   const json& ray = d["walks"][0]["rays"][0];
   ASSERT_GT(ray["states"].size(), 8u);
   EXPECT_EQ(ray["lines"].size(), ray["states"].size());
-  EXPECT_FALSE(ray.contains("picture"));  // a 3D trace: no 2D picture
+  EXPECT_FALSE(ray.contains("picture"));  // a 3D trace: no 2D picture, its 3D view's walk and scene instead
+  ASSERT_TRUE(ray.contains("walk3d"));
+  const json& w3 = ray["walk3d"];
+  EXPECT_EQ(w3["current"].size(), ray["states"].size());
+  EXPECT_EQ(w3["stack"].size(), ray["states"].size());
+  const json tj = json::parse(slurp(trace));
+  EXPECT_EQ(w3["boxes"].size(), tj["geometry"]["nodes"].size() + tj["geometry"]["cells"].size());
+  for (const json& c : w3["current"]) EXPECT_LT(c.get<int>(), int(w3["boxes"].size()));
+  ASSERT_TRUE(d.contains("scenes"));
+  EXPECT_EQ(d["walks"][0]["scene"], 0);
+  EXPECT_GT(d["scenes"][0]["triangles"].size(), 0u);
+  EXPECT_EQ(d["scenes"][0]["triangles"].size() % 9, 0u);
+  EXPECT_GT(d["scenes"][0]["spheres"].size(), 0u);
+  EXPECT_NE(page.find("var raystepView3d="), std::string::npos);  // three.js and the view, bundled in
   for (size_t k : {size_t(0), size_t(5), ray["states"].size() - 1}) {
     Outcome replay = run("replay " + trace + " --step " + std::to_string(k));
     ASSERT_EQ(replay.code, 0) << replay.err;
@@ -122,6 +135,7 @@ TEST_F(HtmlCli, A2DScenesPageDrawsTheWalkAtEachStep) {
   EXPECT_EQ(p["caption"][7][1], "Stack: LLR,R   Current: LLL");
   EXPECT_EQ(walk7.find("<?xml"), std::string::npos);       // stacked in the page, not standalone documents
   EXPECT_EQ(walk7.find("background"), std::string::npos);  // transparent over the structure
+  EXPECT_LT(slurp(path("flat.html")).size(), 100000u);  // without the 3D view's script (three.js: 0.5 MB)
 }
 
 TEST_F(HtmlCli, ALessonsPageHasItsStepsWalksAndQuestions) {

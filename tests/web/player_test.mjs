@@ -1,7 +1,8 @@
 // The browser player in a real browser: pages written by `raystep export-html` from a grid, a kd-tree and an
 // 8-wide BVH trace of the Cornell box and from a 2D scene's ray, opened from disk (no network) in Debian's
 // Chromium driven by Playwright. At each step visited with the keys the page's state and Why text must
-// equal `raystep replay --step N` on the same trace; the 2D page draws the walk's current node. A lesson's
+// equal `raystep replay --step N` on the same trace; the 2D page draws the walk's current node, the 3D pages
+// (three.js) the current box, the stack's and the ray, checked in the canvas's pixels. A lesson's
 // page: its questions answered by clicking, against `raystep lesson answers`. The site of every lesson: each
 // page opens and steps to its end. Screenshots are kept beside the other artefacts to look at.
 //   node tests/web/player_test.mjs RAYSTEP_EXE SOURCE_DIR OUT_DIR
@@ -79,6 +80,41 @@ try {
         assert.equal(shown.why, want.why, `${c.name} step ${step}: the Why text`);
         const current = await page.textContent('#events li.current');
         assert.ok(want.state.startsWith(`${step}  ${current.trim().split(/\s+/)[0]}`), `${c.name} step ${step}: the event list`);
+      }
+      if (!c.flat) {
+        // The 3D view (three.js): at each step the box the data names current, the stack's, drawn; the current
+        // box's yellow in the canvas at a node or cell, none at the ray's start and end; the ray in red.
+        assert.equal(await page.locator('#view3d canvas').count(), 1, 'the 3D view');
+        const walk = await page.evaluate(() => window.raystep.data.walks[0].rays[0].walk3d);
+        assert.ok(walk.boxes.length > 0, 'the walk carries boxes');
+        const pixels = () => page.evaluate(() => {
+          const src = window.raystep.view3d.canvas;
+          const copy = document.createElement('canvas');
+          copy.width = src.width;
+          copy.height = src.height;
+          const g = copy.getContext('2d');
+          g.drawImage(src, 0, 0);
+          const d = g.getImageData(0, 0, copy.width, copy.height).data;
+          let yellow = 0, red = 0;
+          for (let i = 0; i < d.length; i += 4) {
+            if (d[i] - d[i + 2] > 40 && d[i + 1] - d[i + 2] > 25) ++yellow;
+            if (d[i] > 150 && d[i + 1] < 90 && d[i + 2] < 90) ++red;
+          }
+          return { yellow, red };
+        });
+        const inner = walk.current.findIndex((b) => b >= 0);
+        assert.ok(inner > 0, 'a step with a current box');
+        for (const k of [0, inner, events - 1]) {
+          await page.evaluate((s) => window.raystep.go(s), k);
+          const shown = await page.evaluate(() => ({ ...window.raystep.view3d.shown }));
+          assert.equal(shown.current, walk.current[k], `${c.name} step ${k}: the current box`);
+          assert.equal(shown.stack, walk.stack[k].length, `${c.name} step ${k}: the stack's boxes`);
+          const px = await pixels();
+          assert.ok(px.red > 100, `${c.name} step ${k}: the ray is drawn (${px.red} red pixels)`);
+          if (walk.current[k] >= 0) assert.ok(px.yellow > 500, `${c.name} step ${k}: the current box (${px.yellow})`);
+          else assert.ok(px.yellow < 50, `${c.name} step ${k}: no current box (${px.yellow})`);
+        }
+        await page.evaluate((s) => window.raystep.go(s), inner);
       }
       if (c.flat) {
         // The slides' picture: at step 7 the current leaf LLL in yellow with LLR and R stacked, captioned so.

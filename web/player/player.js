@@ -20,6 +20,9 @@
   }
   $('ray-choice').hidden = rays.length < 2;
 
+  // The 3D view of a 3D walk (view3d.js, with three.js), made when a ray with a 3D walk is first shown.
+  let view3d = null;
+  let view3dScene = null;
   let current = null;  // the ray shown
   const quiz = { open: false, ray: null, step: -1 };  // a lesson's question not answered yet, and where
   let step = 0;
@@ -55,6 +58,16 @@
       picture.style.width = svg.getAttribute('width') + 'px';
       picture.style.height = svg.getAttribute('height') + 'px';
     }
+    $('view3d').hidden = !r.walk3d;
+    if (r.walk3d && window.raystepView3d) {
+      const scene = data.scenes && current.walk.scene !== undefined ? data.scenes[current.walk.scene] : null;
+      if (!view3d || view3dScene !== scene) {  // a view for each scene in turn
+        $('view3d').textContent = '';
+        view3d = window.raystepView3d.createView($('view3d'), scene);
+        view3dScene = scene;
+      }
+      view3d.setRay(r.walk3d);
+    }
     go(Math.min(step, r.lines.length - 1), true);
   }
 
@@ -89,6 +102,7 @@
     } else {
       $('caption').textContent = untold(r.lines[step]);
     }
+    if (view3d && r.walk3d) view3d.setStep(step);
     document.body.dataset.step = String(step);
   }
 
@@ -194,7 +208,7 @@
     showLessonStep(0);
   }
   // For scripts and the browser tests: the step shown, and a way to go to one.
-  window.raystep = { data, go, get step() { return step; }, ray: (i) => showRay(i),
+  window.raystep = { data, go, get step() { return step; }, ray: (i) => showRay(i), get view3d() { return view3d; },
                      lessonStep: (i) => showLessonStep(i) };
   document.body.dataset.ready = 'true';
 })().catch((e) => {

@@ -132,6 +132,8 @@ std::string lesson_page(const Lesson& source, int picture_width) {
   std::map<const Accelerator*, std::unique_ptr<PlaneOutline>> outlines;
   ordered walks = ordered::array();
   ordered steps = ordered::array();
+  std::map<const Scene*, size_t> scene_of;
+  ordered scenes = ordered::array();
   for (size_t i = 0; i < lesson.steps.size(); ++i) {
     const LessonStep& step = lesson.steps[i];
     const StepWorld& w = worlds[i];
@@ -150,6 +152,11 @@ std::string lesson_page(const Lesson& source, int picture_width) {
           outline = o.get();
         }
         ordered jw{{"walk", at->second}, {"structure", w.trace->structure.kind}};
+        if (!flat && w.scene) {  // its 3D scene, once for every walk through it
+          auto [sat, new_scene] = scene_of.try_emplace(w.scene.get(), scenes.size());
+          if (new_scene) scenes.push_back(scene3d_json(*w.scene, kMaxPageTriangles));
+          jw["scene"] = sat->second;
+        }
         ordered rays = ordered::array();
         for (size_t r = 0; r < w.trace->rays.size(); ++r)
           rays.push_back(ray_json(*w.trace, 0, r, flat, outline, picture_width));
@@ -169,6 +176,7 @@ std::string lesson_page(const Lesson& source, int picture_width) {
   d["title"] = lesson.title;
   d["source"] = lesson.path;
   d["walks"] = std::move(walks);
+  d["scenes"] = std::move(scenes);
   d["lesson"] = {
       {"title", lesson.title}, {"intro", markdown_html(lesson.intro)}, {"steps", std::move(steps)}};
   return page_html(lesson.title, d);

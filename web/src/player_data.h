@@ -19,6 +19,11 @@ using ordered = nlohmann::ordered_json;
 ordered ray_json(const Trace& t, size_t w, size_t i, const Scene* flat_scene, const PlaneOutline* outline,
                  int picture_width);
 
+// A 3D scene for the page's three.js view: its bounds, its triangles (at most max_triangles; the rest counted
+// as omitted) and its spheres.
+ordered scene3d_json(const Scene& scene, size_t max_triangles);
+constexpr size_t kMaxPageTriangles = 200000;  // about 4 MB of JSON before compression
+
 // The page: the template with the title, the styles, the script and the data (gzip, base64) filled in.
 std::string page_html(const std::string& title, const ordered& data);
 

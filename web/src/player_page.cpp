@@ -3,6 +3,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -62,6 +65,60 @@ ordered flat_picture(const Scene& scene, const Trace& walk, size_t ray_index, co
   p["top"] = std::move(tops);
   p["caption"] = std::move(captions);
   return p;
+}
+
+// A walk's 3D picture (the page's three.js view): the boxes the trace carries (its cells, or its nodes), and
+// at each step the current one, the stack's and the interval on the ray. The page marks as visited the
+// boxes that were current before.
+ordered walk3d(const Trace& t, const TracedRay& ray) {
+  ordered boxes = ordered::array();
+  std::map<std::array<int, 3>, int> cell_box;
+  std::map<int32_t, int> node_box;
+  auto box = [](const Bounds3& b, bool leaf) {
+    return ordered::array({b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z, leaf ? 1 : 0});
+  };
+  for (const TraceCell& c : t.cells) {
+    cell_box[{c.cell[0], c.cell[1], c.cell[2]}] = int(boxes.size());
+    boxes.push_back(box(c.box, true));
+  }
+  for (const TraceNode& n : t.nodes) {
+    node_box[n.id] = int(boxes.size());
+    boxes.push_back(box(n.box, n.leaf));
+  }
+  ordered current = ordered::array(), stacks = ordered::array(), intervals = ordered::array();
+  const replay::Replayer replayer(ray);
+  for (int k = 0; k < replayer.size(); ++k) {
+    const replay::ReplayState s = replayer.at(k);
+    int cur = -1;
+    if (s.cell_event >= 0) {
+      const Event& e = ray.events[size_t(s.cell_event)];
+      if (auto it = cell_box.find({e.cell[0], e.cell[1], e.cell[2]}); it != cell_box.end()) cur = it->second;
+    } else if (s.node_event >= 0) {
+      if (auto it = node_box.find(ray.events[size_t(s.node_event)].node); it != node_box.end())
+        cur = it->second;
+    }
+    current.push_back(s.ended ? -1 : cur);
+    ordered stack = ordered::array();
+    if (!s.ended)
+      for (const replay::StackEntry& e : s.stack)
+        if (auto it = node_box.find(e.node); it != node_box.end()) stack.push_back(it->second);
+    stacks.push_back(std::move(stack));
+    if (s.has_interval && !s.ended && std::isfinite(s.t_min) && std::isfinite(s.t_max))
+      intervals.push_back(ordered::array({s.t_min, s.t_max}));
+    else
+      intervals.push_back(nullptr);
+  }
+  const replay::ReplayState end = replayer.at(replayer.size() - 1);
+  ordered w;
+  w["origin"] = ordered::array({ray.ray.origin.x, ray.ray.origin.y, ray.ray.origin.z});
+  w["direction"] = ordered::array({ray.ray.direction.x, ray.ray.direction.y, ray.ray.direction.z});
+  w["hit_t"] =
+      end.nearest_prim >= 0 && std::isfinite(end.nearest_t) ? ordered(end.nearest_t) : ordered(nullptr);
+  w["boxes"] = std::move(boxes);
+  w["current"] = std::move(current);
+  w["stack"] = std::move(stacks);
+  w["interval"] = std::move(intervals);
+  return w;
 }
 
 std::string gzip(const std::string& text) {
@@ -146,8 +203,34 @@ ordered ray_json(const Trace& t, size_t w, size_t i, const Scene* flat_scene, co
   }
   r["lines"] = std::move(lines);
   r["states"] = std::move(states);
-  if (flat_scene && flat_scene->flat) r["picture"] = flat_picture(*flat_scene, t, i, outline, picture_width);
+  if (flat_scene && flat_scene->flat)
+    r["picture"] = flat_picture(*flat_scene, t, i, outline, picture_width);
+  else
+    r["walk3d"] = walk3d(t, ray);
   return r;
+}
+
+ordered scene3d_json(const Scene& scene, size_t max_triangles) {
+  const Geometry& g = scene.geometry;
+  ordered j;
+  const Bounds3& b = g.bounds();
+  j["bounds"] = ordered::array({b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z});
+  std::vector<float> tri;
+  ordered spheres = ordered::array();
+  size_t triangles = 0;
+  for (uint32_t id = 0; id < g.size(); ++id) {
+    if (g.type(id) == PrimType::sphere) {
+      const Sphere& sp = g.sphere(id);
+      spheres.push_back(ordered::array({sp.center.x, sp.center.y, sp.center.z, sp.radius}));
+    } else if (++triangles <= max_triangles) {
+      for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) tri.push_back(g.vertex(id, k)[a]);
+    }
+  }
+  j["triangles"] = std::move(tri);
+  j["spheres"] = std::move(spheres);
+  j["omitted"] = triangles > max_triangles ? triangles - max_triangles : 0;
+  return j;
 }
 
 ordered player_data(const PlayerInput& in) {
@@ -176,6 +259,10 @@ ordered player_data(const PlayerInput& in) {
   }
   if (rays == 0) throw InputError("", 0, "export-html: the trace has no ray with events to play");
   d["walks"] = std::move(walks);
+  if (in.scene3d && !in.flat_scene) {  // every walk is of the one scene
+    d["scenes"] = ordered::array({scene3d_json(*in.scene3d, kMaxPageTriangles)});
+    for (ordered& jw : d["walks"]) jw["scene"] = 0;
+  }
   return d;
 }
 
@@ -184,11 +271,16 @@ std::string player_data_json(const PlayerInput& in) {
 }
 
 std::string page_html(const std::string& title, const ordered& data) {
+  // The 3D view's script (three.js, about 0.5 MB) only in a page with a 3D walk.
+  bool walk3d = false;
+  for (const ordered& w : data["walks"])
+    for (const ordered& r : w["rays"]) walk3d |= r.contains("walk3d");
   // The styles and the script inlined; the data gzip-compressed, as base64 (the script inflates it with the
   // browser's DecompressionStream).
   return fill(assets::player_html, {{"@TITLE@", xml_escape(title)},
                                     {"@CSS@", assets::player_css},
                                     {"@DATA@", base64(gzip(data.dump()))},
+                                    {"@VIEW3D@", walk3d ? assets::view3d_js : ""},
                                     {"@JS@", assets::player_js}});
 }
 

@@ -23,6 +23,9 @@ struct PlayerInput {
   // (outlines[w] for walk w; a null outline: the scene without a structure).
   const Scene* flat_scene = nullptr;
   std::vector<const PlaneOutline*> outlines;
+  // A 3D trace's scene, drawn under the walk's boxes in the page's 3D view (null: the boxes and the ray
+  // only).
+  const Scene* scene3d = nullptr;
   int picture_width = 560;  // points
 };
 
