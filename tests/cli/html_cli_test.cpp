@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -31,25 +32,19 @@ int count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// The page's data: the base64 between the data script's tags, gzip-inflated, parsed.
-json page_data(const std::string& page) {
-  const std::string open = "<script type=\"application/octet-stream\" id=\"raystep-data\">";
-  const size_t from = page.find(open);
-  EXPECT_NE(from, std::string::npos);
-  if (from == std::string::npos) return json();
-  const size_t to = page.find("</script>", from);
+// Base64 to bytes, skipping line breaks and padding.
+std::string base64_decode(const std::string& text) {
   std::string bytes;
   uint32_t acc = 0;
   int bits = 0;
-  for (size_t i = from + open.size(); i < to; ++i) {
-    const char c = page[i];
+  for (const char c : text) {
     int v = c >= 'A' && c <= 'Z'   ? c - 'A'
             : c >= 'a' && c <= 'z' ? c - 'a' + 26
             : c >= '0' && c <= '9' ? c - '0' + 52
             : c == '+'             ? 62
             : c == '/'             ? 63
                                    : -1;
-    if (v < 0) continue;  // line breaks, padding
+    if (v < 0) continue;
     acc = acc << 6 | uint32_t(v);
     bits += 6;
     if (bits >= 8) {
@@ -57,6 +52,17 @@ json page_data(const std::string& page) {
       bytes += char((acc >> bits) & 0xff);
     }
   }
+  return bytes;
+}
+
+// The page's data: the base64 between the data script's tags, gzip-inflated, parsed.
+json page_data(const std::string& page) {
+  const std::string open = "<script type=\"application/octet-stream\" id=\"raystep-data\">";
+  const size_t from = page.find(open);
+  EXPECT_NE(from, std::string::npos);
+  if (from == std::string::npos) return json();
+  const size_t to = page.find("</script>", from);
+  std::string bytes = base64_decode(page.substr(from + open.size(), to - from - open.size()));
   z_stream z{};
   EXPECT_EQ(inflateInit2(&z, 15 + 16), Z_OK);
   std::string text;
@@ -166,6 +172,94 @@ TEST_F(HtmlCli, ALessonsPageHasItsStepsWalksAndQuestions) {
   EXPECT_EQ(questions, 3);
   // One trace for the steps on one pixel.
   EXPECT_EQ(d["walks"].size(), 1u);
+}
+
+// The size in a PNG's header (IHDR: width and height, big-endian, after the 8-byte signature and 8 bytes).
+std::pair<int, int> png_size(const std::string& png) {
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  auto be = [&](size_t at) {
+    return int(uint8_t(png[at])) << 24 | int(uint8_t(png[at + 1])) << 16 | int(uint8_t(png[at + 2])) << 8 |
+           int(uint8_t(png[at + 3]));
+  };
+  return png.size() >= 24 ? std::pair{be(16), be(20)} : std::pair{0, 0};
+}
+
+// The first inlined picture's bytes (<img src="data:image/png;base64,...">).
+std::string first_png(const std::string& html) {
+  const std::string key = "src=\"data:image/png;base64,";
+  const size_t at = html.find(key);
+  if (at == std::string::npos) return "";
+  const size_t from = at + key.size();
+  return base64_decode(html.substr(from, html.find('"', from) - from));
+}
+
+TEST_F(HtmlCli, ALessonsStepsWithoutAWalkDrawTheirFigure) {
+  // A pixel's anti-aliasing with the inspector open, a kd-tree node's cost curve with its question, the
+  // tree, a heat map, and a report: what the debugger's figure for each step shows, drawn into the page.
+  const std::string lesson = path("figures.md");
+  std::ofstream(lesson) << "# Figures\n\nThe figures of a lesson.\n\n"
+                           "## The pixel\n\nExact: {{pixel.exact:.4f}}.\n\n```raystep\nscene: "
+                        << kSource
+                        << "/scenes/aliasing.json\naccel: grid\naa: regular:4\npixel: 32,38\nzoom: 16\n"
+                           "inspect: on\nshow: picture\n```\n\n"
+                           "## The curve\n\nThe root.\n\n```raystep\nscene: "
+                        << kSource
+                        << "/scenes/torus_knot.json\naccel: kd\npixel: none\ninspect: off\nnode: 0\npanel: sah\n"
+                           "show: chart\nask: sah-plane\n```\n\n"
+                           "## The tree\n\nIts shape.\n\n```raystep\nshow: tree\n```\n\n"
+                           "## The heat\n\nTests.\n\n```raystep\nheat: tests\nshow: picture\n```\n\n"
+                           "## The report\n\nKinds.\n\n```raystep\nscene: "
+                        << kSource << "/scenes/cornell.json\nheat: none\nshow: window\nreport: bvol\n```\n";
+  Outcome r = run("export-html " + lesson + " -o " + path("f.html"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json d = page_data(slurp(path("f.html")));
+  ASSERT_TRUE(d.is_object());
+  const json& steps = d["lesson"]["steps"];
+  ASSERT_EQ(steps.size(), 5u);
+  for (const json& step : steps) ASSERT_TRUE(step.contains("figure")) << step["title"];
+
+  // The picture, zoomed 16 times around the pixel: 560 / 16 = 35 pixels across, 21 down; the pixel framed.
+  const std::string picture = steps[0]["figure"]["html"];
+  EXPECT_EQ(steps[0]["figure"]["kind"], "picture");
+  EXPECT_EQ(png_size(first_png(picture)), (std::pair{35, 21}));
+  EXPECT_EQ(count(picture, "class=\"frame\""), 2);  // its two strokes
+  // The inspector: the 16 samples, the 3 + 3 dashed strata lines, the value and the exact coverage, which
+  // the narration's number (the lesson facts) gives too.
+  EXPECT_EQ(count(picture, "<circle class=\"sample"), 16);
+  EXPECT_EQ(count(picture, "class=\"strata\""), 1);
+  const std::string narration = steps[0]["html"];
+  const size_t exact_at = narration.find("Exact: ");
+  ASSERT_NE(exact_at, std::string::npos);
+  const std::string exact = narration.substr(exact_at + 7, 6);
+  EXPECT_NE(picture.find("exact coverage " + exact), std::string::npos) << exact << "\n" << picture.substr(0, 200);
+  EXPECT_NE(picture.find("16 samples (regular:4)"), std::string::npos);
+
+  // The curve: the chosen split's words are the question's answer, and they are marked as the answer.
+  const json& curve = steps[1]["figure"];
+  EXPECT_EQ(curve["kind"], "chart");
+  const std::string answer = steps[1]["question"]["answer"];  // "x = 0.11"
+  ASSERT_GE(answer.size(), 5u);
+  const std::string chart = curve["html"];
+  const size_t words = chart.find(">chosen: split " + answer.substr(0, 1) + " at ");
+  ASSERT_NE(words, std::string::npos) << answer;
+  EXPECT_NE(chart.rfind("<text class=\"answer\"", words), std::string::npos);
+  EXPECT_GE(count(chart, "class=\"answer chosen\""), 2);  // its line and its ring
+  EXPECT_GT(count(chart, "class=\"candidate-"), 100);
+  EXPECT_EQ(curve["caption"].get<std::string>().find("chosen"), std::string::npos);  // the caption tells nothing
+  // The tree: the kd-tree's shape over the same curve.
+  EXPECT_EQ(steps[2]["figure"]["kind"], "tree");
+  EXPECT_NE(steps[2]["figure"]["html"].get<std::string>().find("The kd-tree: "), std::string::npos);
+  // The heat map: the whole picture (no zoom without a pixel) with its colour bar: wider than the picture.
+  const std::pair<int, int> heat = png_size(first_png(steps[3]["figure"]["html"]));
+  EXPECT_GT(heat.first, 400);  // the torus knot's picture is 400 x 300
+  EXPECT_EQ(heat.second, 300);
+  EXPECT_NE(steps[3]["figure"]["caption"].get<std::string>().find("Heat map: "), std::string::npos);
+  // The report: a table with a row for each of the four kinds.
+  const std::string table = steps[4]["figure"]["html"];
+  EXPECT_EQ(steps[4]["figure"]["kind"], "report");
+  EXPECT_EQ(count(table, "<tr>"), 5);
+  for (const char* kind : {">bvol<", ">bvol-sphere<", ">bvol-kdop<", ">bvol-obb<"})
+    EXPECT_NE(table.find(kind), std::string::npos) << kind;
 }
 
 TEST_F(HtmlCli, ALessonSiteIsWrittenWholeOrNotAtAll) {

@@ -202,7 +202,18 @@ try {
       await page.goto('file://' + path.join(site, href));
       await page.waitForSelector('body[data-ready="true"]', { timeout: 10000 });
       const n = await page.evaluate(() => window.raystep.data.lesson.steps.length);
-      for (let k = 1; k < n; ++k) await page.keyboard.press('PageDown');
+      for (let k = 0; k < n; ++k) {
+        if (k > 0) await page.keyboard.press('PageDown');
+        // Every step shows a picture: its figure (the rendered picture, a curve, the tree, a report) or its walk,
+        // and every inlined image decodes.
+        const shown = await page.evaluate(() => ({
+          figure: !document.getElementById('figure-side').hidden,
+          walk: !document.body.classList.contains('no-walk'),
+          images: Array.from(document.querySelectorAll('#figure-body img')).map((i) => i.complete && i.naturalWidth > 0),
+        }));
+        assert.ok(shown.figure || shown.walk, `${href} step ${k + 1}: a picture`);
+        assert.ok(shown.images.every((ok) => ok), `${href} step ${k + 1}: its images decode`);
+      }
       assert.equal(await page.textContent('#lesson-position'), `Step ${n} of ${n}`, href);
       assert.equal(await page.evaluate(() => document.body.dataset.error || ''), '', href);
       assert.deepEqual(requests, [], `${href}: the page asks the network for nothing`);
@@ -211,6 +222,24 @@ try {
       await page.close();
     }
     console.log(`ok site: ${links.length} lessons`);
+
+    // Lesson 11's cost-curve question: the chart shows the curve but not the chosen plane until the answer.
+    const page = await browser.newPage({ viewport: { width: 1280, height: 1100 } });
+    await page.goto('file://' + path.join(site, '11-sah-build.html'));
+    await page.waitForSelector('body[data-ready="true"]', { timeout: 10000 });
+    const asked = await page.evaluate(() => window.raystep.data.lesson.steps.findIndex((s) => s.question));
+    await page.evaluate((k) => window.raystep.lessonStep(k), asked);
+    const chosen = page.locator('#figure-body .chosen').first();
+    assert.equal(await chosen.evaluate((e) => getComputedStyle(e).visibility), 'hidden', 'the chosen plane waits');
+    assert.ok(await page.locator('#figure-body [class^="candidate-"]').count() > 100, 'the candidates show');
+    const right = await page.evaluate((k) => window.raystep.data.lesson.steps[k].question.choices.findIndex((c) => c.right),
+                                      asked);
+    await page.locator('#choices button').nth(right).click();
+    assert.equal(await page.textContent('#verdict'), 'Right.');
+    await page.screenshot({ path: path.join(out, 'player-lesson-11.png'), fullPage: true });
+    assert.equal(await chosen.evaluate((e) => getComputedStyle(e).visibility), 'visible', 'then it shows');
+    await page.close();
+    console.log('ok lesson 11: the chart hides the chosen plane until the answer');
   } catch (e) {
     ++failures;
     console.error(`FAILED lesson site: ${e.message}`);

@@ -154,6 +154,10 @@
     $('lesson-back').disabled = lessonStep === 0;
     $('lesson-next').disabled = lessonStep === lesson.steps.length - 1;
     document.body.classList.toggle('no-walk', s.walk < 0);
+    // The step's figure when it is not the walk: the picture, a cost curve, the tree, a report.
+    $('figure-side').hidden = !s.figure;
+    $('figure-body').innerHTML = s.figure ? s.figure.html : '';
+    $('figure-caption').textContent = s.figure ? s.figure.caption : '';
     if (s.walk >= 0) {
       const r = rayIndex(s.walk, s.ray);
       step = s.step;
@@ -166,8 +170,10 @@
     quiz.open = Boolean(q) && s.walk >= 0;
     quiz.ray = current;
     quiz.step = s.step;
+    document.body.classList.toggle('asking', Boolean(q));  // the figure's answer hidden until then
     const answered = () => {
       quiz.open = false;
+      document.body.classList.remove('asking');
       $('answer').hidden = false;
       if (current) go(step, true);
     };

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "player_data.h"
+#include "step_figure.h"
 #include "raystep/lesson/lesson_runner.h"
 #include "raystep/lesson/question.h"
 #include "raystep/replay/octree_choice.h"
@@ -19,12 +20,6 @@ namespace raystep::web {
 
 namespace {
 
-std::string markdown_html(const std::string& markdown) {
-  char* html = cmark_markdown_to_html(markdown.data(), markdown.size(), CMARK_OPT_DEFAULT);
-  std::string out = html ? html : "";
-  std::free(html);
-  return out;
-}
 
 // The predictions a student can click for the question: every form the kind accepts that the step makes
 // sensible (the cells beside the current one, the nodes on the stack, the axes, ...), labels beside the
@@ -116,6 +111,13 @@ ordered question_json(const LessonStep& step, const StepWorld& w) {
 
 }  // namespace
 
+std::string markdown_html(const std::string& markdown) {
+  char* html = cmark_markdown_to_html(markdown.data(), markdown.size(), CMARK_OPT_DEFAULT);
+  std::string out = html ? html : "";
+  std::free(html);
+  return out;
+}
+
 std::string lesson_page(const Lesson& source, int picture_width) {
   const Lesson lesson = lesson_with_numbers(source);
   LessonRunner runner;
@@ -166,6 +168,11 @@ std::string lesson_page(const Lesson& source, int picture_width) {
       js["walk"] = at->second;
       js["ray"] = w.ray;
       js["step"] = w.step;
+    }
+    try {
+      if (auto figure = step_figure_json(step, w, picture_width)) js["figure"] = std::move(*figure);
+    } catch (const InputError& e) {
+      throw InputError(lesson.path, step.line, "step '" + step.title + "': its figure: " + e.detail());
     }
     if (step.ask && w.answer) js["question"] = question_json(step, w);
     steps.push_back(std::move(js));

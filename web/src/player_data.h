@@ -24,6 +24,12 @@ ordered ray_json(const Trace& t, size_t w, size_t i, const Scene* flat_scene, co
 ordered scene3d_json(const Scene& scene, size_t max_triangles);
 constexpr size_t kMaxPageTriangles = 200000;  // about 4 MB of JSON before compression
 
+// Markdown (a lesson's narration, a report's table) as HTML, by cmark.
+std::string markdown_html(const std::string& markdown);
+
+// Bytes as base64, in lines of 76 characters or (wrap false: a data: URL's) in one.
+std::string base64(const std::string& bytes, bool wrap = true);
+
 // The page: the template with the title, the styles, the script and the data (gzip, base64) filled in.
 std::string page_html(const std::string& title, const ordered& data);
 

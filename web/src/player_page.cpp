@@ -137,7 +137,9 @@ std::string gzip(const std::string& text) {
   return out;
 }
 
-std::string base64(const std::string& bytes) {
+}  // namespace
+
+std::string base64(const std::string& bytes, bool wrap) {
   static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4 + bytes.size() / 57 + 1);
@@ -146,7 +148,7 @@ std::string base64(const std::string& bytes) {
     const uint32_t v =
         uint32_t(uint8_t(bytes[i])) << 16 | uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
     out += {k[v >> 18], k[(v >> 12) & 63], k[(v >> 6) & 63], k[v & 63]};
-    if ((i / 3 + 1) % 19 == 0) out += '\n';  // 76 characters a line
+    if (wrap && (i / 3 + 1) % 19 == 0) out += '\n';  // 76 characters a line
   }
   if (i + 1 == bytes.size()) {
     const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
@@ -182,8 +184,6 @@ std::string fill(const std::string& tmpl, const std::vector<std::pair<std::strin
   out.append(tmpl, std::min(at, tmpl.size()), std::string::npos);
   return out;
 }
-
-}  // namespace
 
 ordered ray_json(const Trace& t, size_t w, size_t i, const Scene* flat_scene, const PlaneOutline* outline,
                  int picture_width) {

@@ -172,15 +172,26 @@ int pfm_dimension(const std::string& path, const std::string& token) {
 
 }  // namespace
 
-void write_png(const std::string& path, const Image& image) {
-  check_image(path, image);
+std::vector<uint8_t> png_bytes(const Image& image) {
+  check_image("", image);
   std::vector<uint8_t> rgb(image.pixels.size() * 3);
   for (size_t i = 0; i < image.pixels.size(); ++i)
     for (int a = 0; a < 3; ++a) rgb[3 * i + a] = srgb_encode8(image.pixels[i][a]);
   std::vector<uint8_t> encoded;
   PngError error{};
   if (!encode_png(rgb.data(), image.width, image.height, &encoded, &error))
-    throw InputError(path, 0, std::string("cannot encode PNG: ") + error.message);
+    throw InputError("", 0, std::string("cannot encode PNG: ") + error.message);
+  return encoded;
+}
+
+void write_png(const std::string& path, const Image& image) {
+  check_image(path, image);
+  std::vector<uint8_t> encoded;
+  try {
+    encoded = png_bytes(image);
+  } catch (const InputError& e) {
+    throw InputError(path, 0, e.detail());
+  }
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(encoded.data()), std::streamsize(encoded.size()));
   });

@@ -8,6 +8,8 @@
 #include <tbb/task_arena.h>
 
 #include "raystep/render/camera.h"
+#include "raystep/render/reference.h"
+#include "raystep/render/render.h"
 #include "raystep/util/error.h"
 
 namespace raystep {
@@ -142,6 +144,20 @@ Image heatmap_image(const HeatMap& heat) {
     for (int x = heat.width + gap; x < heat.width + gap + bar; ++x) img.at(x, y) = viridis(t);
   }
   return img;
+}
+
+HeatMap scene_heatmap(const Scene& scene, const Accelerator& accel, const AntiAliasing& aa, int width, int height,
+                      HeatQuantity q, int threads) {
+  if (q != HeatQuantity::samples && q != HeatQuantity::error)
+    return compute_heatmap(scene.camera, accel, width, height, q, threads);
+  RenderOptions options = render_options(scene.render);
+  options.aa = aa;
+  options.width = width;
+  options.height = height;
+  options.threads = threads;
+  const RenderResult r = render_image(scene, accel, options);
+  if (q == HeatQuantity::samples) return samples_heatmap(r.samples, width, height);
+  return error_heatmap(pixel_errors(r.image, render_exact_coverage(scene, width, height, aa.filter)), width, height);
 }
 
 }  // namespace raystep

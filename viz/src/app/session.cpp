@@ -96,18 +96,7 @@ QImage renderPicture(const StructureData& s, const std::string& aaSpec, int widt
 HeatMap computeHeat(const StructureData& s, HeatQuantity q, const std::string& aaSpec, int width, int height,
                     double* ms) {
   auto t0 = std::chrono::steady_clock::now();
-  HeatMap h;
-  if (q == HeatQuantity::samples) {
-    h = samples_heatmap(renderWith(s, aaSpec, width, height).samples, width, height);
-  } else if (q == HeatQuantity::error) {
-    // Against the exact picture pre-filtered by the method's own filter (render_exact_coverage throws, with the
-    // reason, without one).
-    const Image reference =
-        render_exact_coverage(s.scene->scene, width, height, antiAliasingOf(s.scene->scene, aaSpec).filter);
-    h = error_heatmap(pixel_errors(renderWith(s, aaSpec, width, height).image, reference), width, height);
-  } else {
-    h = compute_heatmap(s.scene->scene.camera, *s.accel, width, height, q, 0);
-  }
+  HeatMap h = scene_heatmap(s.scene->scene, *s.accel, antiAliasingOf(s.scene->scene, aaSpec), width, height, q, 0);
   if (ms) *ms = msSince(t0);
   return h;
 }

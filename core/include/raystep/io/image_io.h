@@ -13,6 +13,8 @@
 namespace raystep {
 
 void write_png(const std::string& path, const Image& image);
+// The same PNG file's bytes, in memory (a page's inlined picture). Throws InputError("", 0, ...) as write_png.
+std::vector<uint8_t> png_bytes(const Image& image);
 // Little-endian (scale -1), exact float bits: read_pfm(write_pfm(img)) == img bit for bit.
 void write_pfm(const std::string& path, const Image& image);
 // Accepts colour ("PF") and greyscale ("Pf", expanded to RGB) maps of either byte order.

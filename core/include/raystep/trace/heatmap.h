@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raystep/accel/accelerator.h"
+#include "raystep/render/antialiasing.h"
 #include "raystep/render/image.h"
 #include "raystep/scene/scene.h"
 
@@ -41,6 +42,13 @@ HeatMap samples_heatmap(const std::vector<uint32_t>& samples, int width, int hei
 
 // The per-pixel error of a picture against its reference (render/reference.h pixel_errors), in thousandths.
 HeatMap error_heatmap(const std::vector<float>& errors, int width, int height);
+
+// The map of quantity q over the scene's picture at width x height, as the debugger's image view shows it: a
+// traversal quantity through `accel` (compute_heatmap), the samples a render with `aa` cast per pixel, or its
+// error against the exact picture pre-filtered with aa's own filter (throws InputError("", 0, why) when the
+// scene has no exact reference).
+HeatMap scene_heatmap(const Scene& scene, const Accelerator& accel, const AntiAliasing& aa, int width, int height,
+                      HeatQuantity q, int threads);
 
 // The map on the colour ramp (0 .. max_value), with a colour bar (bottom 0, top max) in a strip on the right.
 Image heatmap_image(const HeatMap& heat);
