@@ -30,15 +30,17 @@ std::vector<std::pair<std::string, std::string>> choices(const Answer& a, const 
     for (const char* f : forms) out.push_back({f, f});
   };
   const bool flat = w.scene && w.scene->flat;
+  auto axes_and = [&](const char* last) {  // the plane's or the space's axes, then one more answer
+    for (const char* axis : {"x", "y", "z"})
+      if (!flat || axis[0] != 'z') out.push_back({axis, axis});
+    out.push_back({last, last});
+  };
   std::optional<replay::ReplayState> state;
   if (w.trace && w.ray >= 0 && size_t(w.ray) < w.trace->rays.size())
     state = replay::Replayer(w.trace->rays[size_t(w.ray)]).at(w.step);
   switch (a.kind) {
     case QuestionKind::dda_axis:
-      if (flat)
-        plain({"x", "y", "none"});
-      else
-        plain({"x", "y", "z", "none"});
+      axes_and("none");
       break;
     case QuestionKind::first_child:
     case QuestionKind::next_cell:
@@ -72,10 +74,7 @@ std::vector<std::pair<std::string, std::string>> choices(const Answer& a, const 
       plain({"stop"});
       break;
     case QuestionKind::sah_plane:
-      if (flat)
-        plain({"x", "y", "leaf"});
-      else
-        plain({"x", "y", "z", "leaf"});
+      axes_and("leaf");
       break;
     case QuestionKind::subdivide:
       plain({"yes", "no"});
