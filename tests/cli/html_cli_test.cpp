@@ -246,6 +246,7 @@ TEST_F(HtmlCli, ALessonsStepsWithoutAWalkDrawTheirFigure) {
   EXPECT_GE(count(chart, "class=\"answer chosen\""), 2);  // its line and its ring
   EXPECT_GT(count(chart, "class=\"candidate-"), 100);
   EXPECT_EQ(curve["caption"].get<std::string>().find("chosen"), std::string::npos);  // the caption tells nothing
+  EXPECT_NE(curve["caption"].get<std::string>().find("kd-tree node 0 (the root), depth 0"), std::string::npos);
   // The tree: the kd-tree's shape over the same curve.
   EXPECT_EQ(steps[2]["figure"]["kind"], "tree");
   EXPECT_NE(steps[2]["figure"]["html"].get<std::string>().find("The kd-tree: "), std::string::npos);

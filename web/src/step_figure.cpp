@@ -27,6 +27,11 @@ namespace raystep::web {
 
 namespace {
 
+// The step's anti-aliasing: its spec, or the scene's own ("" or "scene").
+AntiAliasing step_antialiasing(const StepWorld& w) {
+  return w.aa.empty() || w.aa == "scene" ? w.scene->render.aa : parse_antialiasing(w.aa);
+}
+
 std::string num(double v, int digits = 3) {
   char b[48];
   std::snprintf(b, sizeof b, "%.*f", digits, v);
@@ -154,7 +159,7 @@ std::string inspector_html(const LessonState& s, const StepWorld& w, const Trace
 
 ordered picture_figure(const LessonStep& step, const StepWorld& w, int width) {
   const LessonState& s = step.state;
-  const AntiAliasing aa = w.aa.empty() || w.aa == "scene" ? w.scene->render.aa : parse_antialiasing(w.aa);
+  const AntiAliasing aa = step_antialiasing(w);
   Image image;
   std::string words;
   bool heat = !s.heat.empty() && s.heat != "none";
@@ -205,23 +210,21 @@ ordered picture_figure(const LessonStep& step, const StepWorld& w, int width) {
   return {{"kind", "picture"}, {"html", html}, {"caption", words}};
 }
 
-// The selected node's SAH cost curve (kd-tree or binary BVH); nullopt for another structure.
-std::optional<Figure> curve_figure(const StepWorld& w, std::string* path) {
+// The selected node's SAH cost curve (kd-tree or binary BVH), its path as the step names it; nullopt for
+// another structure.
+std::optional<Figure> curve_figure(const StepWorld& w, const std::string& path) {
   const uint32_t node = uint32_t(std::max(0, w.node));
-  *path = "";
   if (const auto* kd = dynamic_cast<const KdTree*>(w.accel.get()))
-    return sah_curve_figure(record_sah_curve(kd->geometry(), kd->options(), node), *path);
+    return sah_curve_figure(record_sah_curve(kd->geometry(), kd->options(), node), path);
   if (const auto* bvh = dynamic_cast<const Bvh*>(w.accel.get()))
-    return sah_curve_figure(record_bvh_sah_curve(bvh->geometry(), bvh->options(), node), *path);
+    return sah_curve_figure(record_bvh_sah_curve(bvh->geometry(), bvh->options(), node), path);
   return std::nullopt;
 }
 
 std::optional<ordered> chart_figure(const LessonStep& step, const StepWorld& w, int width, bool with_tree) {
-  std::string path = step.state.node.by == NodeSpec::By::path ? step.state.node.path : "";
-  std::string ignored;
-  std::optional<Figure> f = curve_figure(w, &ignored);
+  std::optional<Figure> f =
+      curve_figure(w, step.state.node.by == NodeSpec::By::path ? step.state.node.path : std::string());
   if (!f) return std::nullopt;
-  if (!path.empty()) f->caption[0] += " (path " + path + ")";
   std::string html;
   std::string words = f->caption[0] + "; " + f->caption[1];
   if (with_tree) {
@@ -292,7 +295,7 @@ std::optional<ordered> step_figure_json(const LessonStep& step, const StepWorld&
     FlatAaInput in;
     in.scene = w.scene.get();
     in.accel = w.accel.get();
-    in.aa = w.aa.empty() || w.aa == "scene" ? w.scene->render.aa : parse_antialiasing(w.aa);
+    in.aa = step_antialiasing(w);
     in.width = w.width;
     in.height = w.height;
     const FlatAa fa = flat_aa_figure(in);

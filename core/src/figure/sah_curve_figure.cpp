@@ -126,7 +126,8 @@ Figure chart(const std::vector<Dot>& dots, float leaf_cost, const Decision& deci
 }
 
 std::string node_words(uint32_t node, const std::string& path, int depth, uint32_t n) {
-  return "node " + std::to_string(node) + (path.empty() ? " (the root)" : " (" + path + ")") + ", depth " +
+  const std::string where = node == 0 ? " (the root)" : path.empty() ? "" : " (path " + path + ")";
+  return "node " + std::to_string(node) + where + ", depth " +
          std::to_string(depth) + ", N = " + std::to_string(n) + " primitives";
 }
 

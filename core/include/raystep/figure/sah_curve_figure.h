@@ -12,7 +12,7 @@
 
 namespace raystep {
 
-// path: the node's "LRL" from the root ("" the root), for the caption.
+// path: the node's "LRL" from the root, for the caption ("": not named; node 0 is called the root).
 Figure sah_curve_figure(const SahCurve& curve, const std::string& path);
 Figure sah_curve_figure(const BvhSahCurve& curve, const std::string& path);
 
