@@ -8,6 +8,10 @@
 #include "commands.h"
 #include "raystep/accel/bvh.h"
 #include "raystep/accel/bvh_entry_probability.h"
+#include "raystep/accel/bvh_names.h"
+#include "raystep/accel/bvh_quality.h"
+#include "raystep/render/camera.h"
+#include "raystep/scene/ray_sets.h"
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
@@ -20,10 +24,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 BvhBuilder builder_of(const std::string& accel) {
-  if (accel == "bvh") return BvhBuilder::binned;
-  if (accel == "bvh-sweep") return BvhBuilder::sweep;
-  if (accel == "bvh-median") return BvhBuilder::median;
-  throw InputError("", 0, "--accel '" + accel + "': bvh | bvh-sweep | bvh-median");
+  std::optional<BvhName> name = parse_bvh_name(accel);
+  if (name && name->width == 2) return name->builder;
+  throw InputError("", 0, "--accel '" + accel + "': bvh | bvh-sweep | bvh-median | bvh-sbvh");
 }
 
 std::string extension(const std::string& path) {
@@ -77,11 +80,18 @@ int run_bvh_sah(const SahArgs& a) {
     }
   } else if (curve.chosen >= 0) {
     const BvhCandidate& c = curve.candidates[size_t(curve.chosen)];
-    std::printf(
-        "decision: split %c after %s %d (plane %.9g): %u left, %u right, cost %g against leaf cost N*t_i = "
-        "%g\n",
-        "xyz"[c.axis], options.builder == BvhBuilder::binned ? "bin" : "position", c.bin, c.position,
-        c.n_left, c.n_right, c.cost, curve.leaf_cost);
+    if (c.spatial)
+      std::printf(
+          "decision: spatial split %c at plane %.9g (bin %d of the node's box): %u references left, %u right "
+          "(the primitives crossing the plane on both sides), cost %g against leaf cost N*t_i = %g\n",
+          "xyz"[c.axis], c.position, c.bin, c.n_left, c.n_right, c.cost, curve.leaf_cost);
+    else
+      std::printf(
+          "decision: split %c after %s %d (plane %.9g): %u left, %u right, cost %g against leaf cost N*t_i = "
+          "%g\n",
+          "xyz"[c.axis],
+          options.builder == BvhBuilder::binned || options.builder == BvhBuilder::sbvh ? "bin" : "position",
+          c.bin, c.position, c.n_left, c.n_right, c.cost, curve.leaf_cost);
     if (!(c.cost < curve.leaf_cost))
       std::printf("  (not cheaper than a leaf, but N > --bvh-max-leaf %d forces a split)\n",
                   options.max_leaf_size);
@@ -95,6 +105,8 @@ int run_bvh_sah(const SahArgs& a) {
 int run_bvh_stats(const KdStatsArgs& a) {
   if (a.lines < 1 || a.lines > (uint64_t(1) << 26)) throw InputError("", 0, "--lines must be 1..67108864");
   if (!a.csv.empty()) check_output_folder(a.csv);
+  if (!a.quality_csv.empty()) check_output_folder(a.quality_csv);
+  if (a.rays < 1 || a.rays > (uint64_t(1) << 24)) throw InputError("", 0, "--rays must be 1..16777216");
   BvhOptions options = bvh_options(a.structure);
   options.builder = builder_of(a.structure.accel);
   Scene scene = load_scene(a.scene);
@@ -117,19 +129,77 @@ int run_bvh_stats(const KdStatsArgs& a) {
               bvh.memory_bytes());
   std::printf("depth: max %d (limit %d), mean leaf depth %.2f\n", st.max_depth, options.max_depth,
               st.leaves ? leaf_depth / double(st.leaves) : 0.0);
-  std::printf(
-      "primitives per leaf: mean %.2f, max %zu (leaf size %d, max leaf size %d); each primitive in one "
-      "leaf\n",
-      st.mean_leaf_prims, st.max_leaf_prims, options.leaf_size, options.max_leaf_size);
-  std::printf(
-      "SAH cost of the tree: %.3f (t_i %g, t_t %g%s); a single leaf would cost %.1f\n", st.sah_cost,
-      options.t_i, options.t_t,
-      options.builder == BvhBuilder::binned ? (", " + std::to_string(options.bins) + " bins").c_str() : "",
-      double(prims) * options.t_i);
+  char per[32];
+  std::snprintf(per, sizeof per, "%.3f", double(st.references) / double(std::max<size_t>(prims, 1)));
+  const std::string placed = st.references == prims ? std::string("each primitive in one leaf")
+                                                    : std::to_string(st.references) + " references, " + per +
+                                                          " per primitive (spatial splits)";
+  std::printf("primitives per leaf: mean %.2f, max %zu (leaf size %d, max leaf size %d); %s\n",
+              st.mean_leaf_prims, st.max_leaf_prims, options.leaf_size, options.max_leaf_size, placed.c_str());
+  const std::string bins = options.builder == BvhBuilder::binned || options.builder == BvhBuilder::sbvh
+                               ? ", " + std::to_string(options.bins) + " bins"
+                               : "";
+  std::printf("SAH cost of the tree: %.3f (t_i %g, t_t %g%s); a single leaf would cost %.1f\n", st.sah_cost,
+              options.t_i, options.t_t, bins.c_str(), double(prims) * options.t_i);
   std::printf(
       "sibling overlap: %.4f (sum over inner nodes of S(left box ∩ right box) / S(node), weighted by "
       "S(node) / S(root))\n",
       st.overlap);
+
+  // Quality (accel/bvh_quality.h): EPO, the histograms, and the cost measured on rays against the SAH's.
+  const BvhQuality q = tree_quality(bvh_view(d), scene.geometry, options.t_i, options.t_t);
+  std::printf(
+      "EPO (end-point overlap, Aila et al. 2013): %.4f = inner nodes %.4f + leaves %.4f (the cost, in t_t "
+      "and t_i, of the boxes around a surface point whose subtree lacks its triangle; 0 without overlap)\n",
+      q.epo, q.epo_inner, q.epo_leaves);
+  std::string hist;
+  for (size_t k = 0; k < q.leaf_prims.size(); ++k)
+    if (q.leaf_prims[k] > 0)
+      hist += "  " + std::to_string(k) + (k + 1 == q.leaf_prims.size() ? "+" : "") + ": " +
+              std::to_string(q.leaf_prims[k]);
+  std::printf("leaves by primitive count:%s\n", hist.c_str());
+  hist.clear();
+  for (size_t k = 0; k < q.leaf_depth.size(); ++k)
+    if (q.leaf_depth[k] > 0) hist += "  " + std::to_string(k) + ": " + std::to_string(q.leaf_depth[k]);
+  std::printf("leaves by depth:%s\n", hist.c_str());
+  int cw = scene.render.width, ch = scene.render.height;
+  while (uint64_t(cw) * uint64_t(ch) > a.rays && cw > 1 && ch > 1) cw = (cw + 1) / 2, ch = (ch + 1) / 2;
+  const std::vector<Ray> camera = camera_rays(scene.camera, cw, ch);
+  const std::vector<Ray> random =
+      scene.geometry.size() > 0 ? random_rays(scene.geometry.bounds(), a.rays, a.seed) : std::vector<Ray>{};
+  const MeasuredCost mc = measure_cost(bvh, camera, options.t_i, options.t_t);
+  const MeasuredCost mr = measure_cost(bvh, random, options.t_i, options.t_t);
+  std::printf(
+      "measured, %zu camera rays (%dx%d) / %zu random rays, per ray: inner nodes %.2f / %.2f, box tests %.2f / "
+      "%.2f, primitive tests %.2f / %.2f; cost t_t nodes + t_i tests %.1f / %.1f (the SAH predicts %.1f for "
+      "random lines through the root, which neither start inside the scene nor stop at a hit)\n",
+      camera.size(), cw, ch, random.size(), mc.nodes_per_ray, mr.nodes_per_ray, mc.box_tests_per_ray,
+      mr.box_tests_per_ray, mc.tests_per_ray, mr.tests_per_ray, mc.cost_per_ray, mr.cost_per_ray, q.sah_cost);
+  if (!a.quality_csv.empty()) {
+    write_file_atomically(a.quality_csv, [&](std::ostream& out) {
+      out << "structure,primitives,nodes,inner,leaves,references,sah_cost,sibling_overlap,epo,epo_inner,"
+             "epo_leaves,camera_rays,camera_nodes_per_ray,camera_box_tests_per_ray,camera_tests_per_ray,"
+             "camera_cost_per_ray,random_rays,random_nodes_per_ray,random_box_tests_per_ray,"
+             "random_tests_per_ray,random_cost_per_ray,leaf_prims,leaf_depth\n";
+      char buf[640];
+      std::snprintf(buf, sizeof buf,
+                    "%s,%zu,%zu,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,"
+                    "%.6g,",
+                    bvh.name().c_str(), prims, q.nodes, q.inner, q.leaves, q.references, q.sah_cost, st.overlap,
+                    q.epo, q.epo_inner, q.epo_leaves, camera.size(), mc.nodes_per_ray, mc.box_tests_per_ray,
+                    mc.tests_per_ray, mc.cost_per_ray, random.size(), mr.nodes_per_ray, mr.box_tests_per_ray,
+                    mr.tests_per_ray, mr.cost_per_ray);
+      out << buf;
+      // The histograms as counts joined by ';' (index = primitives, or depth).
+      auto joined = [](const std::vector<uint64_t>& v) {
+        std::string s;
+        for (size_t k = 0; k < v.size(); ++k) s += (k ? ";" : "") + std::to_string(v[k]);
+        return s;
+      };
+      out << joined(q.leaf_prims) << ',' << joined(q.leaf_depth) << '\n';
+    });
+    std::printf("wrote %s\n", a.quality_csv.c_str());
+  }
 
   std::vector<EntryNode> nodes(d.nodes.size());
   for (size_t i = 0; i < d.nodes.size(); ++i) {

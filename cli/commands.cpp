@@ -5,6 +5,7 @@
 #include <array>
 #include <chrono>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -90,6 +91,12 @@ BvhOptions bvh_options(const StructureArgs& s) {
   bvh.max_leaf_size = s.bvh_max_leaf;
   if (s.bvh_order != "entry" && s.bvh_order != "axis")
     throw InputError("", 0, "--bvh-order '" + s.bvh_order + "': entry | axis");
+  if (!std::isfinite(s.sbvh_alpha) || !(s.sbvh_alpha >= 0.f))
+    throw InputError("", 0, "--sbvh-alpha must be a number >= 0");
+  bvh.spatial_alpha = s.sbvh_alpha;
+  if (!std::isfinite(s.sbvh_budget) || !(s.sbvh_budget >= 0.f) || s.sbvh_budget > 16.f)
+    throw InputError("", 0, "--sbvh-budget must be in 0..16");
+  bvh.spatial_budget = s.sbvh_budget;
   return bvh;
 }
 
@@ -419,9 +426,7 @@ int run_trace(const TraceArgs& a) {
   if (!records_events(*accel))
     throw InputError(
         "", 0,
-        "trace: --accel " + a.structure.accel +
-            " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
-            "octree or bsp)");
+        "trace: --accel " + a.structure.accel + " records no events (use " + recorded_structure_list() + ")");
   auto* kd = dynamic_cast<KdTree*>(accel.get());
   if (a.build_events && !kd)
     throw InputError("", 0, "trace: --build-events goes with --accel kd or kd-median");

@@ -31,12 +31,14 @@ struct StructureArgs {
   int kd_max_depth = 0;  // 0: max(8, 1.2 log2 N); with an empty bonus 8 + 1.3 log2 N
   int kd_leaf_size = 1;
   std::string kd_mailbox = "on";  // on | off
-  // BVH (bvh, bvh-sweep, bvh-median); t_i, t_t and the depth limit are the kd-tree's options (kd_max_depth 0:
+  // BVH (bvh, bvh-sweep, bvh-median, bvh-sbvh and the wide ones); t_i, t_t and the depth limit are the kd-tree's options (kd_max_depth 0:
   // the BVH's limit, kBvhMaxDepth)
   int bvh_bins = 16;
   int bvh_leaf = 1;
   int bvh_max_leaf = 16;
   std::string bvh_order = "entry";  // entry | axis
+  float sbvh_alpha = 1e-5f;         // SBVH: spatial splits where the object split's overlap is above this
+  float sbvh_budget = 1.f;          // SBVH: extra references at most this times the primitives
   // octree: K, the leaf size (its depth limit is --max-depth, kd_max_depth: 0 automatic, else 1..20)
   int octree_leaf = 8;
   // General BSP tree (bsp); t_i, t_t, --max-depth, --leaf-size and --mailbox are the kd-tree's options
@@ -107,6 +109,8 @@ struct KdStatsArgs {
   uint64_t lines = 100000;  // random lines for the entry probabilities
   uint64_t seed = 1;
   std::string csv;  // optional: every node's predicted and measured entry probability
+  std::string quality_csv;  // bvh-stats, optional: the tree's quality metrics as one CSV row
+  uint64_t rays = 65536;    // bvh-stats: camera rays (at most 256 x 256) and random rays for the measured cost
 };
 
 struct TraceInfoArgs {

@@ -26,8 +26,7 @@ int run_figure(const FigureArgs& a) {
   if (!has_plane_outline(*accel))
     throw InputError("", 0,
                      "figure: --accel " + a.structure.accel +
-                         " is not drawn in 2D (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, "
-                         "bvh-median, bvh4 or bvh8)");
+                         " is not drawn in 2D (use " + recorded_structure_list() + ")");
   const Scene scene = load_scene(a.scene);
   if (!scene.flat)
     throw InputError(a.scene, 0,

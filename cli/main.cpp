@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "raystep/accel/accelerator.h"
+#include "raystep/accel/bvh_names.h"
 #include "raystep/util/atomic_file.h"
 #include "raystep/util/error.h"
 
@@ -77,6 +78,13 @@ void add_bvh_options(CLI::App* cmd, raystep::cli::StructureArgs& s) {
       ->capture_default_str();
   cmd->add_option("--bvh-order", s.bvh_order,
                   "bvh: nearer child first by entry distance (entry) or by the split axis's direction (axis)")
+      ->capture_default_str();
+  cmd->add_option("--sbvh-alpha", s.sbvh_alpha,
+                  "sbvh: try spatial splits where the object split's children overlap by more than this share "
+                  "of the root's area")
+      ->capture_default_str();
+  cmd->add_option("--sbvh-budget", s.sbvh_budget,
+                  "sbvh: at most this many extra references per primitive made by spatial splits, 0..16")
       ->capture_default_str();
 }
 
@@ -173,9 +181,9 @@ int main(int argc, char** argv) {
   sah.structure.accel = "kd";
   sah_cmd
       ->add_option("--accel", sah.structure.accel,
-                   "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median | bsp")
+                   "kd (SAH) | bvh (binned SAH) | bvh-sweep | bvh-median | bvh-sbvh (spatial splits) | bsp")
       ->capture_default_str()
-      ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median", "bsp"}));
+      ->check(CLI::IsMember({"kd", "bvh", "bvh-sweep", "bvh-median", "bvh-sbvh", "bsp"}));
   auto* node_opt = sah_cmd->add_option("--node", sah.node, "node id (0: the root; ids as in traces)");
   auto* path_opt =
       sah_cmd->add_option("--path", sah.path, "node by its path from the root: L below, R above, e.g. LRL");
@@ -213,13 +221,21 @@ int main(int argc, char** argv) {
       "measurement");
   bvh_stats_cmd->add_option("scene", bvh_stats.scene, "scene .json or mesh .obj")->required();
   bvh_stats.structure.accel = "bvh";
-  bvh_stats_cmd->add_option("--accel", bvh_stats.structure.accel, "bvh (binned SAH) | bvh-sweep | bvh-median")
+  bvh_stats_cmd
+      ->add_option("--accel", bvh_stats.structure.accel,
+                   "bvh (binned SAH) | bvh-sweep | bvh-median | bvh-sbvh (spatial splits)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"bvh", "bvh-sweep", "bvh-median"}));
+      ->check(CLI::IsMember(raystep::binary_bvh_names()));
   add_kd_options(bvh_stats_cmd, bvh_stats.structure);
   add_bvh_options(bvh_stats_cmd, bvh_stats.structure);
   bvh_stats_cmd->add_option("--lines", bvh_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
+  bvh_stats_cmd
+      ->add_option("--rays", bvh_stats.rays,
+                   "camera rays (at most this many, the scene's camera) and random rays for the measured cost")
+      ->capture_default_str();
+  bvh_stats_cmd->add_option("--quality-csv", bvh_stats.quality_csv,
+                            "also write the quality metrics (SAH, EPO, histograms, measured cost) as one CSV row");
   bvh_stats_cmd->add_option("--seed", bvh_stats.seed, "random seed")->capture_default_str();
   bvh_stats_cmd->add_option("--csv", bvh_stats.csv,
                             "also write every node's row (id, depth, predicted, measured)");

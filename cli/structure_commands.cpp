@@ -108,21 +108,28 @@ int run_compare(const CompareArgs& a) {
     c = compare_structures(scene, options, hooks);
   }
 
+  // The measured cost of a ray in the SAH's units: t_t per step, t_i per primitive test (the BVH's options).
+  const float t_i = options.build.bvh.t_i, t_t = options.build.bvh.t_t;
+  auto cost_per_ray = [&](const StructureRaySet& s) {
+    return double(t_t) * s.steps_per_ray + double(t_i) * s.tests_per_ray;
+  };
   // report.csv: one row per structure.
   write_file_atomically(folder.file("report.csv"), [&](std::ostream& out) {
     out << "structure,steps,build_ms,memory_bytes,camera_mrays_per_s,random_mrays_per_s,camera_steps_per_ray,"
            "random_steps_per_ray,camera_tests_per_ray,random_tests_per_ray,camera_rays,random_rays,"
-           "checked_rays,disagreements,ties,nodes,max_depth\n";
+           "checked_rays,disagreements,ties,nodes,max_depth,sah_cost,epo,camera_cost_per_ray,"
+           "random_cost_per_ray\n";
     char buf[512];
     for (const StructureCompareRow& r : c.rows) {
       std::snprintf(buf, sizeof buf,
                     "%s,%s,%.4f,%" PRIu64 ",%.5g,%.5g,%.4f,%.4f,%.4f,%.4f,%" PRIu64 ",%" PRIu64 ",%" PRIu64
-                    ",%" PRIu64 ",%" PRIu64 ",%" PRIu64 ",%d\n",
+                    ",%" PRIu64 ",%" PRIu64 ",%" PRIu64 ",%d,%.6g,%.6g,%.6g,%.6g\n",
                     r.name.c_str(), r.steps.c_str(), r.build_seconds * 1e3, r.memory_bytes,
                     r.camera.mrays_per_second, r.random.mrays_per_second, r.camera.steps_per_ray,
                     r.random.steps_per_ray, r.camera.tests_per_ray, r.random.tests_per_ray, r.camera.rays,
                     r.random.rays, r.camera.checked + r.random.checked, r.disagreements(), r.ties(),
-                    r.tree_nodes, r.tree_depth);
+                    r.tree_nodes, r.tree_depth, r.sah_cost, r.epo, cost_per_ray(r.camera),
+                    cost_per_ray(r.random));
       out << buf;
     }
   });
@@ -151,6 +158,21 @@ int run_compare(const CompareArgs& a) {
        << (r.tree_depth < 0 ? std::string("-")
                             : std::to_string(r.tree_nodes) + " (" + std::to_string(r.tree_depth) + ")")
        << " |\n";
+  }
+  bool any_bvh = false;
+  for (const StructureCompareRow& r : c.rows) any_bvh |= std::isfinite(r.sah_cost);
+  if (any_bvh) {
+    md << "\nBounding volume hierarchies: the SAH cost predicts the cost of a random line through the root (t_t "
+          "per node, t_i = "
+       << fmt("%g", t_i)
+       << " per primitive test); EPO (end-point overlap) the cost of boxes around surface points whose "
+          "subtree lacks the triangle; measured: t_t steps + t_i tests per ray.\n\n"
+       << "| structure | SAH cost (predicted) | EPO | measured cost/ray camera | measured cost/ray random |\n"
+       << "|---|---:|---:|---:|---:|\n";
+    for (const StructureCompareRow& r : c.rows)
+      if (std::isfinite(r.sah_cost))
+        md << "| " << r.name << " | " << fmt("%.1f", r.sah_cost) << " | " << fmt("%.2f", r.epo) << " | "
+           << fmt("%.1f", cost_per_ray(r.camera)) << " | " << fmt("%.1f", cost_per_ray(r.random)) << " |\n";
   }
   std::string subset_only;
   for (const StructureCompareRow& r : c.rows)
@@ -189,11 +211,25 @@ int run_compare(const CompareArgs& a) {
                   "'#1f77b4', '' every ::1 using ($8>0?$8:1/0) title 'random rays' lc rgb '#ff7f0e'\n"
                   "unset multiplot\n",
               1200, 560);
+  // Predicted against measured: each BVH a point (its SAH cost, its measured cost per ray), named.
+  if (any_bvh)
+    report_plot(folder, "predicted_vs_measured",
+                "set datafile separator ','\nset key top left\nset grid\n"
+                "set title 'BVHs: the SAH cost against the measured cost of a ray'\n"
+                "set xlabel 'SAH cost of the tree (predicted, random lines through the root)'\n"
+                "set ylabel 'measured t_t steps + t_i tests per ray'\nset offsets graph 0.1, graph 0.25, "
+                "graph 0.1, graph 0.1\n"
+                "plot 'report.csv' every ::1 using ($18==$18?$18:1/0):21 with points pt 7 ps 1.5 lc rgb "
+                "'#ff7f0e' title 'random rays', "
+                "'' every ::1 using ($18==$18?$18:1/0):20 with points pt 5 ps 1.5 lc rgb '#1f77b4' title "
+                "'camera rays', "
+                "'' every ::1 using ($18==$18?$18:1/0):21:1 with labels offset 0,1 font ',9' notitle\n");
   folder.commit();
   std::printf("%s", md.str().c_str());
   uint64_t bad = 0;
   for (const StructureCompareRow& r : c.rows) bad += r.disagreements();
-  std::printf("\nwrote %s (report.csv, report.md, speed.png, work.png)\n", a.output.c_str());
+  std::printf("\nwrote %s (report.csv, report.md, speed.png, work.png%s)\n", a.output.c_str(),
+              any_bvh ? ", predicted_vs_measured.png" : "");
   if (bad > 0) std::printf("WARNING: %" PRIu64 " disagreements with brute force\n", bad);
   return 0;
 }

@@ -55,9 +55,11 @@ TEST_F(BvhCli, SahCurveFollowsTheFormulaAndMarksTheChoice) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("decision: split"), std::string::npos) << r.out;
   auto rows = rows_of(slurp(path("c.csv")));
-  ASSERT_EQ(rows[0].size(), 10u);
+  ASSERT_EQ(rows[0].size(), 11u);
   EXPECT_EQ(rows[0][0], "axis");
   EXPECT_EQ(rows[0][9], "chosen");
+  EXPECT_EQ(rows[0][10], "kind");
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_EQ(rows[i][10], "object");
   ASSERT_EQ(rows.size(), 1u + 3u * 7u);  // a header, then 7 bin boundaries on each axis
   int chosen = 0;
   double best = 1e30, chosen_cost = 0;
@@ -115,3 +117,89 @@ TEST_F(BvhCli, BadOptionsExitTwoWithOneLine) {
 }
 
 }  // namespace
+
+namespace raystep_sbvh_cli {
+
+using namespace raystep::clitest;
+
+class SbvhCli : public CliTest {
+ protected:
+  SbvhCli() : CliTest("raystep_sbvh_cli_") {}
+};
+
+const std::string kCornell = std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json";
+
+// The SBVH's curve lists spatial rows; a node split spatially has its chosen row among them, with more
+// references on its two sides than the node holds (Cornell's node 5: the two triangles of one face of the
+// tall box, whose boxes are the same).
+TEST_F(SbvhCli, SahCurveListsSpatialCandidates) {
+  Outcome r = run("sah " + kCornell + " --accel bvh-sbvh --node 5 -o " + path("c.csv"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("spatial split"), std::string::npos) << r.out;
+  std::vector<CsvRow> rows = read_csv(path("c.csv"));
+  int spatial = 0, chosen = 0;
+  for (CsvRow& row : rows) {
+    spatial += row["kind"] == "spatial";
+    if (row["chosen"] == "1") {
+      ++chosen;
+      EXPECT_EQ(row["kind"], "spatial");
+      EXPECT_GT(std::stoi(row["n_left"]) + std::stoi(row["n_right"]), 2);
+    }
+  }
+  EXPECT_EQ(chosen, 1);
+  EXPECT_GT(spatial, 10);
+}
+
+// bvh-stats gives the quality metrics in text and as a CSV row: EPO, the histograms that count every leaf,
+// the measured cost per ray; the SBVH has more references than primitives and a lower SAH cost.
+TEST_F(SbvhCli, StatsGiveTheQualityMetrics) {
+  std::map<std::string, CsvRow> q;
+  for (const char* accel : {"bvh", "bvh-sbvh"}) {
+    Outcome r = run("bvh-stats " + kCornell + " --accel " + accel + " --lines 2000 --rays 4096 --quality-csv " +
+                    path(std::string(accel) + ".csv"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* key : {"EPO (end-point overlap", "leaves by primitive count:", "leaves by depth:",
+                            "measured, ", "the SAH predicts"})
+      EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+    std::vector<CsvRow> rows = read_csv(path(std::string(accel) + ".csv"));
+    ASSERT_EQ(rows.size(), 1u);
+    q[accel] = rows[0];
+    CsvRow& row = rows[0];
+    EXPECT_EQ(row["structure"], accel);
+    uint64_t leaves = 0, by_depth = 0;
+    std::stringstream a(row["leaf_prims"]), b(row["leaf_depth"]);
+    for (std::string c; std::getline(a, c, ';');) leaves += std::stoull(c);
+    for (std::string c; std::getline(b, c, ';');) by_depth += std::stoull(c);
+    EXPECT_EQ(leaves, std::stoull(row["leaves"]));
+    EXPECT_EQ(by_depth, std::stoull(row["leaves"]));
+    EXPECT_GE(std::stod(row["epo"]), 0.0);
+    EXPECT_NEAR(std::stod(row["epo"]), std::stod(row["epo_inner"]) + std::stod(row["epo_leaves"]), 1e-3);
+    EXPECT_GT(std::stod(row["camera_tests_per_ray"]), 0.0);
+    EXPECT_NEAR(std::stod(row["random_cost_per_ray"]),
+                std::stod(row["random_nodes_per_ray"]) + 80.0 * std::stod(row["random_tests_per_ray"]),
+                1e-3 * std::stod(row["random_cost_per_ray"]));
+  }
+  EXPECT_EQ(q["bvh"]["references"], q["bvh"]["primitives"]);
+  EXPECT_GT(std::stoull(q["bvh-sbvh"]["references"]), std::stoull(q["bvh-sbvh"]["primitives"]));
+  EXPECT_LT(std::stod(q["bvh-sbvh"]["sah_cost"]), std::stod(q["bvh"]["sah_cost"]));
+}
+
+// compare gives each BVH's SAH cost and EPO beside its measured cost per ray, and plots one against the other.
+TEST_F(SbvhCli, CompareSetsPredictedBesideMeasured) {
+  Outcome r = run("compare " + kCornell + " --accel kd,bvh,bvh-sbvh,bvh8,bvh8-sbvh --rays 2000 --size 32x32 "
+                  "--reps 1 -o " + path("cmp"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::vector<CsvRow> rows = read_csv(path("cmp/report.csv"));
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0]["sah_cost"], "nan");  // the kd-tree: no BVH metrics
+  for (size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_GT(std::stod(rows[i]["sah_cost"]), 0.0) << rows[i]["structure"];
+    EXPECT_GE(std::stod(rows[i]["epo"]), 0.0) << rows[i]["structure"];
+    EXPECT_EQ(rows[i]["disagreements"], "0") << rows[i]["structure"];
+    EXPECT_GT(std::stod(rows[i]["random_cost_per_ray"]), 0.0);
+  }
+  EXPECT_NE(slurp(path("cmp/report.md")).find("SAH cost (predicted)"), std::string::npos);
+  EXPECT_TRUE(fs::exists(path("cmp/predicted_vs_measured.gp")));
+}
+
+}  // namespace raystep_sbvh_cli

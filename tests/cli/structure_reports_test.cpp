@@ -110,18 +110,18 @@ TEST_F(StructureReports, CostNeverExceedsTheBoundOnTheCornellBox) {
                   "/scenes/cornell.json --size 20x20 --aa jitter:2 -o " + path("cost"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::vector<CsvRow> rows = read_csv(path("cost/report.csv"));
-  // brute twice, eleven structures (bvol, grid, kd, kd-median, 3 binary BVHs, 2 wide, octree, bsp), adaptive
-  ASSERT_EQ(rows.size(), 14u);
+  // brute twice, fourteen structures (bvol, grid, kd, kd-median, 4 binary BVHs, 4 wide, octree, bsp), adaptive
+  ASSERT_EQ(rows.size(), 17u);
   const double bound = num(rows[0], "bound");
   EXPECT_EQ(bound, 20.0 * 20 * 4 * 23 * 63 * 2);  // m^2 k^2 n (2^6 - 1)(1 + 1 light)
   for (const CsvRow& row : rows) EXPECT_LE(num(row, "tests"), bound) << row.at("render");
   // Every structure tests fewer primitives than brute force.
-  for (size_t i = 2; i < 13; ++i)
+  for (size_t i = 2; i < 16; ++i)
     EXPECT_LT(num(rows[i], "tests"), num(rows[1], "tests")) << rows[i].at("render");
   std::vector<CsvRow> factors = read_csv(path("cost/factors.csv"));
-  ASSERT_EQ(factors.size(), 13u);
+  ASSERT_EQ(factors.size(), 16u);  // 2^d, n for each of the fourteen structures, k^2
   EXPECT_EQ(factors[0]["factor"], "2^d");
-  EXPECT_EQ(factors[12]["factor"], "k^2");
+  EXPECT_EQ(factors[15]["factor"], "k^2");
   // Without -o: the table on stdout only.
   Outcome plain =
       run("cost " + std::string(RAYSTEP_SOURCE_DIR) + "/scenes/cornell.json --size 8x8 --accel grid");

@@ -171,7 +171,8 @@ TEST(LessonNumbers, ADisagreeingNumberFailsTheCheckAtItsLine) {
     FAIL() << "node.p_above without a kd-tree";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              kLesson + ":7: step 'Adaptive': {{node.p_above}}: the structure is not a kd-tree (accel: kd)");
+              kLesson + ":7: step 'Adaptive': {{node.p_above}}: the structure is not a kd-tree or a binary BVH "
+                        "(accel: kd or bvh)");
   }
 }
 

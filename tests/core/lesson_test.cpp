@@ -288,7 +288,8 @@ TEST(Lesson, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of(lesson_with("pixel: -1,2\n")),
             f + "7: pixel '-1,2': expected X,Y whole numbers >= 0, or none");
   EXPECT_EQ(error_of(lesson_with("accel: bvh2\n")),
-            f + "7: accel 'bvh2': expected grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp");
+            f + "7: accel 'bvh2': expected grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh-sbvh, bvh4, bvh8, "
+                "bvh4-sbvh, bvh8-sbvh, octree or bsp");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2\n")),
             f + "7: grid-res '1,2': expected NX,NY,NZ, each a whole number 1..4096, or none");
   EXPECT_EQ(error_of(lesson_with("grid-res: 1,2,4097\n")).rfind(f + "7: grid-res '1,2,4097'", 0), 0u);

@@ -494,8 +494,8 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
                 .rfind(f + "6: step 'S': step 100000: the ray has ", 0),
             0u);
   EXPECT_EQ(check_error(head + "node: 3\n```\n"),
-            f + "5: step 'S': node: no tree (accel: kd, kd-median, bvh, "
-                "bvh-sweep, bvh-median, bvh4, bvh8, bsp or octree)");
+            f + "5: step 'S': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh-sbvh, bvh4, "
+                "bvh8, bvh4-sbvh, bvh8-sbvh, octree or bsp)");
   EXPECT_EQ(check_error(head + "accel: kd\nnode-path: LLLLLLLLLLLLLLLLLLLLLLLLLL\n```\n")
                 .rfind(f + "6: step 'S': node-path 'LLLLLLLLLLLLLLLLLLLLLLLLLL': ", 0),
             0u);
@@ -507,8 +507,8 @@ TEST(LessonRunner, FailuresNameTheResponsibleLine) {
   // A later step without the setting in it: the step's heading.
   EXPECT_EQ(
       check_error(head + "accel: kd\nnode: 1\n```\n## B\n```raystep\naccel: grid\n```\n"),
-      f + "10: step 'B': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, bsp "
-          "or octree)");
+      f + "10: step 'B': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh-sbvh, bvh4, bvh8, "
+          "bvh4-sbvh, bvh8-sbvh, octree or bsp)");
   EXPECT_EQ(check_error(head + "pixel: 160,200\n```\n## B\n\nask\n\n```raystep\nask: next-pop\n```\n"),
             f + "12: step 'B': next-pop: the ray walks a grid, not a tree (accel: kd, kd-median or a BVH)");
 }

@@ -356,8 +356,8 @@ TEST(LessonRunner, NodeSettingsForTheOctreeAndTheBspTree) {
             0u);
   EXPECT_EQ(
       check_error(head + "node: 3\n```\n"),
-      f + "5: step 'S': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, bsp or "
-          "octree)");
+      f + "5: step 'S': node: no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh-sbvh, bvh4, bvh8, "
+          "bvh4-sbvh, bvh8-sbvh, octree or bsp)");
   EXPECT_NE(check_error(head + "node-path: L0\n```\n").find("node-path 'L0': expected"), std::string::npos);
 }
 

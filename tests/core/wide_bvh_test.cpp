@@ -307,7 +307,7 @@ TEST(WideBvh, SameHitsAsTheBinaryBvh) {
     std::vector<Ray> hard = hard_rays(*geometry, 2000, 33);
     rays.insert(rays.end(), edges.begin(), edges.end());
     rays.insert(rays.end(), hard.begin(), hard.end());
-    for (BvhBuilder builder : {BvhBuilder::binned, BvhBuilder::sweep, BvhBuilder::median}) {
+    for (BvhBuilder builder : {BvhBuilder::binned, BvhBuilder::sweep, BvhBuilder::median, BvhBuilder::sbvh}) {
       BvhOptions options;
       options.builder = builder;
       Bvh binary(options);

@@ -7,6 +7,7 @@
 #include "raystep/accel/brute_force.h"
 #include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
+#include "raystep/accel/bvh_names.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
@@ -62,8 +63,24 @@ bool BruteForce::occluded_counted(const Ray& ray, CountingRecorder& counters) co
 // ---- Factory ----
 
 std::vector<std::string> accelerator_names() {
-  return {"brute",     "bvol",       "grid", "kd",   "kd-median", "bvh",
-          "bvh-sweep", "bvh-median", "bvh4", "bvh8", "octree",    "bsp"};
+  std::vector<std::string> names = {"brute", "bvol", "grid", "kd", "kd-median"};
+  for (const std::string& n : bvh_names()) names.push_back(n);
+  names.push_back("octree");
+  names.push_back("bsp");
+  return names;
+}
+
+std::string recorded_structure_list(bool trees_only) {
+  std::vector<std::string> names = accelerator_names();
+  names.erase(std::remove_if(names.begin(), names.end(),
+                             [&](const std::string& n) {
+                               return n == "brute" || n == "bvol" || (trees_only && n == "grid");
+                             }),
+              names.end());
+  std::string out;
+  for (size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return out;
 }
 
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name) {
@@ -79,15 +96,13 @@ std::unique_ptr<Accelerator> make_accelerator(const std::string& name, const Str
     kd.builder = name == "kd-median" ? KdBuilder::median : KdBuilder::sah;
     return std::make_unique<KdTree>(kd, options.kd_mailboxes);
   }
-  if (name == "bvh" || name == "bvh-sweep" || name == "bvh-median") {
+  if (std::optional<BvhName> b = parse_bvh_name(name)) {
     BvhOptions bvh = options.bvh;
-    bvh.builder = name == "bvh-sweep"    ? BvhBuilder::sweep
-                  : name == "bvh-median" ? BvhBuilder::median
-                                         : BvhBuilder::binned;
-    return std::make_unique<Bvh>(bvh, options.bvh_order);
+    bvh.builder = b->builder;
+    if (b->width == 2) return std::make_unique<Bvh>(bvh, options.bvh_order);
+    return std::make_unique<WideBvh>(b->width, bvh);
   }
   if (name == "octree") return std::make_unique<Octree>(options.octree);
-  if (name == "bvh4" || name == "bvh8") return std::make_unique<WideBvh>(name == "bvh4" ? 4 : 8, options.bvh);
   if (name == "bsp") return std::make_unique<BspTree>(options.bsp, options.kd_mailboxes);
   std::string known;
   for (const std::string& n : accelerator_names()) known += (known.empty() ? "" : ", ") + n;
@@ -107,10 +122,11 @@ std::string structure_key(const std::string& accel, const StructureOptions& o) {
                 double(b.t_i), double(b.t_t), b.bins, b.leaf_size, b.max_leaf_size, b.max_depth,
                 int(o.bvh_order));
   // The octree's and the BSP tree's own options (the BSP tree's costs and limits are the kd-tree's).
-  char more[160];
-  std::snprintf(more, sizeof more, "|%d|%d|%d|%d|%.9g|%.9g|%d|%d", o.octree.leaf_size, o.octree.max_depth,
-                int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i), double(o.bsp.t_t),
-                o.bsp.max_depth, o.bsp.leaf_size);
+  char more[200];
+  std::snprintf(more, sizeof more, "|%d|%d|%d|%d|%.9g|%.9g|%d|%d|%.9g|%.9g", o.octree.leaf_size,
+                o.octree.max_depth, int(o.bsp.directions), o.bsp.candidates, double(o.bsp.t_i),
+                double(o.bsp.t_t), o.bsp.max_depth, o.bsp.leaf_size, double(b.spatial_alpha),
+                double(b.spatial_budget));
   return std::string(buf) + more;
 }
 

@@ -1,17 +1,11 @@
 #include "raystep/accel/bvh.h"
 
+#include "raystep/accel/bvh_names.h"
+
 namespace raystep {
 
 std::string Bvh::name() const {
-  switch (options_.builder) {
-    case BvhBuilder::sweep:
-      return "bvh-sweep";
-    case BvhBuilder::median:
-      return "bvh-median";
-    case BvhBuilder::binned:
-    default:
-      return "bvh";
-  }
+  return bvh_name({2, options_.builder});
 }
 
 BvhPairs make_bvh_pairs(const BvhData& data) {

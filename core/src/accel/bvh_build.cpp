@@ -26,8 +26,13 @@ namespace {
 }
 
 void validate(const Geometry& geometry, const BvhOptions& o) {
-  if (o.builder != BvhBuilder::binned && o.builder != BvhBuilder::sweep && o.builder != BvhBuilder::median)
+  if (o.builder != BvhBuilder::binned && o.builder != BvhBuilder::sweep && o.builder != BvhBuilder::median &&
+      o.builder != BvhBuilder::sbvh)
     fail("unknown builder");
+  if (!std::isfinite(o.spatial_alpha) || !(o.spatial_alpha >= 0.f))
+    fail("spatial_alpha must be a finite number >= 0");
+  if (!std::isfinite(o.spatial_budget) || !(o.spatial_budget >= 0.f) || o.spatial_budget > 16.f)
+    fail("spatial_budget must be in 0..16");
   if (!std::isfinite(o.t_i) || !(o.t_i > 0.f)) fail("t_i must be a finite number > 0");
   if (!std::isfinite(o.t_t) || !(o.t_t >= 0.f)) fail("t_t must be a finite number >= 0");
   if (o.bins < 2 || o.bins > 256) fail("bins must be in 2..256");
@@ -40,12 +45,6 @@ void validate(const Geometry& geometry, const BvhOptions& o) {
     fail("more than " + std::to_string(BvhNode::kMaxCount) + " primitives");
 }
 
-// -0 and +0 compare equal; make them the same bits too (the same tree from mirrored input).
-inline Bounds3 without_negative_zero(Bounds3 b) {
-  b.lo += glm::vec3(0.f);
-  b.hi += glm::vec3(0.f);
-  return b;
-}
 
 struct Slots {
   std::vector<BvhNode> nodes;
@@ -96,7 +95,8 @@ class Builder {
   Slots& slots_;
 };
 
-BvhData build(const Geometry& geometry, const BvhOptions& options) {
+// The SBVH tells its listener (when given) itself; the others are replayed.
+BvhData build(const Geometry& geometry, const BvhOptions& options, BvhBuildListener* sbvh_listener) {
   validate(geometry, options);
   const uint32_t n = uint32_t(geometry.size());
   BvhData out;
@@ -106,13 +106,8 @@ BvhData build(const Geometry& geometry, const BvhOptions& options) {
     out.info.push_back(BvhNodeInfo{});
     return out;
   }
-  std::vector<bvh::PrimRef> refs(n);
-  for (uint32_t id = 0; id < n; ++id) {
-    Bounds3 b = geometry.prim_bounds(id);
-    // Non-finite coordinates would break the bins and the sorts (and can never be hit).
-    if (!is_finite(b.lo) || !is_finite(b.hi)) fail("primitive " + std::to_string(id) + " is not finite");
-    refs[id] = {without_negative_zero(b), id};
-  }
+  if (options.builder == BvhBuilder::sbvh) return bvh::build_sbvh(geometry, options, sbvh_listener);
+  std::vector<bvh::PrimRef> refs = bvh::make_refs(geometry);
   Slots slots;
   const size_t capacity = 2 * size_t(n) - 1;
   slots.nodes.resize(capacity);
@@ -161,7 +156,7 @@ void replay(const Geometry& geometry, const BvhOptions& options, const BvhData& 
     refs.resize(info.prims);
     for (uint32_t k = 0; k < info.prims; ++k) {
       uint32_t id = bvh.prim_index[first[i] + k];
-      refs[k] = {without_negative_zero(geometry.prim_bounds(id)), id};
+      refs[k] = {bvh::without_negative_zero(geometry.prim_bounds(id)), id};
     }
     Bounds3 box, centroids;
     bvh::range_bounds(refs.data(), info.prims, &box, &centroids);
@@ -179,6 +174,22 @@ void replay(const Geometry& geometry, const BvhOptions& options, const BvhData& 
 
 }  // namespace
 
+namespace bvh {
+
+std::vector<PrimRef> make_refs(const Geometry& geometry) {
+  const uint32_t n = uint32_t(geometry.size());
+  std::vector<PrimRef> refs(n);
+  for (uint32_t id = 0; id < n; ++id) {
+    Bounds3 b = geometry.prim_bounds(id);
+    // Non-finite coordinates would break the bins and the sorts (and can never be hit).
+    if (!is_finite(b.lo) || !is_finite(b.hi)) fail("primitive " + std::to_string(id) + " is not finite");
+    refs[id] = {without_negative_zero(b), id};
+  }
+  return refs;
+}
+
+}  // namespace bvh
+
 const char* bvh_leaf_reason_name(BvhLeafReason reason) {
   switch (reason) {
     case BvhLeafReason::few_primitives:
@@ -194,11 +205,12 @@ const char* bvh_leaf_reason_name(BvhLeafReason reason) {
 }
 
 BvhData build_bvh(const Geometry& geometry, const BvhOptions& options) {
-  return build(geometry, options);
+  return build(geometry, options, nullptr);
 }
 
 BvhData build_bvh(const Geometry& geometry, const BvhOptions& options, BvhBuildListener& listener) {
-  BvhData bvh = build(geometry, options);
+  if (options.builder == BvhBuilder::sbvh) return build(geometry, options, &listener);
+  BvhData bvh = build(geometry, options, nullptr);
   if (geometry.size() > 0) replay(geometry, options, bvh, listener);
   return bvh;
 }
@@ -234,6 +246,7 @@ BvhStats bvh_stats(const BvhData& bvh, const BvhOptions& options) {
     }
   }
   s.mean_leaf_prims = s.leaves ? double(leaf_prims) / double(s.leaves) : 0.0;
+  s.references = leaf_prims;
   return s;
 }
 

@@ -18,6 +18,17 @@ struct PrimRef {
   float centroid(int axis) const { return 0.5f * (box.lo[axis] + box.hi[axis]); }
 };
 
+// -0 and +0 compare equal; make them the same bits too (the same tree from mirrored input).
+inline Bounds3 without_negative_zero(Bounds3 b) {
+  b.lo += glm::vec3(0.f);
+  b.hi += glm::vec3(0.f);
+  return b;
+}
+
+// One reference per primitive, its bounds with -0 made +0 (the same tree from mirrored input). Throws
+// InputError for a primitive whose bounds are not finite.
+std::vector<PrimRef> make_refs(const Geometry& geometry);
+
 // What to do with a node.
 struct NodePlan {
   bool leaf = true;
@@ -43,6 +54,10 @@ void range_bounds(const PrimRef* refs, uint32_t n, Bounds3* box, Bounds3* centro
 // C = t_t + (S_l N_l + S_r N_r) t_i / S_node; a node box of zero area counts both sides fully.
 float split_cost(const BvhOptions& o, float area_node, uint32_t n_l, float area_l, uint32_t n_r,
                  float area_r);
+
+// The SBVH builder (bvh_build_sbvh.cpp): the whole build, telling the listener (when not null) about every
+// node in id order after it. Options already validated.
+BvhData build_sbvh(const Geometry& geometry, const BvhOptions& options, BvhBuildListener* listener);
 
 // Ranges at least this long are binned, bounded and built in parallel.
 constexpr uint32_t kParallelPrims = 4096;

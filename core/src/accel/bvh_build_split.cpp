@@ -322,7 +322,7 @@ NodePlan plan_node(const PrimRef* refs, uint32_t n, const Bounds3& box, const Bo
   plan.chosen.chosen = true;
   if (candidates)
     for (BvhCandidate& c : *candidates)
-      if (c.axis == best.axis && c.bin == best.bin) c.chosen = true;
+      if (c.axis == best.axis && c.bin == best.bin && c.spatial == best.spatial) c.chosen = true;
   return plan;
 }
 

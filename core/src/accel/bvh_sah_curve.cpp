@@ -72,13 +72,62 @@ std::vector<BvhCandidate> bvh_sah_curve(const Geometry& geometry, const BvhOptio
   return record_bvh_sah_curve(geometry, options, node).candidates;
 }
 
+SahCurve as_kd_curve(const BvhSahCurve& b, bool spatial) {
+  SahCurve c;
+  c.node = b.node;
+  c.info.box = b.bvh_node.box;
+  c.info.parent = b.info.parent;
+  c.info.depth = b.info.depth;
+  c.info.cost = b.info.cost;
+  c.n_prims = b.info.prims;
+  c.leaf_cost = b.leaf_cost;
+  c.leaf = b.leaf;
+  switch (b.leaf_reason) {
+    case BvhLeafReason::few_primitives:
+      c.leaf_reason = LeafReason::few_primitives;
+      break;
+    case BvhLeafReason::max_depth:
+      c.leaf_reason = LeafReason::max_depth;
+      break;
+    case BvhLeafReason::no_cheaper_split:
+      c.leaf_reason = LeafReason::no_cheaper_split;
+      break;
+    case BvhLeafReason::no_candidate:
+      c.leaf_reason = LeafReason::no_candidate;
+      break;
+  }
+  for (size_t i = 0; i < b.candidates.size(); ++i) {
+    const BvhCandidate& k = b.candidates[i];
+    if (k.spatial && !spatial) continue;
+    if (int(i) == b.chosen) c.chosen = int(c.candidates.size());
+    SahCandidate s;
+    s.axis = k.axis;
+    s.position = k.position;
+    s.n_below = k.n_left;
+    s.n_above = k.n_right;
+    s.area_below = k.area_left;
+    s.area_above = k.area_right;
+    s.area_node = k.area_node;
+    s.cost = k.cost;
+    c.candidates.push_back(s);
+  }
+  if (!b.leaf && b.chosen >= 0 && size_t(b.chosen) < b.candidates.size()) {
+    const BvhCandidate& k = b.candidates[size_t(b.chosen)];
+    c.axis = k.axis;
+    c.position = k.position;
+    c.cost = k.cost;
+  }
+  return c;
+}
+
 void write_bvh_sah_csv(const std::string& path, const BvhSahCurve& curve) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "axis,bin,position,n_left,n_right,area_left,area_right,area_node,cost,chosen\n";
+    out << "axis,bin,position,n_left,n_right,area_left,area_right,area_node,cost,chosen,kind\n";
     for (const BvhCandidate& c : curve.candidates)
       out << kAxisNames[c.axis] << ',' << c.bin << ',' << num(c.position) << ',' << c.n_left << ','
           << c.n_right << ',' << num(c.area_left) << ',' << num(c.area_right) << ',' << num(c.area_node)
-          << ',' << num(c.cost) << ',' << (c.chosen ? 1 : 0) << '\n';
+          << ',' << num(c.cost) << ',' << (c.chosen ? 1 : 0) << ',' << (c.spatial ? "spatial" : "object")
+          << '\n';
   });
 }
 
@@ -101,7 +150,11 @@ void write_bvh_sah_json(const std::string& path, const BvhSahCurve& curve, const
   } else if (curve.chosen >= 0) {
     const BvhCandidate& c = curve.candidates[size_t(curve.chosen)];
     j["decision"] = "split";
-    j["split"] = {{"axis", kAxisNames[c.axis]}, {"bin", c.bin}, {"position", c.position}, {"cost", c.cost}};
+    j["split"] = {{"axis", kAxisNames[c.axis]},
+                  {"bin", c.bin},
+                  {"position", c.position},
+                  {"cost", c.cost},
+                  {"kind", c.spatial ? "spatial" : "object"}};
   }
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const BvhCandidate& c : curve.candidates)
@@ -114,7 +167,8 @@ void write_bvh_sah_json(const std::string& path, const BvhSahCurve& curve, const
                     {"area_right", c.area_right},
                     {"area_node", c.area_node},
                     {"cost", c.cost},
-                    {"chosen", c.chosen}});
+                    {"chosen", c.chosen},
+                    {"kind", c.spatial ? "spatial" : "object"}});
   j["candidates"] = rows;
   std::string text = j.dump(1);
   write_file_atomically(path, [&](std::ostream& out) { out << text << "\n"; });

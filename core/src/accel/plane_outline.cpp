@@ -226,8 +226,7 @@ PlaneOutline plane_outline(const Accelerator& accel, size_t max_nodes) {
     }
   throw InputError(
       "", 0,
-      "a 2D outline of " + accel.name() +
-          " is not drawn (use grid, kd, kd-median, octree, bsp, bvh, bvh-sweep, bvh-median, bvh4 or bvh8)");
+      "a 2D outline of " + accel.name() + " is not drawn (use " + recorded_structure_list() + ")");
 }
 
 }  // namespace raystep

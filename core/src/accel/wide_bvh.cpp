@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "raystep/accel/bvh_names.h"
 #include "raystep/util/error.h"
 #include "wide_bvh_impl.h"
 
@@ -121,7 +122,9 @@ class Collapser {
         uint32_t first = uint32_t(m_.prims.size());
         if (first >= kWideLeaf) throw InputError("", 0, "bvh: too many primitives for the wide BVH");
         gather(kids[i]);
-        std::sort(m_.prims.begin() + first, m_.prims.end());  // a leaf's primitives in id order
+        // A leaf's primitives in id order, each once (an SBVH subtree may reference a primitive twice).
+        std::sort(m_.prims.begin() + first, m_.prims.end());
+        m_.prims.erase(std::unique(m_.prims.begin() + first, m_.prims.end()), m_.prims.end());
         wn.child[i] = kWideLeaf | first;
         wn.count[i] = uint32_t(m_.prims.size()) - first;
         ++m_.leaf_count;
@@ -186,7 +189,7 @@ WideBvh::~WideBvh() {
 }
 
 std::string WideBvh::name() const {
-  return width_ == 4 ? "bvh4" : "bvh8";
+  return bvh_name({width_, options_.builder});
 }
 
 void WideBvh::build(const Geometry& geometry) {

@@ -12,6 +12,7 @@ namespace {
 struct Dot {
   int axis = 0;
   float t = 0.f, cost = 0.f;
+  bool spatial = false;  // an SBVH's spatial candidate: its own dashed series
 };
 
 struct Decision {
@@ -78,32 +79,40 @@ Figure chart(const std::vector<Dot>& dots, float leaf_cost, const Decision& deci
   frame.items.push_back(line(at(0.f, leaf_cost), at(1.f, leaf_cost), grey, 1.5f, true, "leaf-cost"));
   frame.items.push_back(figure_text(at(0.86f, leaf_cost) + glm::vec2(0.f, 0.035f),
                                     "leaf: N t_i = " + fixed(leaf_cost, 0), 12.f, grey, "leaf-cost"));
+  bool any_spatial = false;
+  for (const Dot& d : dots) any_spatial |= d.spatial;
+  if (any_spatial)
+    frame.items.push_back(figure_text({x1 - 0.24f, y1 + 0.015f}, "dashed: spatial splits", 11.f, grey, "label"));
   for (int axis = 0; axis < 3; ++axis) {
-    std::vector<Dot> mine;
-    for (const Dot& d : dots)
-      if (d.axis == axis && std::isfinite(d.cost)) mine.push_back(d);
-    std::stable_sort(mine.begin(), mine.end(), [](const Dot& a, const Dot& b) { return a.t < b.t; });
     const char* name[3] = {"x", "y", "z"};
     frame.items.push_back(figure_text({x1 - 0.24f + 0.09f * float(axis), y1 + 0.05f}, name[axis], 15.f,
                                       axis_colour[axis], std::string("axis-") + name[axis]));
-    if (mine.empty()) continue;
-    FigureItem poly;
-    poly.kind = FigureItem::Kind::polyline;
-    for (const Dot& d : mine) poly.points.push_back(at(d.t, d.cost));
-    poly.style.stroke = axis_colour[axis];
-    poly.style.stroke_width = 1.f;
-    poly.css = std::string("curve-") + name[axis];
-    if (poly.points.size() >= 2) curves.items.push_back(poly);
-    for (const Dot& d : mine) {
-      FigureItem dot;
-      dot.kind = FigureItem::Kind::circle;
-      dot.points = {at(d.t, d.cost)};
-      dot.radius = 0.006f;
-      dot.style.has_stroke = false;
-      dot.style.fill = axis_colour[axis];
-      dot.style.fill_opacity = 1.f;
-      dot.css = std::string("candidate-") + name[axis];
-      curves.items.push_back(dot);
+    for (bool spatial : {false, true}) {
+      std::vector<Dot> mine;
+      for (const Dot& d : dots)
+        if (d.axis == axis && d.spatial == spatial && std::isfinite(d.cost)) mine.push_back(d);
+      std::stable_sort(mine.begin(), mine.end(), [](const Dot& a, const Dot& b) { return a.t < b.t; });
+      if (mine.empty()) continue;
+      const std::string kind = spatial ? " spatial" : "";
+      FigureItem poly;
+      poly.kind = FigureItem::Kind::polyline;
+      for (const Dot& d : mine) poly.points.push_back(at(d.t, d.cost));
+      poly.style.stroke = axis_colour[axis];
+      poly.style.stroke_width = 1.f;
+      poly.style.dashed = spatial;
+      poly.css = std::string("curve-") + name[axis] + kind;
+      if (poly.points.size() >= 2) curves.items.push_back(poly);
+      for (const Dot& d : mine) {
+        FigureItem dot;
+        dot.kind = FigureItem::Kind::circle;
+        dot.points = {at(d.t, d.cost)};
+        dot.radius = spatial ? 0.004f : 0.006f;
+        dot.style.has_stroke = false;
+        dot.style.fill = axis_colour[axis];
+        dot.style.fill_opacity = 1.f;
+        dot.css = std::string("candidate-") + name[axis] + kind;
+        curves.items.push_back(dot);
+      }
     }
   }
   if (decision.chosen >= 0) {
@@ -161,11 +170,12 @@ Figure sah_curve_figure(const SahCurve& curve, const std::string& path) {
 Figure sah_curve_figure(const BvhSahCurve& curve, const std::string& path) {
   std::vector<Dot> dots;
   for (const BvhCandidate& c : curve.candidates)
-    dots.push_back({c.axis, across(curve.bvh_node.box, c.axis, c.position), c.cost});
+    dots.push_back({c.axis, across(curve.bvh_node.box, c.axis, c.position), c.cost, c.spatial});
   const BvhCandidate* c = curve.chosen >= 0 ? &curve.candidates[size_t(curve.chosen)] : nullptr;
-  const Decision d{curve.leaf, curve.chosen,
-                   c ? split_words(c->axis, c->position, c->cost, "left", c->n_left, "right", c->n_right)
-                     : std::string("a leaf: ") + bvh_leaf_reason_name(curve.leaf_reason)};
+  std::string words = c ? split_words(c->axis, c->position, c->cost, "left", c->n_left, "right", c->n_right)
+                        : std::string("a leaf: ") + bvh_leaf_reason_name(curve.leaf_reason);
+  if (c && c->spatial) words.replace(0, std::string("chosen: split").size(), "chosen: spatial split");
+  const Decision d{curve.leaf, curve.chosen, words};
   return chart(dots, curve.leaf_cost, d,
                {"The SAH cost of every candidate split, BVH " +
                     node_words(curve.node, path, curve.info.depth, curve.info.prims),

@@ -15,6 +15,7 @@
 
 #include "raystep/accel/bsp.h"
 #include "raystep/accel/bvh.h"
+#include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/kdtree_entry_probability.h"
@@ -96,12 +97,18 @@ struct LessonFacts::Impl {
     if (!g) fail("the structure is not the grid (accel: grid)");
     return *g;
   }
+  // The selected node's SAH curve: a kd-tree's, or a binary BVH's in the kd-tree's terms (N below and above
+  // for left and right; an SBVH's spatial candidates included).
   const SahCurve& node_curve() {
     const auto* kd = dynamic_cast<const KdTree*>(w.accel.get());
-    if (!kd) fail("the structure is not a kd-tree (accel: kd)");
-    if (w.node < 0) fail("no kd-tree node selected (node: ID, node-path: LR... or panel: sah)");
-    if (!curve)
+    const auto* bvh = dynamic_cast<const Bvh*>(w.accel.get());
+    if (!kd && !bvh) fail("the structure is not a kd-tree or a binary BVH (accel: kd or bvh)");
+    if (w.node < 0) fail("no tree node selected (node: ID, node-path: LR... or panel: sah)");
+    if (!curve && kd)
       curve = std::make_shared<SahCurve>(record_sah_curve(kd->geometry(), kd->options(), uint32_t(w.node)));
+    if (!curve && bvh)
+      curve = std::make_shared<SahCurve>(
+          as_kd_curve(record_bvh_sah_curve(bvh->geometry(), bvh->options(), uint32_t(w.node)), true));
     return *curve;
   }
   const SahCandidate& chosen() {

@@ -230,9 +230,7 @@ StepWorld LessonRunner::enter(const LessonState& state, std::optional<QuestionKi
                                                              : "panel";
     const LessonTree tree = lesson_tree(*cache.accel);
     if (!tree.name)
-      fail({what, "accel"}, std::string(what) +
-                                ": no tree (accel: kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
-                                "bsp or octree)");
+      fail({what, "accel"}, std::string(what) + ": no tree (accel: " + recorded_structure_list(true) + ")");
     if (state.node.by == NodeSpec::By::path && !tree.paths)
       fail({"node-path", "accel"}, "node-path: a wide BVH's node is named by id (node: ID)");
     const size_t count = tree.nodes;

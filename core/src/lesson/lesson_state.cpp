@@ -12,7 +12,9 @@
 #include <functional>
 #include <map>
 
+#include "raystep/accel/accelerator.h"
 #include "raystep/accel/bsp_build.h"
+#include "raystep/accel/bvh_names.h"
 #include "raystep/render/antialiasing.h"
 #include "raystep/scene/antialiasing_spec.h"
 #include "raystep/util/error.h"
@@ -141,9 +143,9 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
                   {"scene", set_scene},
                   {"accel",
                    [](LessonState& s, const std::string& k, const std::string& v, const std::string&) {
-                     if (v != "grid" && v != "kd" && v != "kd-median" && v != "bvh" && v != "bvh-sweep" &&
-                         v != "bvh-median" && v != "bvh4" && v != "bvh8" && v != "octree" && v != "bsp")
-                       bad(k, v, "grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp");
+                     if (v != "grid" && v != "kd" && v != "kd-median" && !is_bvh_name(v) && v != "octree" &&
+                         v != "bsp")
+                       bad(k, v, recorded_structure_list());
                      s.accel = v;
                    }},
                   {"grid-res",

@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "explain_parts.h"
+#include "raystep/accel/bvh_names.h"
 #include "raystep/replay/bvh_choice.h"
 #include "raystep/replay/explain.h"
 
@@ -112,6 +113,12 @@ std::string explain_bvh_rule(const Trace* trace, const TracedRay& ray, const Rep
       std::string head =
           "Leaf " + std::to_string(e.node) + " over [" + num(e.t_min_node) + ", " + num(e.t_max_node) + "]";
       if (k == 0) return head + " is empty: nothing to test. Go on with the next node on the stack.";
+      const std::optional<BvhName> name = trace ? parse_bvh_name(trace->structure.kind) : std::nullopt;
+      if (name && name->builder == BvhBuilder::sbvh)
+        return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
+               ". No mailbox: spatial splits cut some primitives in two, so such a primitive sits in several "
+               "leaves (once in each) and a ray that reaches two of them tests it twice (the structure line "
+               "gives the references per primitive).";
       return head + ": test its " + std::to_string(k) + (k == 1 ? " primitive" : " primitives") +
              ". No mailbox: in a BVH each primitive is in exactly one leaf, so no primitive is tested twice "
              "for a ray (the kd-tree needs mailboxes because it copies a primitive into every cell it "

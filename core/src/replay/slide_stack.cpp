@@ -1,12 +1,13 @@
 #include "raystep/replay/slide_stack.h"
 
+#include "raystep/accel/bvh_names.h"
 #include "raystep/trace/node_path.h"
 
 namespace raystep::replay {
 
 std::string slide_stack_text(const Trace& trace, const TracedRay& ray, const ReplayState& state) {
   if (state.node_event < 0 || trace.structure.kind == "octree") return "";
-  const bool wide = trace.structure.kind == "bvh4" || trace.structure.kind == "bvh8";
+  const bool wide = is_wide_bvh_name(trace.structure.kind);
   auto name = [&](int32_t id, std::string* out) {
     if (wide) {  // no paths: the ids its tree view writes in the nodes
       *out = id == 0 ? "root" : std::to_string(id);

@@ -251,7 +251,7 @@ uint64_t HardCaseReport::crashes() const {
 }
 
 std::vector<std::string> default_hardcase_structures() {
-  return {"brute", "grid", "kd", "bvh", "bvh4", "bvh8", "octree", "bsp"};
+  return {"brute", "grid", "kd", "bvh", "bvh-sbvh", "bvh4", "bvh8", "bvh8-sbvh", "octree", "bsp"};
 }
 
 HardCaseReport run_hardcases(const std::vector<HardCaseSet>& battery, const HardCaseRunOptions& options) {

@@ -6,9 +6,12 @@
 
 #include "raystep/accel/bounding_volumes.h"
 #include "raystep/accel/bsp.h"
+#include "raystep/accel/bvh.h"
+#include "raystep/accel/bvh_quality.h"
 #include "raystep/accel/grid.h"
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
+#include "raystep/accel/wide_bvh.h"
 #include "raystep/render/camera.h"
 #include "raystep/scene/ray_sets.h"
 #include "raystep/util/error.h"
@@ -46,7 +49,8 @@ const char* step_name(const Accelerator& accel) {
 }
 
 // A binary space partition's shape (kd-trees, the BSP tree: the lecture's "tradeoff" in nodes and depth).
-void tree_shape(const Accelerator& accel, StructureCompareRow* row) {
+// The tree's size and depth; a BVH's SAH cost and EPO (bvh_quality.h) too.
+void tree_shape(const Accelerator& accel, const Geometry* geometry, StructureCompareRow* row) {
   auto deepest = [](const auto& info) {
     int d = 0;
     for (const auto& i : info) d = std::max(d, int(i.depth));
@@ -58,6 +62,20 @@ void tree_shape(const Accelerator& accel, StructureCompareRow* row) {
   } else if (auto* bsp = dynamic_cast<const BspTree*>(&accel)) {
     row->tree_nodes = bsp->data().nodes.size();
     row->tree_depth = deepest(bsp->data().info);
+  } else if (auto* bvh = dynamic_cast<const Bvh*>(&accel)) {
+    row->tree_nodes = bvh->data().nodes.size();
+    row->tree_depth = deepest(bvh->data().info);
+    const BvhQuality q = tree_quality(bvh_view(bvh->data()), bvh->geometry(), bvh->options().t_i,
+                                      bvh->options().t_t);
+    row->sah_cost = q.sah_cost;
+    row->epo = q.epo;
+  } else if (auto* wide = dynamic_cast<const WideBvh*>(&accel)) {
+    const WideBvhView view = wide->describe();
+    row->tree_nodes = view.nodes.size();
+    row->tree_depth = deepest(view.nodes);
+    const BvhQuality q = tree_quality(view, *geometry, wide->options().t_i, wide->options().t_t);
+    row->sah_cost = q.sah_cost;
+    row->epo = q.epo;
   }
 }
 
@@ -169,7 +187,7 @@ StructureComparison compare_structures(const Scene& scene, const StructureCompar
       }
       row.build_seconds = median(builds);
       row.memory_bytes = accel->memory_bytes();
-      tree_shape(*accel, &row);
+      tree_shape(*accel, &scene.geometry, &row);
       for (int k = 0; k < 2; ++k) {
         RaySet& s = sets[k];
         StructureRaySet& out = k == 0 ? row.camera : row.random;

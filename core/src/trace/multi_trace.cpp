@@ -61,8 +61,7 @@ std::vector<std::string> parse_walk_list(const std::string& list, const std::str
       throw InputError(
           "", 0,
           where + ": " + n +
-              " records no events (use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, "
-              "octree or bsp)");
+              " records no events (use " + recorded_structure_list() + ")");
   }
   if (names.size() < size_t(min_count))
     throw InputError("", 0,

@@ -1,10 +1,12 @@
 #include "raystep/trace/node_path.h"
 
+#include "raystep/accel/bvh_names.h"
+
 namespace raystep {
 
 bool trace_node_path(const Trace& trace, int32_t id, std::string* path) {
   const std::string& kind = trace.structure.kind;
-  if (kind == "bvh4" || kind == "bvh8" || kind == "grid" || kind.empty()) return false;
+  if (is_wide_bvh_name(kind) || kind == "grid" || kind.empty()) return false;
   auto find = [&](int32_t want) -> const TraceNode* {
     for (const TraceNode& n : trace.nodes)
       if (n.id == want) return &n;

@@ -11,10 +11,6 @@
 
 namespace raystep {
 
-namespace {
-const char* const kRecording =
-    "use grid, kd, kd-median, bvh, bvh-sweep, bvh-median, bvh4, bvh8, octree or bsp";
-}  // namespace
 
 bool records_events(const Accelerator& accel) {
   return dynamic_cast<const UniformGrid*>(&accel) || dynamic_cast<const KdTree*>(&accel) ||
@@ -36,14 +32,14 @@ Trace record_trace(const Geometry& geometry, const Accelerator& accel, const std
     return record_octree_trace(geometry, *octree, rays, scene_path, scene_hash);
   if (auto* bsp = dynamic_cast<const BspTree*>(&accel))
     return record_bsp_trace(geometry, *bsp, rays, scene_path, scene_hash);
-  throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
+  throw InputError("", 0, "the " + accel.name() + " structure records no events (use " + recorded_structure_list() + ")");
 }
 
 Trace record_pixel_trace(const Scene& scene, const Accelerator& accel, int width, int height, int px, int py,
                          const AntiAliasing& aa, uint64_t seed, bool secondary, const std::string& scene_path,
                          const std::string& scene_hash) {
   if (!records_events(accel))
-    throw InputError("", 0, "the " + accel.name() + " structure records no events (" + kRecording + ")");
+    throw InputError("", 0, "the " + accel.name() + " structure records no events (use " + recorded_structure_list() + ")");
   if (width <= 0 || height <= 0 || px < 0 || py < 0 || px >= width || py >= height)
     throw InputError("", 0,
                      "pixel " + std::to_string(px) + "," + std::to_string(py) + " is outside the " +

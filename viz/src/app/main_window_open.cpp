@@ -322,7 +322,7 @@ void MainWindow::buildStructure() {
         BvhStats st = bvh_stats(bvh->data(), bvh->options());
         structure_->setInfo(
             tr("%1: %2 nodes, %3 leaves, depth %4, %5 primitives per leaf (max %6), SAH cost %7, "
-               "children's overlap %8 (each primitive in one leaf)")
+               "children's overlap %8 (%9)")
                 .arg(QString::fromStdString(built->kind))
                 .arg(st.nodes)
                 .arg(st.leaves)
@@ -330,12 +330,17 @@ void MainWindow::buildStructure() {
                 .arg(st.mean_leaf_prims, 0, 'f', 2)
                 .arg(st.max_leaf_prims)
                 .arg(st.sah_cost, 0, 'f', 1)
-                .arg(st.overlap, 0, 'f', 3) +
+                .arg(st.overlap, 0, 'f', 3)
+                .arg(st.references == n ? tr("each primitive in one leaf")
+                                        : tr("%1 references, %2 per primitive")
+                                              .arg(st.references)
+                                              .arg(double(st.references) / double(n), 0, 'f', 3)) +
             took(tr(", built"), built->buildMs));
-      } else if (built->kind == "bvh4" || built->kind == "bvh8") {
-        structure_->setInfo(tr("%1: the binned BVH collapsed into %2-wide nodes, %3 KiB")
+      } else if (const WideBvh* wide = dynamic_cast<const WideBvh*>(built->accel.get())) {
+        structure_->setInfo(tr("%1: the %2 BVH collapsed into %3-wide nodes, %4 KiB")
                                 .arg(QString::fromStdString(built->kind))
-                                .arg(built->kind == "bvh4" ? 4 : 8)
+                                .arg(wide->options().builder == BvhBuilder::sbvh ? tr("spatial-split") : tr("binned"))
+                                .arg(wide->width())
                                 .arg(double(built->accel->memory_bytes()) / 1024.0, 0, 'f', 1) +
                             took(tr(", built"), built->buildMs));
       } else if (const Octree* oct = built->octree()) {

@@ -57,7 +57,12 @@ std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const Sc
       if (n.parent >= 0) data->wideViewPrims[size_t(n.parent)] += data->wideViewPrims[i];
     }
     data->wideView = std::move(view);
+    data->quality = tree_quality(*data->wideView, data->scene->scene.geometry, wide->options().t_i,
+                                 wide->options().t_t);
   }
+  if (const Bvh* bvh = data->bvh())
+    data->quality = tree_quality(bvh_view(bvh->data()), data->scene->scene.geometry, bvh->options().t_i,
+                                 bvh->options().t_t);
   return data;
 }
 

@@ -18,6 +18,9 @@
 #include "raystep/accel/kdtree.h"
 #include "raystep/accel/octree.h"
 #include "raystep/accel/structure_options.h"
+#include <optional>
+
+#include "raystep/accel/bvh_quality.h"
 #include "raystep/accel/wide_bvh.h"
 #include "raystep/render/render.h"
 #include "raystep/scene/scene.h"
@@ -38,8 +41,8 @@ struct SceneData {
   std::shared_ptr<const SceneMesh> mesh;
 };
 
-// Any accelerator that records events: "grid", "kd" (SAH), "kd-median", "bvh" (binned SAH), "bvh-sweep",
-// "bvh-median", "bvh4", "bvh8", "octree" or "bsp" (the general BSP tree).
+// Any accelerator that records events: "grid", "kd" (SAH), "kd-median", a BVH (bvh_names.h: "bvh", "bvh-sweep",
+// "bvh-median", "bvh-sbvh", "bvh4", "bvh8", "bvh4-sbvh", "bvh8-sbvh"), "octree" or "bsp" (the general BSP tree).
 struct StructureData {
   std::shared_ptr<const SceneData> scene;  // the structure points into its geometry: keep it alive
   std::string kind;
@@ -55,6 +58,9 @@ struct StructureData {
   // subtree's): made with the build, for the tree view.
   std::shared_ptr<const WideBvhView> wideView;
   std::vector<uint32_t> wideViewPrims;
+  // A BVH's (binary or wide) quality (SAH cost, EPO, leaf histograms: bvh_quality.h), measured with the
+  // build on the worker, for the tree view's title and the structure line.
+  std::optional<BvhQuality> quality;
 };
 
 // Each throws InputError on bad input; safe on any thread.

@@ -140,6 +140,7 @@ struct SahChart::Impl {
   vtkNew<vtkContextView> view;
   vtkNew<vtkChartXY> chart;
   vtkSmartPointer<vtkTable> axisTable[3];  // the candidates per axis, as plotted
+  vtkSmartPointer<vtkTable> spatialTable[3];  // an SBVH node's spatial candidates per axis, as plotted
   // BSP: the candidates per direction (0..12, 13 the own planes) as plotted (null: none, or not shown), and
   // the series drawn (label, colour, points) for the state dump.
   vtkSmartPointer<vtkTable> bspTable[kBspKdopDirections + 1];
@@ -269,7 +270,10 @@ void SahChart::setConceal(bool on, const QString& builder) {
   conceal_ = on;
   concealBuilder_ = builder;
   if (bspCurve_) drawBspCurve();
-  if (curve_) setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
+  if (bvhCurve_)
+    setBvhCurve(bvhCurve_, lastPath_, lastTi_, lastTt_);
+  else if (curve_)
+    setCurve(curve_, lastPath_, lastTi_, lastTt_, lastBonus_);
 }
 
 void SahChart::setScale(double scale) {
@@ -286,6 +290,8 @@ void SahChart::setScale(double scale) {
   orientation_->setFixedWidth(int(230 * scale));
   if (bspCurve_) {
     drawBspCurve();
+  } else if (bvhCurve_) {
+    setBvhCurve(bvhCurve_, QString(lastPath_), lastTi_, lastTt_);
   } else if (curve_) {
     QString path = lastPath_;
     setCurve(curve_, path, lastTi_, lastTt_, lastBonus_);
@@ -304,6 +310,7 @@ void SahChart::showMessage(const QString& text) {
   d_->message = text;
   d_->chart->ClearPlots();
   for (auto& t : d_->axisTable) t = nullptr;
+  for (auto& t : d_->spatialTable) t = nullptr;
   d_->chart->SetTitle("");
   text_->setText(text);
   renderNow();
@@ -325,6 +332,7 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
   lastBonus_ = empty_bonus;
   d.message.clear();
   d.chart->ClearPlots();
+  for (auto& t : d.spatialTable) t = nullptr;
   const SahCurve& c = *curve_;
   const Bounds3& box = c.info.box;
 
@@ -442,78 +450,104 @@ void SahChart::setCurve(std::shared_ptr<const SahCurve> curve, const QString& pa
 
 namespace {
 
-LeafReason kdReasonOf(BvhLeafReason r) {
-  switch (r) {
-    case BvhLeafReason::few_primitives:
-      return LeafReason::few_primitives;
-    case BvhLeafReason::max_depth:
-      return LeafReason::max_depth;
-    case BvhLeafReason::no_cheaper_split:
-      return LeafReason::no_cheaper_split;
-    case BvhLeafReason::no_candidate:
-      return LeafReason::no_candidate;
-  }
-  return LeafReason::few_primitives;
-}
-
 }  // namespace
 
 void SahChart::setBvhCurve(std::shared_ptr<const BvhSahCurve> curve, const QString& path, float t_i,
                            float t_t) {
-  // The chart draws candidates against their plane's position across the node's box: a BVH candidate is the
-  // plane between two bins of centroids, N left and right its sides' counts (no planar primitives: each
-  // primitive goes to one side by its centroid).
+  // The chart draws candidates against their plane's position across the node's box: a BVH object candidate
+  // is the plane between two bins of centroids, N left and right its sides' counts (no planar primitives:
+  // each primitive goes to one side by its centroid). An SBVH node's spatial candidates (planes that cut the
+  // primitives crossing them) are drawn as their own dashed series per axis, in the axis's colour.
   const BvhSahCurve& b = *curve;
-  auto c = std::make_shared<SahCurve>();
-  c->node = b.node;
-  c->info.box = b.bvh_node.box;
-  c->info.parent = b.info.parent;
-  c->info.depth = b.info.depth;
-  c->info.cost = b.info.cost;
-  c->n_prims = b.info.prims;
-  c->leaf_cost = b.leaf_cost;
-  c->leaf = b.leaf;
-  c->leaf_reason = kdReasonOf(b.leaf_reason);
-  c->chosen = b.chosen;
-  for (const BvhCandidate& k : b.candidates) {
-    SahCandidate s;
-    s.axis = k.axis;
-    s.position = k.position;
-    s.n_below = k.n_left;
-    s.n_above = k.n_right;
-    s.area_below = k.area_left;
-    s.area_above = k.area_right;
-    s.area_node = k.area_node;
-    s.cost = k.cost;
-    c->candidates.push_back(s);
-  }
-  const bool chosenKnown = b.chosen >= 0 && size_t(b.chosen) < b.candidates.size();
-  if (!b.leaf && chosenKnown) {
-    const BvhCandidate& k = b.candidates[size_t(b.chosen)];
-    c->axis = k.axis;
-    c->position = k.position;
-    c->cost = k.cost;
-  }
+  auto c = std::make_shared<SahCurve>(as_kd_curve(b, false));
+  std::vector<const BvhCandidate*> spatial[3];
+  for (const BvhCandidate& k : b.candidates)
+    if (k.spatial && k.axis >= 0 && k.axis < 3) spatial[k.axis].push_back(&k);
+  const bool chosenKnown = !b.leaf && b.chosen >= 0 && size_t(b.chosen) < b.candidates.size();
+  const BvhCandidate* chosen = chosenKnown ? &b.candidates[size_t(b.chosen)] : nullptr;
+  if (chosen && chosen->spatial) c->axis = -1;  // its line is drawn below, over the spatial costs too
   setCurve(c, path, t_i, t_t);
   bvhCurve_ = std::move(curve);
-  if (conceal_ || b.leaf || !chosenKnown) return;
-  // The decision in the BVH's terms: the bin, the counts and the areas of each side's tight box.
-  const BvhCandidate& k = b.candidates[size_t(b.chosen)];
+  Impl& d = *d_;
+  const Bounds3& box = b.bvh_node.box;
+  auto across = [&](int a, float pos) {
+    const float extent = box.hi[a] - box.lo[a];
+    return extent > 0.f ? double(pos - box.lo[a]) / double(extent) : 0.5;
+  };
+  size_t spatialCount = 0;
+  for (int a = 0; a < 3; ++a) spatialCount += spatial[a].size();
+  if (spatialCount > 0) {
+    double lo = b.leaf_cost, hi = b.leaf_cost;
+    for (const BvhCandidate& k : b.candidates) {
+      lo = std::min(lo, double(k.cost));
+      hi = std::max(hi, double(k.cost));
+    }
+    for (int a = 0; a < 3; ++a) {
+      if (spatial[a].empty()) continue;
+      d.spatialTable[a] = makeTable("position", "spatial cost");
+      for (const BvhCandidate* k : spatial[a]) addRow(d.spatialTable[a], across(a, k->position), k->cost);
+      vtkPlot* p = addLine(d.chart, d.spatialTable[a], axisColor(a), 2.f * d.scale,
+                           std::string(replay::axis_name(a)) + " spatial (" + std::to_string(spatial[a].size()) +
+                               ")");
+      p->GetPen()->SetLineType(vtkPen::DASH_LINE);
+    }
+    if (chosen && chosen->spatial && !conceal_) {
+      auto line = makeTable("position", "chosen");
+      addRow(line, across(chosen->axis, chosen->position), lo - 0.02 * (hi - lo));
+      addRow(line, across(chosen->axis, chosen->position), hi);
+      addLine(d.chart, line, palette::sahChosen, 1.5f * d.scale,
+              std::string("chosen: ") + replay::axis_name(chosen->axis) + " spatial");
+    }
+    const double pad = hi > lo ? 0.05 * (hi - lo) : std::max(1.0, 0.1 * std::abs(hi));
+    d.chart->GetAxis(vtkAxis::LEFT)->SetRange(lo - pad, hi + pad);
+    d.chart->RecalculateBounds();
+  }
+  const QString spatialWords =
+      spatialCount == 0
+          ? QString()
+          : tr("<br>spatial candidates (dashed): x %1, y %2, z %3, planes across the node's box that cut the "
+               "primitives crossing them, each side keeping its part")
+                .arg(spatial[0].size())
+                .arg(spatial[1].size())
+                .arg(spatial[2].size());
+  if (conceal_ || !chosen) {
+    text_->setText(text_->text() + spatialWords);
+    renderNow();
+    return;
+  }
+  // The decision in the BVH's terms: the bin, the counts and the areas of each side's box.
+  const BvhCandidate& k = *chosen;
   QString t = text_->text();
   const int cut = t.indexOf("<b>split");
   if (cut >= 0) t.truncate(cut);
-  t += tr("<b>bin %1 on %2</b> (plane %2 = %3), cost %4 = t_t + (S_l N_l + S_r N_r) t_i / S_node (t_t = %5)"
-          "<br>N left %6, right %7; each side's box is tight around its primitives and may overlap the other")
-           .arg(k.bin)
-           .arg(replay::axis_name(k.axis))
-           .arg(fmt(k.position))
-           .arg(fmt(k.cost))
-           .arg(double(t_t))
-           .arg(k.n_left)
-           .arg(k.n_right);
-  text_->setText(t);
-  d_->chart->SetTitle("node " + std::to_string(b.node) + ": bin " + std::to_string(k.bin) + " on " +
-                      replay::axis_name(k.axis));
+  if (k.spatial)
+    t += tr("<b>spatial split at %1 = %2</b> (bin %3), cost %4 = t_t + (S_l N_l + S_r N_r) t_i / S_node (t_t = "
+            "%5)<br>N left %6, right %7 of %8: the %9 primitives crossing the plane are referenced on both "
+            "sides, each side's box holding only its part, so the two boxes meet at the plane and do not "
+            "overlap")
+             .arg(replay::axis_name(k.axis))
+             .arg(fmt(k.position))
+             .arg(k.bin)
+             .arg(fmt(k.cost))
+             .arg(double(t_t))
+             .arg(k.n_left)
+             .arg(k.n_right)
+             .arg(b.info.prims)
+             .arg(k.n_left + k.n_right - b.info.prims);
+  else
+    t += tr("<b>bin %1 on %2</b> (plane %2 = %3), cost %4 = t_t + (S_l N_l + S_r N_r) t_i / S_node (t_t = %5)"
+            "<br>N left %6, right %7; each side's box is tight around its primitives and may overlap the other")
+             .arg(k.bin)
+             .arg(replay::axis_name(k.axis))
+             .arg(fmt(k.position))
+             .arg(fmt(k.cost))
+             .arg(double(t_t))
+             .arg(k.n_left)
+             .arg(k.n_right);
+  text_->setText(t + spatialWords);
+  d.chart->SetTitle("node " + std::to_string(b.node) + ": " +
+                    (k.spatial ? std::string("spatial split") : "bin " + std::to_string(k.bin)) + " on " +
+                    replay::axis_name(k.axis));
   renderNow();
 }
 
@@ -528,6 +562,7 @@ void SahChart::setBspCurve(std::shared_ptr<const BspSahCurve> curve, const QStri
   lastBonus_ = 0.f;
   d_->message.clear();
   for (auto& t : d_->axisTable) t = nullptr;
+  for (auto& t : d_->spatialTable) t = nullptr;
   orientation_->show();
   drawBspCurve();
 }
@@ -807,8 +842,14 @@ QJsonObject SahChart::dumpState() const {
   o["plots"] = int(d.chart->GetNumberOfPlots());
   o["candidates"] = int(c.candidates.size());
   o["structure"] = bvhCurve_ ? "bvh" : "kd";
-  if (bvhCurve_ && bvhCurve_->chosen >= 0 && size_t(bvhCurve_->chosen) < bvhCurve_->candidates.size())
+  if (bvhCurve_ && bvhCurve_->chosen >= 0 && size_t(bvhCurve_->chosen) < bvhCurve_->candidates.size()) {
     o["chosen_bin"] = bvhCurve_->candidates[size_t(bvhCurve_->chosen)].bin;
+    o["chosen_kind"] = bvhCurve_->candidates[size_t(bvhCurve_->chosen)].spatial ? "spatial" : "object";
+  }
+  QJsonObject spatialPoints;
+  for (int a = 0; a < 3; ++a)
+    spatialPoints[replay::axis_name(a)] = d.spatialTable[a] ? int(d.spatialTable[a]->GetNumberOfRows()) : 0;
+  o["spatial_points"] = spatialPoints;
   return o;
 }
 

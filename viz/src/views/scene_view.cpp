@@ -42,6 +42,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "raystep/accel/bsp_cell.h"
+#include "raystep/accel/bvh_names.h"
 #include "raystep/replay/replay_state.h"
 #include "raystep/replay/octree_choice.h"
 #include "raystep/replay/bvh_choice.h"
@@ -344,6 +345,11 @@ void SceneView::rebuildGeometry() {
                          (session_->trace() && replay::is_bvh_kind(session_->trace()->structure.kind));
   const bool octreeLegend = (session_->structure() && session_->structure()->kind == "octree") ||
                             (session_->trace() && session_->trace()->structure.kind == "octree");
+  const std::string& kindNow = session_->structure() ? session_->structure()->kind
+                               : session_->trace()   ? session_->trace()->structure.kind
+                                                     : std::string();
+  const std::optional<BvhName> bvhName = parse_bvh_name(kindNow);
+  const bool spatialSplits = bvhName && bvhName->builder == BvhBuilder::sbvh;
   if (d.haveTree && bvhLegend)
     d.legend->setText(
         walk + swatch(palette::currentCell, tr("current node")) +
@@ -353,7 +359,10 @@ void SceneView::rebuildGeometry() {
         swatch(palette::visitedCell, tr("visited")) +
         swatch(palette::bvhSkipped, tr("skipped (beyond the hit)")) + hits +
         (session_->structure() ? swatch(palette::selectedNode, tr("selected in the tree")) : QString()) +
-        "<br>" + tr("Primitives of the current leaf (each in exactly one leaf: no mailbox): ") +
+        "<br>" +
+        (spatialSplits ? tr("Primitives of the current leaf (spatial splits: a primitive may sit in several "
+                            "leaves, tested again in each; no mailbox): ")
+                       : tr("Primitives of the current leaf (each in exactly one leaf: no mailbox): ")) +
         swatch(palette::primPending, tr("not reached")) +
         swatch(palette::primTesting, tr("being tested (outline)")) + swatch(palette::primHit, tr("hit")) +
         swatch(palette::primMissed, tr("missed")));

@@ -16,6 +16,8 @@
 
 #include <algorithm>
 
+#include "raystep/accel/bvh_names.h"
+
 namespace raystep::viz {
 
 StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
@@ -154,12 +156,16 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   bvhBuilder_->addItem(tr("binned SAH"), "bvh");
   bvhBuilder_->addItem(tr("full sweep SAH"), "bvh-sweep");
   bvhBuilder_->addItem(tr("object median"), "bvh-median");
+  bvhBuilder_->addItem(tr("spatial splits (SBVH)"), "bvh-sbvh");
   bvhBuilder_->addItem(tr("4-wide (SIMD)"), "bvh4");
   bvhBuilder_->addItem(tr("8-wide (SIMD)"), "bvh8");
+  bvhBuilder_->addItem(tr("4-wide SBVH"), "bvh4-sbvh");
+  bvhBuilder_->addItem(tr("8-wide SBVH"), "bvh8-sbvh");
   bvhBuilder_->setToolTip(tr(
       "binned SAH: centroids in equal bins per axis (Wald 2007); full sweep: every centroid (the reference); "
-      "object median: the longest axis's median centroid; 4- and 8-wide: the binned tree collapsed into wide "
-      "nodes tested with SIMD (the fast one)"));
+      "object median: the longest axis's median centroid; spatial splits: also planes that cut primitives "
+      "in two where the object split's boxes overlap (Stich et al. 2009); 4- and 8-wide: the binned tree or "
+      "the SBVH collapsed into wide nodes tested with SIMD (the fast ones)"));
   b->addWidget(new QLabel(tr("builder")), 0, 0);
   b->addWidget(bvhBuilder_, 0, 1, 1, 3);
   bvhOrder_ = new QComboBox;
@@ -257,8 +263,9 @@ StructurePanel::StructurePanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(bsp_);
   connect(bvhBuilder_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, [this] {
     const QString k = bvhBuilder_->currentData().toString();
-    bvhBins_->setEnabled(k == "bvh" || k == "bvh4" || k == "bvh8");
-    bvhOrder_->setEnabled(k != "bvh4" && k != "bvh8");  // the wide walk orders by entry distance
+    const std::optional<BvhName> name = parse_bvh_name(k.toStdString());
+    bvhBins_->setEnabled(name && (name->builder == BvhBuilder::binned || name->builder == BvhBuilder::sbvh));
+    bvhOrder_->setEnabled(!is_wide_bvh_name(k.toStdString()));  // the wide walk orders by entry distance
   });
   connect(accel_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &StructurePanel::showSection);
   connect(options_, &QToolButton::toggled, this, &StructurePanel::showSection);

@@ -112,20 +112,24 @@ int leafAtPick(const StructureData& s, const glm::vec3& p, int prim) {
     const BvhData& t = bvh->data();
     const Bounds3& root = t.nodes[0].box;
     const float tol = 1e-5f * glm::length(root.hi - root.lo);
-    int best = -1;
+    int best = -1, firstListed = -1;
     float bestSize = 0.f;
     for (uint32_t n = 0; n < t.nodes.size(); ++n) {
       const BvhNode& node = t.nodes[n];
       if (!node.is_leaf()) continue;
-      if (prim >= 0 && listed(t.prim_index, node.first_prim(), node.prim_count(), uint32_t(prim)))
-        return int(n);
+      // After spatial splits a primitive sits in several leaves: the one whose box holds the point.
+      if (prim >= 0 && listed(t.prim_index, node.first_prim(), node.prim_count(), uint32_t(prim))) {
+        if (inside(node.box, p, tol)) return int(n);
+        if (firstListed < 0) firstListed = int(n);
+        continue;
+      }
       const float size = glm::length(node.box.hi - node.box.lo);
       if (prim < 0 && inside(node.box, p, tol) && (best < 0 || size < bestSize)) {
         best = int(n);
         bestSize = size;
       }
     }
-    return best;
+    return prim >= 0 && firstListed >= 0 ? firstListed : best;
   }
   if (s.wideView && !s.wideView->nodes.empty()) {  // bvh4, bvh8: the same rule as the binary BVH
     const std::vector<WideBvhView::Node>& nodes = s.wideView->nodes;

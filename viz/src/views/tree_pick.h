@@ -1,7 +1,8 @@
 // What a click in the 3D view selects in a tree (lecture: "which cell holds this point?"): the leaf of the
 // kd-tree, binary or wide BVH, octree or general BSP tree that holds the picked point of the picked
 // primitive, found by going down the tree as a point location would (by the split plane, the octant, the
-// general plane's side; a BVH by the primitive, which sits in exactly one leaf).
+// general plane's side; a BVH by the primitive, which sits in one leaf, or after spatial splits in
+// several: the one whose box holds the point).
 #pragma once
 
 #include <glm/vec3.hpp>

@@ -21,11 +21,11 @@ TreeView::TreeView(Session* session, QWidget* parent)
   layout->setContentsMargins(0, 0, 0, 0);
   auto* bar = new QHBoxLayout;
   title_ = new QLabel(tr("<b>kd-tree</b>"));
+  title_->setWordWrap(true);  // a BVH's title carries its quality metrics
   current_ = new QPushButton(tr("Current node"));
   current_->setObjectName("treeCurrentNode");
   current_->setToolTip(tr("Expand the tree to the node the replayed ray is in"));
-  bar->addWidget(title_);
-  bar->addStretch();
+  bar->addWidget(title_, 1);
   bar->addWidget(current_);
   layout->addLayout(bar);
   view_ = new QTreeView;
@@ -54,7 +54,7 @@ TreeView::TreeView(Session* session, QWidget* parent)
   connect(session_, &Session::structureChanged, this, [this] {
     model_->setStructure(session_->structureShared());
     if (const TreeShape* t = model_->tree())
-      title_->setText(tr("<b>%1</b>: %2 nodes").arg(t->name()).arg(t->size()));
+      title_->setText(tr("<b>%1</b>: %2 nodes").arg(t->name()).arg(t->size()) + qualityText());
     else
       title_->setText(tr("<b>Tree</b>: none (build a kd-tree or a BVH)"));
     view_->expandToDepth(0);  // the root's two children
@@ -64,6 +64,33 @@ TreeView::TreeView(Session* session, QWidget* parent)
   connect(session_, &Session::stepChanged, this,
           [this] { current_->setEnabled(session_->state().node_event >= 0); });
   current_->setEnabled(false);
+}
+
+// A BVH's quality (core's bvh_quality.h, measured with the build): SAH, EPO and the leaves' sizes.
+QString TreeView::qualityText() const {
+  const StructureData* s = session_->structure();
+  if (!s || !s->quality) return QString();
+  const BvhQuality& q = *s->quality;
+  QString sizes;
+  int shown = 0;
+  for (size_t k = 0; k < q.leaf_prims.size() && shown < 4; ++k)
+    if (q.leaf_prims[k] > 0) {
+      sizes += tr("%1%2 of %3%4")
+                   .arg(shown ? ", " : "")
+                   .arg(q.leaf_prims[k])
+                   .arg(k)
+                   .arg(k + 1 == q.leaf_prims.size() ? "+" : "");
+      ++shown;
+    }
+  size_t depth = 0;
+  uint64_t most = 0;
+  for (size_t d = 0; d < q.leaf_depth.size(); ++d)
+    if (q.leaf_depth[d] > most) most = q.leaf_depth[d], depth = d;
+  return tr(" &middot; SAH %1 &middot; EPO %2 &middot; leaves: %3 primitives &middot; most at depth %4")
+      .arg(q.sah_cost, 0, 'f', 1)
+      .arg(q.epo, 0, 'f', 2)
+      .arg(sizes)
+      .arg(depth);
 }
 
 void TreeView::showSelected() {

@@ -30,6 +30,7 @@ class TreeView : public QWidget {
 
  private:
   void showSelected();
+  QString qualityText() const;
   Session* session_;
   KdTreeModel* model_;
   QTreeView* view_;

@@ -38,6 +38,9 @@ class Accelerator {
 
 // The names accepted by make_accelerator, for --help texts.
 std::vector<std::string> accelerator_names();
+// The structures whose walks are recorded (every name but brute force and the bounding-volume kinds), as
+// text for messages: "grid, kd, ..., octree or bsp"; trees_only: without the grid.
+std::string recorded_structure_list(bool trees_only = false);
 // With default build options (accel/structure_options.h has the overload that takes options).
 // Throws InputError("", 0, "unknown accelerator ...") for an unknown name.
 std::unique_ptr<Accelerator> make_accelerator(const std::string& name);

@@ -29,7 +29,7 @@ class Bvh final : public RecordedWalk<Bvh, BvhOptions> {
  public:
   explicit Bvh(BvhOptions options = {}, BvhOrder order = BvhOrder::entry_distance)
       : RecordedWalk(options), order_(order) {}
-  // "bvh" (binned SAH), "bvh-sweep" or "bvh-median"
+  // "bvh" (binned SAH), "bvh-sweep", "bvh-median" or "bvh-sbvh" (bvh_names.h)
   std::string name() const override;
   void build(const Geometry& geometry) override;
   // The same build, telling a listener about every node (SAH inspection, tests).

@@ -49,13 +49,15 @@ struct BvhNode {
 struct BvhNodeInfo {
   int32_t parent = -1;  // -1 for the root (node 0)
   int32_t depth = 0;
-  uint32_t prims = 0;  // primitives in the node's subtree
+  uint32_t prims = 0;  // primitives in the node's subtree (SBVH: the references the node was built over)
   float cost = 0.f;    // the builder's choice for this node: the split's SAH cost, or N * t_i for a leaf
 };
 
 // A built hierarchy. nodes[0] is the root (its box is the scene's bounds); node ids are positions in `nodes`
-// (depth-first preorder), the ids that trace events and the SAH inspector use. prim_index is a permutation of
-// the primitive ids: each leaf's are contiguous and in increasing id order within the leaf.
+// (depth-first preorder), the ids that trace events and the SAH inspector use. prim_index lists each leaf's
+// primitive ids, contiguous and in increasing id order within the leaf: a permutation of the primitive ids,
+// except after spatial splits (BvhBuilder::sbvh), where a primitive may be referenced by several leaves (never
+// twice by one), and `references` counts them.
 struct BvhData {
   SplitSpace space;  // split on x, y, z, or on x and y in the plane (a flatland scene)
   std::vector<BvhNode> nodes;

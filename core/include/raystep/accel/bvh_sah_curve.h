@@ -1,6 +1,7 @@
 // The SAH cost curve of one BVH node, for the lecture's question "why was this split chosen?": every
 // candidate the builder evaluated (binned: each bin boundary on x, y and z; sweep: each boundary between
-// sorted centroids; median: its one split) with N and the box area on each side and C = t_t + (S_l N_l + S_r
+// sorted centroids; median: its one split; SBVH: the binned object splits, then where they overlap the spatial
+// splits at the bin boundaries of the node's box) with N and the box area on each side and C = t_t + (S_l N_l + S_r
 // N_r) t_i / S_node, and the decision (the chosen split, or a leaf at N t_i). Recorded by rebuilding with a
 // listener that wants only that node.
 #pragma once
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "raystep/accel/bvh_build.h"
+#include "raystep/accel/kdtree_sah_curve.h"
 
 namespace raystep {
 
@@ -33,8 +35,15 @@ BvhSahCurve record_bvh_sah_curve(const Geometry& geometry, const BvhOptions& opt
 // The candidates alone (the SAH inspector's call).
 std::vector<BvhCandidate> bvh_sah_curve(const Geometry& geometry, const BvhOptions& options, uint32_t node);
 
+// The curve in the kd-tree's terms (kdtree_sah_curve.h: N below and above for left and right, the decision's
+// axis, position and cost), as the SAH chart and the lessons' node facts read curves: the object candidates,
+// and the spatial ones too when `spatial` (an SBVH's; the chosen index counts the candidates kept, -1 when
+// the chosen one is left out).
+SahCurve as_kd_curve(const BvhSahCurve& curve, bool spatial);
+
 // The curve as CSV (columns, a contract:
-// axis,bin,position,n_left,n_right,area_left,area_right,area_node,cost, chosen) or JSON (the node, its
+// axis,bin,position,n_left,n_right,area_left,area_right,area_node,cost,chosen,kind with kind object or
+// spatial) or JSON (the node, its
 // decision and the same rows); written atomically.
 void write_bvh_sah_csv(const std::string& path, const BvhSahCurve& curve);
 void write_bvh_sah_json(const std::string& path, const BvhSahCurve& curve, const BvhOptions& options);

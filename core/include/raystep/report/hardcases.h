@@ -52,7 +52,7 @@ struct HardCaseRunOptions {
   StructureFactory factory;             // empty: make_accelerator
 };
 
-// brute, grid, kd, bvh, bvh4, bvh8, octree, bsp (accelerator_names() has the variants too).
+// brute, grid, kd, bvh, bvh-sbvh, bvh4, bvh8, bvh8-sbvh, octree, bsp (accelerator_names() has the variants too).
 std::vector<std::string> default_hardcase_structures();
 
 // Throws InputError("", 0, ...) for an unknown structure name.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -54,8 +55,12 @@ struct StructureCompareRow {
   std::string steps;           // steps_per_ray counts "cells", "nodes", "boxes", "volumes" (bvol kinds), "-"
   double build_seconds = 0.0;  // median of reps builds
   uint64_t memory_bytes = 0;   // Accelerator::memory_bytes()
-  uint64_t tree_nodes = 0;  // kd-trees and the BSP tree: nodes and the deepest node's depth (else 0 and -1)
+  uint64_t tree_nodes = 0;  // the trees: nodes and the deepest node's depth (else 0 and -1)
   int tree_depth = -1;
+  // The BVHs (binary and wide): the SAH cost and EPO of the tree (accel/bvh_quality.h); NaN for the others.
+  // With steps and tests per ray they give the predicted against the measured cost.
+  double sah_cost = std::nan("");
+  double epo = std::nan("");
   StructureRaySet camera, random;
   uint64_t disagreements() const { return camera.disagreements + random.disagreements; }
   uint64_t ties() const { return camera.ties + random.ties; }
