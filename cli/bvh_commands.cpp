@@ -2,6 +2,7 @@
 // against measured) and `raystep sah --accel bvh|bvh-sweep|bvh-median` (one node's SAH curve).
 #include <algorithm>
 #include <chrono>
+#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 
@@ -10,8 +11,7 @@
 #include "raystep/accel/bvh_entry_probability.h"
 #include "raystep/accel/bvh_names.h"
 #include "raystep/accel/bvh_quality.h"
-#include "raystep/render/camera.h"
-#include "raystep/scene/ray_sets.h"
+
 #include "raystep/accel/bvh_sah_curve.h"
 #include "raystep/io/scene_loader.h"
 #include "raystep/util/atomic_file.h"
@@ -152,29 +152,10 @@ int run_bvh_stats(const KdStatsArgs& a) {
       "EPO (end-point overlap, Aila et al. 2013): %.4f = inner nodes %.4f + leaves %.4f (the cost, in t_t "
       "and t_i, of the boxes around a surface point whose subtree lacks its triangle; 0 without overlap)\n",
       q.epo, q.epo_inner, q.epo_leaves);
-  std::string hist;
-  for (size_t k = 0; k < q.leaf_prims.size(); ++k)
-    if (q.leaf_prims[k] > 0)
-      hist += "  " + std::to_string(k) + (k + 1 == q.leaf_prims.size() ? "+" : "") + ": " +
-              std::to_string(q.leaf_prims[k]);
-  std::printf("leaves by primitive count:%s\n", hist.c_str());
-  hist.clear();
-  for (size_t k = 0; k < q.leaf_depth.size(); ++k)
-    if (q.leaf_depth[k] > 0) hist += "  " + std::to_string(k) + ": " + std::to_string(q.leaf_depth[k]);
-  std::printf("leaves by depth:%s\n", hist.c_str());
-  int cw = scene.render.width, ch = scene.render.height;
-  while (uint64_t(cw) * uint64_t(ch) > a.rays && cw > 1 && ch > 1) cw = (cw + 1) / 2, ch = (ch + 1) / 2;
-  const std::vector<Ray> camera = camera_rays(scene.camera, cw, ch);
-  const std::vector<Ray> random =
-      scene.geometry.size() > 0 ? random_rays(scene.geometry.bounds(), a.rays, a.seed) : std::vector<Ray>{};
-  const MeasuredCost mc = measure_cost(bvh, camera, options.t_i, options.t_t);
-  const MeasuredCost mr = measure_cost(bvh, random, options.t_i, options.t_t);
-  std::printf(
-      "measured, %zu camera rays (%dx%d) / %zu random rays, per ray: inner nodes %.2f / %.2f, box tests %.2f / "
-      "%.2f, primitive tests %.2f / %.2f; cost t_t nodes + t_i tests %.1f / %.1f (the SAH predicts %.1f for "
-      "random lines through the root, which neither start inside the scene nor stop at a hit)\n",
-      camera.size(), cw, ch, random.size(), mc.nodes_per_ray, mr.nodes_per_ray, mc.box_tests_per_ray,
-      mr.box_tests_per_ray, mc.tests_per_ray, mr.tests_per_ray, mc.cost_per_ray, mr.cost_per_ray, q.sah_cost);
+  print_leaf_histograms(q.leaf_prims, q.leaf_depth);
+  const std::pair<MeasuredCost, MeasuredCost> measured =
+      print_measured_cost(bvh, scene, a.rays, a.seed, options.t_i, options.t_t, q.sah_cost);
+  const MeasuredCost &mc = measured.first, &mr = measured.second;
   if (!a.quality_csv.empty()) {
     write_file_atomically(a.quality_csv, [&](std::ostream& out) {
       out << "structure,primitives,nodes,inner,leaves,references,sah_cost,sibling_overlap,epo,epo_inner,"
@@ -183,11 +164,12 @@ int run_bvh_stats(const KdStatsArgs& a) {
              "random_tests_per_ray,random_cost_per_ray,leaf_prims,leaf_depth\n";
       char buf[640];
       std::snprintf(buf, sizeof buf,
-                    "%s,%zu,%zu,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,"
+                    "%s,%zu,%zu,%zu,%zu,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%" PRIu64 ",%.6g,%.6g,%.6g,%.6g,%" PRIu64
+                    ",%.6g,%.6g,%.6g,"
                     "%.6g,",
                     bvh.name().c_str(), prims, q.nodes, q.inner, q.leaves, q.references, q.sah_cost, st.overlap,
-                    q.epo, q.epo_inner, q.epo_leaves, camera.size(), mc.nodes_per_ray, mc.box_tests_per_ray,
-                    mc.tests_per_ray, mc.cost_per_ray, random.size(), mr.nodes_per_ray, mr.box_tests_per_ray,
+                    q.epo, q.epo_inner, q.epo_leaves, mc.rays, mc.nodes_per_ray, mc.box_tests_per_ray,
+                    mc.tests_per_ray, mc.cost_per_ray, mr.rays, mr.nodes_per_ray, mr.box_tests_per_ray,
                     mr.tests_per_ray, mr.cost_per_ray);
       out << buf;
       // The histograms as counts joined by ';' (index = primitives, or depth).

@@ -605,8 +605,40 @@ void report_entry_probability(const std::vector<EntryNode>& nodes, const std::ve
   }
 }
 
+void print_leaf_histograms(const std::vector<uint64_t>& by_prims, const std::vector<uint64_t>& by_depth) {
+  std::string hist;
+  for (size_t k = 0; k < by_prims.size(); ++k)
+    if (by_prims[k] > 0)
+      hist += "  " + std::to_string(k) + (k + 1 == by_prims.size() ? "+" : "") + ": " + std::to_string(by_prims[k]);
+  std::printf("leaves by primitive count:%s\n", hist.c_str());
+  hist.clear();
+  for (size_t k = 0; k < by_depth.size(); ++k)
+    if (by_depth[k] > 0) hist += "  " + std::to_string(k) + ": " + std::to_string(by_depth[k]);
+  std::printf("leaves by depth:%s\n", hist.c_str());
+}
+
+std::pair<MeasuredCost, MeasuredCost> print_measured_cost(const Accelerator& accel, const Scene& scene,
+                                                          uint64_t rays, uint64_t seed, float t_i, float t_t,
+                                                          double sah_cost) {
+  int cw = scene.render.width, ch = scene.render.height;
+  while (uint64_t(cw) * uint64_t(ch) > rays && cw > 1 && ch > 1) cw = (cw + 1) / 2, ch = (ch + 1) / 2;
+  const std::vector<Ray> camera = camera_rays(scene.camera, cw, ch);
+  const std::vector<Ray> random =
+      scene.geometry.size() > 0 ? random_rays(scene.geometry.bounds(), rays, seed) : std::vector<Ray>{};
+  const MeasuredCost mc = measure_cost(accel, camera, t_i, t_t);
+  const MeasuredCost mr = measure_cost(accel, random, t_i, t_t);
+  std::printf(
+      "measured, %zu camera rays (%dx%d) / %zu random rays, per ray: inner nodes %.2f / %.2f, box tests %.2f / "
+      "%.2f, primitive tests %.2f / %.2f; cost t_t nodes + t_i tests %.1f / %.1f (the SAH predicts %.1f for "
+      "random lines through the root, which neither start inside the scene nor stop at a hit)\n",
+      camera.size(), cw, ch, random.size(), mc.nodes_per_ray, mr.nodes_per_ray, mc.box_tests_per_ray,
+      mr.box_tests_per_ray, mc.tests_per_ray, mr.tests_per_ray, mc.cost_per_ray, mr.cost_per_ray, sah_cost);
+  return {mc, mr};
+}
+
 int run_kdtree_stats(const KdStatsArgs& a) {
   if (a.lines < 1 || a.lines > (uint64_t(1) << 26)) throw InputError("", 0, "--lines must be 1..67108864");
+  if (a.rays < 1 || a.rays > (uint64_t(1) << 24)) throw InputError("", 0, "--rays must be 1..16777216");
   if (!a.csv.empty()) check_output_folder(a.csv);
   Scene scene = load_scene(a.scene);
   auto accel = build_structure(a.structure);
@@ -639,6 +671,17 @@ int run_kdtree_stats(const KdStatsArgs& a) {
               prims ? double(st.references) / double(prims) : 0.0, st.references);
   std::printf("SAH cost of the tree: %.3f (t_i %g, t_t %g); a single leaf would cost %.1f\n", st.sah_cost,
               tree->options().t_i, tree->options().t_t, double(prims) * tree->options().t_i);
+  // The quality lines of bvh-stats that apply (a kd-tree's cells hold every triangle crossing them, so its
+  // end-point overlap is 0 by construction).
+  std::vector<uint64_t> by_prims(kLeafHistogramBins, 0), by_depth;
+  for (size_t i = 0; i < d.nodes.size(); ++i)
+    if (d.nodes[i].is_leaf()) {
+      ++by_prims[std::min<size_t>(d.nodes[i].prim_count(), kLeafHistogramBins - 1)];
+      if (by_depth.size() <= size_t(d.info[i].depth)) by_depth.resize(size_t(d.info[i].depth) + 1, 0);
+      ++by_depth[size_t(d.info[i].depth)];
+    }
+  print_leaf_histograms(by_prims, by_depth);
+  print_measured_cost(*tree, scene, a.rays, a.seed, tree->options().t_i, tree->options().t_t, st.sah_cost);
 
   std::vector<EntryNode> nodes(d.nodes.size());
   for (size_t i = 0; i < d.nodes.size(); ++i) {

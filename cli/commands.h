@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
+#include "raystep/accel/bvh_quality.h"
 #include "raystep/accel/structure_options.h"
 #include "raystep/scene/scene.h"
 #include "raystep/trace/multi_trace.h"
@@ -193,6 +195,14 @@ struct EntryNode {
 
 // kd-stats' and bvh-stats' entry probabilities, predicted against measured (entry, one per node): the top
 // of the tree, then all nodes at once, the summary line ending in rays_note; every node to csv unless empty.
+// The quality lines both tree commands print (accel/bvh_quality.h): the leaves by primitive count (the last
+// bin: that many or more) and by depth, and the cost measured on the scene's camera rays (at most `rays`) and
+// as many random rays against the SAH's prediction. Returns the two measurements (camera, random).
+void print_leaf_histograms(const std::vector<uint64_t>& by_prims, const std::vector<uint64_t>& by_depth);
+std::pair<MeasuredCost, MeasuredCost> print_measured_cost(const Accelerator& accel, const Scene& scene,
+                                                          uint64_t rays, uint64_t seed, float t_i, float t_t,
+                                                          double sah_cost);
+
 void report_entry_probability(const std::vector<EntryNode>& nodes, const std::vector<KdNodeEntry>& entry,
                               uint64_t lines, size_t rays_cast, const char* rays_note,
                               const std::string& csv);

@@ -211,6 +211,10 @@ int main(int argc, char** argv) {
   kd_stats_cmd->add_option("--lines", kd_stats.lines, "random lines through the root for the measurement")
       ->capture_default_str();
   kd_stats_cmd->add_option("--seed", kd_stats.seed, "random seed")->capture_default_str();
+  kd_stats_cmd
+      ->add_option("--rays", kd_stats.rays,
+                   "camera rays (at most this many, the scene's camera) and random rays for the measured cost")
+      ->capture_default_str();
   kd_stats_cmd->add_option("--csv", kd_stats.csv,
                            "also write every node's row (id, depth, predicted, measured)");
 

@@ -428,7 +428,8 @@ TEST_F(Cli, KdTreeStatsPredictsEntryProbabilities) {
   Outcome r = run("kdtree-stats " + scene + " --lines 20000 --csv " + path("n.csv"));
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* key : {"nodes:", "depth: max", "primitives per non-empty leaf", "references per primitive",
-                          "SAH cost of the tree", "(root)"})
+                          "SAH cost of the tree", "(root)", "leaves by primitive count:", "leaves by depth:",
+                          "measured, ", "primitive tests"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
   auto rows = csv_rows(slurp(path("n.csv")));
   ASSERT_GT(rows.size(), 10u);

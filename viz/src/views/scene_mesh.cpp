@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include <vtkCellArray.h>
+#include <vtkQuadricClustering.h>
 #include <vtkCellData.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
@@ -167,6 +168,10 @@ void fill(size_t count, const ShapeOf& shapeOf, const ColorOf& colorOf, const Id
 
 SceneMesh::SceneMesh() : data_(vtkPolyData::New()) {}
 
+size_t SceneMesh::displayTriangles() const {
+  return size_t(data_->GetNumberOfCells());
+}
+
 SceneMesh::~SceneMesh() {
   data_->Delete();
 }
@@ -205,7 +210,40 @@ std::shared_ptr<const SceneMesh> SceneMesh::fromScene(const Scene& scene) {
       [&](size_t i) { return colors[g.material(uint32_t(i))]; }, [](size_t i) { return int32_t(i); }, spheres,
       mesh->data_, &mesh->cellPrim_);
   mesh->bounds_ = g.bounds();
+  mesh->sceneTriangles_ = size_t(mesh->data_->GetNumberOfCells());
+  if (mesh->sceneTriangles_ > kDisplayTriangles) mesh->decimate();
   return mesh;
+}
+
+void SceneMesh::decimate() {
+  // The primitive ids travel with the colours as cell data: quadric clustering keeps one input cell's data
+  // for each output cell.
+  vtkNew<vtkTypeInt32Array> ids;
+  ids->SetName("prim");
+  ids->SetNumberOfValues(vtkIdType(cellPrim_.size()));
+  std::copy(cellPrim_.begin(), cellPrim_.end(), ids->GetPointer(0));
+  data_->GetCellData()->AddArray(ids);
+  // 96 bins on the longest side (the others as many as make the bins cubes): the clustering holds a quadric
+  // of 88 bytes for every bin, at most 96^3 of them (78 MB, for the time of the call); a closed surface
+  // crosses a few times 96^2 bins, two output triangles each.
+  const int divisions = 96;
+  vtkNew<vtkQuadricClustering> cluster;
+  cluster->SetInputData(data_);
+  cluster->SetNumberOfDivisions(divisions, divisions, divisions);
+  cluster->AutoAdjustNumberOfDivisionsOn();  // cubical bins over the mesh's bounds
+  cluster->CopyCellDataOn();
+  cluster->Update();
+  vtkPolyData* out = cluster->GetOutput();
+  vtkDataArray* prims = out->GetCellData()->GetArray("prim");
+  if (!prims || out->GetNumberOfCells() == 0) return;  // keep the full copy
+  cellPrim_.resize(size_t(out->GetNumberOfCells()));
+  for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c) cellPrim_[size_t(c)] = int32_t(prims->GetTuple1(c));
+  out->GetCellData()->RemoveArray("prim");
+  out->GetCellData()->SetScalars(out->GetCellData()->GetArray(0));
+  data_->Delete();
+  data_ = vtkPolyData::New();
+  data_->ShallowCopy(out);
+  decimated_ = true;
 }
 
 std::shared_ptr<const SceneMesh> SceneMesh::fromTrace(const Trace& trace) {

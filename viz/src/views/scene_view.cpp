@@ -392,6 +392,12 @@ void SceneView::rebuildGeometry() {
   else
     d.legend->setText(walk + swatch(palette::currentCell, tr("current cell")) + swatch(palette::visitedCell, tr("visited")) +
                       hits + "<br>" + tr("Primitives of the current cell: ") + primStates);
+  if (d.mesh && d.mesh->decimated())
+    d.legend->setText(d.legend->text() +
+                      tr("<br>The scene is drawn from a decimated copy (%L1 of its %L2 triangles) so that the "
+                         "view stays responsive; the walk, its primitives and a click's pick use every triangle.")
+                          .arg(qulonglong(d.mesh->displayTriangles()))
+                          .arg(qulonglong(d.mesh->sceneTriangles())));
   updateSelected();
 }
 
@@ -520,6 +526,21 @@ bool SceneView::pickDisplay(int x, int y) {
   d.picked = glm::vec3(float(p[0]), float(p[1]), float(p[2]));
   const vtkIdType cell = d.picker->GetCellId();
   d.pickedPrim = d.mesh && size_t(cell) < d.mesh->cellPrim().size() ? d.mesh->cellPrim()[size_t(cell)] : -1;
+  // A decimated display copy is only near the surface: the ray tracer finds the primitive and the point the
+  // click means, on the ray from the eye through the picked point.
+  const StructureData* s = session_->structure();
+  if (d.mesh && d.mesh->decimated() && s && s->accel) {
+    double eye[3];
+    d.base->GetActiveCamera()->GetPosition(eye);
+    Ray ray;
+    ray.origin = glm::vec3(float(eye[0]), float(eye[1]), float(eye[2]));
+    ray.direction = d.picked - ray.origin;
+    Hit hit;
+    if (glm::length(ray.direction) > 0.f && s->accel->intersect(ray, &hit)) {
+      d.picked = ray.at(hit.t);
+      d.pickedPrim = hit.prim;
+    }
+  }
   Q_EMIT pointPicked(d.picked.x, d.picked.y, d.picked.z);
   return true;
 }
