@@ -300,7 +300,7 @@ namespace raystep::cli {
 // 0 no leak, disagreement or crash; 1 any of them; 2 bad input (InputError).
 struct HardCasesArgs {
   std::string mesh;    // a .obj file; empty: the built-in meshes
-  std::string accel;   // comma-separated structures, "all", or empty: brute,grid,kd,bvh,bvh4,bvh8,octree,bsp
+  std::string accel;   // comma-separated structures, "all", or empty: brute,grid,kd,bvh,bvh-sbvh,bvh4,bvh8,bvh8-sbvh,octree,bsp
   std::string output;  // optional report file, .csv or .json
   uint64_t rays = 0;   // rays per scale on the mesh (0: automatic)
   uint64_t seed = 1;

@@ -445,7 +445,7 @@ int main(int argc, char** argv) {
       "edge shared by an even number of triangles");
   hardcases_cmd->add_option(
       "--accel", hardcases.accel,
-      "comma-separated structures, or all (default: brute,grid,kd,bvh,bvh4,bvh8,octree,bsp)");
+      "comma-separated structures, or all (default: brute,grid,kd,bvh,bvh-sbvh,bvh4,bvh8,bvh8-sbvh,octree,bsp)");
   hardcases_cmd
       ->add_option("--rays", hardcases.rays, "rays per scale on the mesh, up to 65536 (0: automatic)")
       ->capture_default_str();
