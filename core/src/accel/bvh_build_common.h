@@ -51,6 +51,17 @@ uint32_t apply_split(PrimRef* refs, uint32_t n, const Bounds3& centroids, const 
 // The node's box and its centroids' box (in parallel over large ranges; min and max only: deterministic).
 void range_bounds(const PrimRef* refs, uint32_t n, Bounds3* box, Bounds3* centroids);
 
+// The SAH sweep over one axis's bins, the binned and the spatial search's: candidate b (the plane planes[b])
+// puts bins 0..b on the left with n_left = enter[0] + .. + enter[b] and n_right = leave[b+1] + .. (the binned
+// search counts a primitive in one bin, so enter = leave; a spatial one enters at its low end's bin and
+// leaves at its high end's), each side's box the union of its bins'. Appends every candidate to *out (when not
+// null); keeps in *best the cheapest with both sides non-empty, against *best already there when `found`.
+// Returns whether *best holds one.
+constexpr int kMaxSweepBins = 256;
+bool sweep_bins(const Bounds3* box, const uint32_t* enter, const uint32_t* leave, const float* planes, int bins,
+                int axis, bool spatial, float area_node, const BvhOptions& o, SplitSpace space,
+                std::vector<BvhCandidate>* out, BvhCandidate* best, bool found);
+
 // C = t_t + (S_l N_l + S_r N_r) t_i / S_node; a node box of zero area counts both sides fully.
 float split_cost(const BvhOptions& o, float area_node, uint32_t n_l, float area_l, uint32_t n_r,
                  float area_r);

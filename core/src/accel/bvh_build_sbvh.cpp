@@ -183,38 +183,8 @@ bool best_spatial(const Geometry& g, const PrimRef* refs, uint32_t n, const Boun
       else
         chop_into_bins(g, r, a, planes, e, x, bin_box);
     }
-    float right_area[kSpatialBins];
-    uint32_t right_count[kSpatialBins];
-    Bounds3 acc;
-    uint32_t cnt = 0;
-    for (int b = kSpatialBins - 1; b > 0; --b) {
-      acc.extend(bin_box[b]);
-      cnt += leave[b];
-      right_area[b - 1] = space.measure(acc);
-      right_count[b - 1] = cnt;
-    }
-    Bounds3 left;
-    uint32_t n_left = 0;
-    for (int b = 0; b + 1 < kSpatialBins; ++b) {
-      left.extend(bin_box[b]);
-      n_left += enter[b];
-      BvhCandidate c;
-      c.spatial = true;
-      c.axis = a;
-      c.bin = b;
-      c.position = planes[b + 1];
-      c.n_left = n_left;
-      c.n_right = right_count[b];
-      c.area_left = space.measure(left);
-      c.area_right = right_area[b];
-      c.area_node = area_node;
-      c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
-      if (out) out->push_back(c);
-      if (c.n_left > 0 && c.n_right > 0 && (!found || c.cost < best->cost)) {
-        *best = c;
-        found = true;
-      }
-    }
+    found = sweep_bins(bin_box, enter, leave, planes + 1, kSpatialBins, a, true, area_node, o, space, out, best,
+                       found);
   }
   return found;
 }

@@ -97,45 +97,14 @@ bool best_binned(const PrimRef* refs, uint32_t n, const Bounds3& box, const Boun
   }
   const float area_node = space.measure(box);
   bool found = false;
-  float right_area[256];
-  uint32_t right_count[256];
+  float planes[256];
   for (int a = 0; a < space.axes; ++a) {
     if (!map.usable[a]) continue;
-    const Bounds3* bb = &set.box[a * bins];
-    const uint32_t* bc = &set.count[a * bins];
-    // Sweep from the right: what lies in slots b+1.. .
-    Bounds3 acc;
-    uint32_t cnt = 0;
-    for (int b = bins - 1; b > 0; --b) {
-      acc.extend(bb[b]);
-      cnt += bc[b];
-      right_area[b - 1] = space.measure(acc);
-      right_count[b - 1] = cnt;
-    }
-    // Sweep from the left, evaluating each boundary.
-    Bounds3 left;
-    uint32_t n_left = 0;
-    for (int b = 0; b < bins - 1; ++b) {
-      left.extend(bb[b]);
-      n_left += bc[b];
-      BvhCandidate c;
-      c.axis = a;
-      c.bin = b;
-      c.position = map.lo[a] + float(b + 1) / map.scale[a];
-      c.n_left = n_left;
-      c.n_right = right_count[b];
-      c.area_left = space.measure(left);
-      c.area_right = right_area[b];
-      c.area_node = area_node;
-      c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
-      if (out) out->push_back(c);
-      // Only a boundary with primitives on both sides is a split; the first lowest cost wins (lower axis,
-      // bin).
-      if (c.n_left > 0 && c.n_right > 0 && (!found || c.cost < best->cost)) {
-        *best = c;
-        found = true;
-      }
-    }
+    for (int b = 0; b + 1 < bins; ++b) planes[b] = map.lo[a] + float(b + 1) / map.scale[a];
+    // Each primitive counts on the left of every boundary after its slot, on the right of every one before.
+    const uint32_t* counts = &set.count[a * bins];
+    found = sweep_bins(&set.box[a * bins], counts, counts, planes, bins, a, false, area_node, o, space, out, best,
+                       found);
   }
   return found;
 }
@@ -237,6 +206,47 @@ BvhCandidate forced_split(const PrimRef* refs, uint32_t n, const Bounds3& box, c
 }
 
 }  // namespace
+
+bool sweep_bins(const Bounds3* box, const uint32_t* enter, const uint32_t* leave, const float* planes, int bins,
+                int axis, bool spatial, float area_node, const BvhOptions& o, SplitSpace space,
+                std::vector<BvhCandidate>* out, BvhCandidate* best, bool found) {
+  // Sweep from the right: what lies in bins b+1.. .
+  float right_area[kMaxSweepBins];
+  uint32_t right_count[kMaxSweepBins];
+  Bounds3 acc;
+  uint32_t cnt = 0;
+  for (int b = bins - 1; b > 0; --b) {
+    acc.extend(box[b]);
+    cnt += leave[b];
+    right_area[b - 1] = space.measure(acc);
+    right_count[b - 1] = cnt;
+  }
+  // Sweep from the left, evaluating each boundary.
+  Bounds3 left;
+  uint32_t n_left = 0;
+  for (int b = 0; b + 1 < bins; ++b) {
+    left.extend(box[b]);
+    n_left += enter[b];
+    BvhCandidate c;
+    c.spatial = spatial;
+    c.axis = axis;
+    c.bin = b;
+    c.position = planes[b];
+    c.n_left = n_left;
+    c.n_right = right_count[b];
+    c.area_left = space.measure(left);
+    c.area_right = right_area[b];
+    c.area_node = area_node;
+    c.cost = split_cost(o, area_node, c.n_left, c.area_left, c.n_right, c.area_right);
+    if (out) out->push_back(c);
+    // Only a boundary with primitives on both sides is a split; the first lowest cost wins (lower axis, bin).
+    if (c.n_left > 0 && c.n_right > 0 && (!found || c.cost < best->cost)) {
+      *best = c;
+      found = true;
+    }
+  }
+  return found;
+}
 
 float split_cost(const BvhOptions& o, float area_node, uint32_t n_l, float area_l, uint32_t n_r,
                  float area_r) {
