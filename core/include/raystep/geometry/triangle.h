@@ -151,8 +151,12 @@ template <int kx, int ky, int kz>
 // True if the ray hits triangle (p0, p1, p2) with ray.tmin < t < tmax; then *hit holds t and barycentrics.
 // tmax is passed apart from the ray so that accelerators can shrink it as nearer hits are found. The branch
 // on the ray's dominant axis goes the same way for every test of a ray, so the predictor learns it at once.
-inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
-                               const glm::vec3& p2, float tmax, TriangleHit* hit) {
+// intersect_triangle_inline is the same test forced inline, for a walk whose loop the compiler would
+// otherwise leave calling it (the uniform grid's: callgrind, bench/README.md); forced everywhere it makes the
+// trees' walks larger, so the others keep the compiler's choice.
+[[gnu::always_inline]] inline bool intersect_triangle_inline(const WatertightRay& r, const glm::vec3& p0,
+                                                             const glm::vec3& p1, const glm::vec3& p2,
+                                                             float tmax, TriangleHit* hit) {
   switch (r.kz) {
     case 0:
       return detail::intersect_triangle_permuted<1, 2, 0>(r, p0, p1, p2, tmax, hit);
@@ -161,6 +165,10 @@ inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, cons
     default:
       return detail::intersect_triangle_permuted<0, 1, 2>(r, p0, p1, p2, tmax, hit);
   }
+}
+inline bool intersect_triangle(const WatertightRay& r, const glm::vec3& p0, const glm::vec3& p1,
+                               const glm::vec3& p2, float tmax, TriangleHit* hit) {
+  return intersect_triangle_inline(r, p0, p1, p2, tmax, hit);
 }
 
 inline bool intersect_triangle(const Ray& ray, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,

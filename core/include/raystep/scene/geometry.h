@@ -78,7 +78,9 @@ class Geometry {
   }
 
   // Test one primitive, with tmin < t < tmax. wray is the ray prepared for the watertight triangle test.
-  bool intersect(uint32_t id, const Ray& ray, const WatertightRay& wray, float tmax, Hit* hit) const {
+  // kInlineTriangle: the triangle test forced inline (triangle.h's intersect_triangle_inline).
+  template <bool kInlineTriangle = false>
+  [[gnu::always_inline]] bool intersect(uint32_t id, const Ray& ray, const WatertightRay& wray, float tmax, Hit* hit) const {
     // A scene of triangles only (every mesh) numbers its triangles like its primitives: the vertices are read
     // at once, without the type and local-index look-ups that stand between a primitive id and its data.
     const glm::vec3* v;
@@ -95,7 +97,9 @@ class Geometry {
       return true;
     }
     TriangleHit th;
-    if (!intersect_triangle(wray, v[0], v[1], v[2], tmax, &th)) return false;
+    const bool found = kInlineTriangle ? intersect_triangle_inline(wray, v[0], v[1], v[2], tmax, &th)
+                                       : intersect_triangle(wray, v[0], v[1], v[2], tmax, &th);
+    if (!found) return false;
     hit->prim = int32_t(id);
     hit->t = th.t;
     hit->b1 = th.b1;
