@@ -67,7 +67,8 @@ WideBvhView bvh_view(const BvhData& bvh) {
   return view;
 }
 
-BvhQuality tree_quality(const WideBvhView& tree, const Geometry& geometry, float t_i, float t_t) {
+BvhQuality tree_quality(const WideBvhView& tree, const Geometry& geometry, float t_i, float t_t,
+                        bool with_epo) {
   BvhQuality q;
   q.nodes = tree.nodes.size();
   q.leaf_prims.assign(kLeafHistogramBins, 0);
@@ -116,6 +117,8 @@ BvhQuality tree_quality(const WideBvhView& tree, const Geometry& geometry, float
   }
 
   // EPO: for each triangle, the boxes it reaches into whose subtree does not list it.
+  if (!with_epo) return q;
+  q.epo_measured = true;
   const size_t count = geometry.size();
   std::vector<double> area(count, 0.0), inner(count, 0.0), leaf(count, 0.0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256), [&](const tbb::blocked_range<size_t>& r) {

@@ -63,6 +63,9 @@ struct StructureData {
   std::optional<BvhQuality> quality;
 };
 
+// The debugger measures a BVH's EPO with its build up to this many primitives.
+constexpr size_t kEpoTriangles = 250000;
+
 // Each throws InputError on bad input; safe on any thread.
 std::shared_ptr<const SceneData> loadSceneData(const std::string& path);
 std::shared_ptr<const StructureData> buildStructureData(std::shared_ptr<const SceneData> scene,

@@ -86,9 +86,12 @@ QString TreeView::qualityText() const {
   uint64_t most = 0;
   for (size_t d = 0; d < q.leaf_depth.size(); ++d)
     if (q.leaf_depth[d] > most) most = q.leaf_depth[d], depth = d;
+  const QString epo = q.epo_measured
+                          ? QString::number(q.epo, 'f', 2)
+                          : tr("not measured beyond %L1 primitives (raystep bvh-stats)").arg(qulonglong(kEpoTriangles));
   return tr(" &middot; SAH %1 &middot; EPO %2 &middot; leaves: %3 primitives &middot; most at depth %4")
       .arg(q.sah_cost, 0, 'f', 1)
-      .arg(q.epo, 0, 'f', 2)
+      .arg(epo)
       .arg(sizes)
       .arg(depth);
 }
